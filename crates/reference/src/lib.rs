@@ -1,0 +1,1 @@
+//! strak-ref (under construction)

@@ -1,0 +1,2 @@
+//! strak-sim (under construction)
+fn main() {}
