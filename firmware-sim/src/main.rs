@@ -1,2 +1,87 @@
-//! strak-sim (under construction)
-fn main() {}
+//! `strak-sim`: the host simulator of strak.
+//!
+//! ```text
+//! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
+//! ```
+
+use std::fs;
+use std::io::{self, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand};
+
+use strak_sim::curve_file::CurveFile;
+use strak_sim::sample::{Number, SampleOptions, sample_to_csv};
+
+/// Host simulator for strak: sample curves and write CSV.
+#[derive(Debug, Parser)]
+#[command(name = "strak-sim", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Evaluate a curve file at evenly spaced parameters over its whole domain and write CSV
+    /// (`u,x,y[,z]` then `d1x,d1y[,d1z]` … for each derivative).
+    Sample {
+        /// The curve file (TOML).
+        curve: PathBuf,
+        /// Number of parameter values, first and last of the domain included.
+        #[arg(long, default_value_t = 101, value_parser = clap::value_parser!(u32).range(2..=10_000_000))]
+        count: u32,
+        /// Number of derivatives with respect to u to write after the point.
+        #[arg(long, default_value_t = 0)]
+        derivatives: usize,
+        /// Number format the curve is built and evaluated in (`fixed` is I32F32, Q31.32).
+        #[arg(long, value_enum, default_value_t = Number::F64)]
+        number: Number,
+        /// Output file; standard output when omitted.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("strak-sim: error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Sample {
+            curve,
+            count,
+            derivatives,
+            number,
+            out,
+        } => {
+            let text = fs::read_to_string(&curve)
+                .with_context(|| format!("cannot read {}", curve.display()))?;
+            let file = CurveFile::parse(&text)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
+            let options = SampleOptions {
+                count: count as usize,
+                derivatives,
+                number,
+            };
+            let csv = sample_to_csv(&file, &options)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
+            match out {
+                Some(path) => fs::write(&path, csv)
+                    .with_context(|| format!("cannot write {}", path.display()))?,
+                None => io::stdout().lock().write_all(csv.as_bytes())?,
+            }
+            Ok(())
+        }
+    }
+}

@@ -1,2 +1,139 @@
-//! xtask (under construction)
-fn main() {}
+//! strak's one entry point for checks, so that a local run is the CI run.
+//!
+//! ```text
+//! cargo xtask test     formatting, clippy -D warnings, host tests + doctests, rustdoc,
+//!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf
+//! ```
+//!
+//! Missing rustup targets are installed; anything that cannot be installed fails loudly.
+
+use std::env;
+use std::process::{Command, ExitCode};
+use std::time::Instant;
+
+/// The `no_std` crates, proven by cross builds (a host `cargo test` proves nothing about no_std).
+const NO_STD_CRATES: &[&str] = &["strak-curves"];
+
+/// The bare-metal targets the `no_std` crates must build for: Cortex-M0+ (no FPU, no
+/// hardware divide) and Cortex-M4F.
+const CROSS_TARGETS: &[&str] = &["thumbv6m-none-eabi", "thumbv7em-none-eabihf"];
+
+fn main() -> ExitCode {
+    let args: Vec<String> = env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("test") => test(),
+        Some("help") | Some("--help") | Some("-h") | None => {
+            print_help();
+            Ok(())
+        }
+        Some(other) => Err(format!("unknown task `{other}`; try `cargo xtask help`")),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("xtask: error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn print_help() {
+    println!("cargo xtask <task>");
+    println!();
+    println!("tasks:");
+    println!("  test   fmt check, clippy -D warnings, host tests and doctests, rustdoc,");
+    println!("         no_std cross builds (installs missing rustup targets)");
+}
+
+/// The README's test command.
+fn test() -> Result<(), String> {
+    let started = Instant::now();
+    ensure_targets(CROSS_TARGETS)?;
+
+    step("format", &["fmt", "--all", "--", "--check"], &[])?;
+    step(
+        "clippy (host, all targets)",
+        &["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"],
+        &[],
+    )?;
+    step(
+        "clippy (strak-curves with defmt)",
+        &["clippy", "-p", "strak-curves", "--features", "defmt", "--", "-D", "warnings"],
+        &[],
+    )?;
+    step("host tests and doctests", &["test", "--workspace"], &[])?;
+    step(
+        "rustdoc (warnings are errors)",
+        &["doc", "--workspace", "--no-deps"],
+        &[("RUSTDOCFLAGS", "-D warnings")],
+    )?;
+    for target in CROSS_TARGETS {
+        for krate in NO_STD_CRATES {
+            for features in [None, Some("defmt")] {
+                let mut args = vec!["build", "--release", "-p", krate, "--target", target];
+                if let Some(f) = features {
+                    args.extend(["--features", f]);
+                }
+                let label = format!(
+                    "no_std build {krate} for {target}{}",
+                    features.map(|f| format!(" (+{f})")).unwrap_or_default()
+                );
+                step(&label, &args, &[("RUSTFLAGS", "-D warnings")])?;
+            }
+        }
+    }
+    println!(
+        "\nxtask test: all checks passed in {:.0} s",
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Runs `cargo ARGS` with extra environment variables, failing with the step's name.
+fn step(name: &str, args: &[&str], envs: &[(&str, &str)]) -> Result<(), String> {
+    println!("\n==> {name}: cargo {}", args.join(" "));
+    let t = Instant::now();
+    let cargo = env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    let status = Command::new(cargo)
+        .args(args)
+        .envs(envs.iter().copied())
+        .status()
+        .map_err(|e| format!("{name}: could not start cargo: {e}"))?;
+    if status.success() {
+        println!("<== {name}: ok ({:.0} s)", t.elapsed().as_secs_f64());
+        Ok(())
+    } else {
+        Err(format!("{name} failed ({status})"))
+    }
+}
+
+/// Installs the rustup targets that are missing; fails loudly when rustup cannot.
+fn ensure_targets(targets: &[&str]) -> Result<(), String> {
+    let output = Command::new("rustup")
+        .args(["target", "list", "--installed"])
+        .output()
+        .map_err(|e| format!("rustup is needed to install cross targets but could not run: {e}"))?;
+    if !output.status.success() {
+        return Err("`rustup target list --installed` failed".to_owned());
+    }
+    let installed = String::from_utf8_lossy(&output.stdout);
+    let missing: Vec<&str> = targets
+        .iter()
+        .copied()
+        .filter(|t| !installed.lines().any(|l| l.trim() == *t))
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    println!("==> installing rustup targets: {}", missing.join(" "));
+    let status = Command::new("rustup")
+        .args(["target", "add"])
+        .args(&missing)
+        .status()
+        .map_err(|e| format!("could not run rustup target add: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("rustup target add {} failed", missing.join(" ")))
+    }
+}
