@@ -159,22 +159,23 @@ fn solve_tangents<P: Point, const N: usize>(
     boundary: SplineBoundary<P>,
 ) -> Result<Vec<P, N>, Error> {
     let n = points.len() - 1;
-    let mut q = [[0.0_f64; 4]; N];
-    let mut u = [0.0_f64; N];
-    for ((qi, ui), (p, x)) in q.iter_mut().zip(u.iter_mut()).zip(points.iter().zip(nodes)) {
-        *qi = p.to_f64_array();
-        *ui = x.to_f64();
-    }
-    // 1/h_i and 3·δ_i/h_i for the intervals i = 0 … n−1.
-    let mut inv_h = [0.0_f64; N];
-    let mut rhs_part = [[0.0_f64; 4]; N];
-    for i in 0..n {
-        let h = u[i + 1] - u[i];
-        inv_h[i] = 1.0 / h;
-        for c in 0..4 {
-            rhs_part[i][c] = 3.0 * (q[i + 1][c] - q[i][c]) / (h * h);
+    // Interval i = 0 … n−1: 1/h_i and 3·δ_i/h_i, computed from the data when needed (the
+    // construction stack holds only the system: 5·N scalars and N right-hand sides).
+    let h = |i: usize| match (nodes.get(i), nodes.get(i + 1)) {
+        (Some(a), Some(b)) => b.to_f64() - a.to_f64(),
+        _ => f64::NAN,
+    };
+    let inv_h = |i: usize| 1.0 / h(i);
+    let rhs_part = |i: usize| -> [f64; 4] {
+        let hi = h(i);
+        match (points.get(i), points.get(i + 1)) {
+            (Some(a), Some(b)) => {
+                let (a, b) = (a.to_f64_array(), b.to_f64_array());
+                core::array::from_fn(|c| 3.0 * (b[c] - a[c]) / (hi * hi))
+            }
+            _ => [f64::NAN; 4],
         }
-    }
+    };
     let mut sub = [0.0_f64; N];
     let mut diag = [0.0_f64; N];
     let mut sup = [0.0_f64; N];
@@ -187,19 +188,19 @@ fn solve_tangents<P: Point, const N: usize>(
         n + 1
     };
     for i in 1..n {
-        sub[i] = inv_h[i - 1];
-        diag[i] = 2.0 * (inv_h[i - 1] + inv_h[i]);
-        sup[i] = inv_h[i];
-        rhs[i] = add(rhs_part[i - 1], rhs_part[i]);
+        sub[i] = inv_h(i - 1);
+        diag[i] = 2.0 * (inv_h(i - 1) + inv_h(i));
+        sup[i] = inv_h(i);
+        rhs[i] = add(rhs_part(i - 1), rhs_part(i));
     }
     match boundary {
         SplineBoundary::Natural => {
-            diag[0] = 2.0 * inv_h[0];
-            sup[0] = inv_h[0];
-            rhs[0] = rhs_part[0];
-            sub[n] = inv_h[n - 1];
-            diag[n] = 2.0 * inv_h[n - 1];
-            rhs[n] = rhs_part[n - 1];
+            diag[0] = 2.0 * inv_h(0);
+            sup[0] = inv_h(0);
+            rhs[0] = rhs_part(0);
+            sub[n] = inv_h(n - 1);
+            diag[n] = 2.0 * inv_h(n - 1);
+            rhs[n] = rhs_part(n - 1);
             solve_tridiagonal(
                 &sub[..size],
                 &diag[..size],
@@ -223,10 +224,10 @@ fn solve_tangents<P: Point, const N: usize>(
         }
         SplineBoundary::Periodic => {
             // Row 0 wraps around: its left neighbour is node n − 1 (interval n − 1).
-            sub[0] = inv_h[n - 1];
-            diag[0] = 2.0 * (inv_h[n - 1] + inv_h[0]);
-            sup[0] = inv_h[0];
-            rhs[0] = add(rhs_part[n - 1], rhs_part[0]);
+            sub[0] = inv_h(n - 1);
+            diag[0] = 2.0 * (inv_h(n - 1) + inv_h(0));
+            sup[0] = inv_h(0);
+            rhs[0] = add(rhs_part(n - 1), rhs_part(0));
             // Row n − 1's right neighbour is node n ≅ node 0: the corner entry sup[n − 1].
             let mut correction = [0.0_f64; N];
             solve_cyclic_tridiagonal(
@@ -567,6 +568,23 @@ mod tests {
                 assert!(near(fc, want, 1e-7), "I32F32 k={k} u={u}: {fc:?} {want:?}");
             }
         }
+    }
+
+    #[test]
+    fn glam_points() {
+        use glam::{DVec2, Vec3};
+        let pts = PTS.map(|p| DVec2::new(p[0], p[1]));
+        let s = CubicSpline::<_, 8>::new(&pts, CHORD, SplineBoundary::Natural).unwrap();
+        let r = natural();
+        for j in 0..=20 {
+            let u = r.domain().1 * f64::from(j) / 20.0;
+            let (a, b) = (s.eval(u), r.eval(u));
+            assert!((a.x - b[0]).abs() < 1e-12 && (a.y - b[1]).abs() < 1e-12);
+        }
+        let pts3 = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 1.0), Vec3::ZERO];
+        let s = CubicSpline::<_, 4>::new(&pts3, CHORD, SplineBoundary::Periodic).unwrap();
+        assert_eq!(s.eval(s.nodes()[2]), Vec3::new(1.0, 1.0, 1.0));
+        assert!((s.deriv(0.0, 1) - s.deriv(s.domain().1, 1)).length() < 1e-5);
     }
 
     #[test]

@@ -399,7 +399,7 @@ pub(super) fn piece_bound<P: Point>(
         let e0 = 2.0 * (d1 + t0) / delta;
         let e1 = 2.0 * (d1 + t1) / delta;
         let third = (e0 + e1) / delta;
-        for v in [pos, h, dq, d1, e0, e1, e0 + e1, third] {
+        for v in [pos, h, dq, d1, d1 + t0, d1 + t1, e0, e1, e0 + e1, third] {
             // NaN (never expected) counts as out of range
             bound = if v.is_nan() {
                 f64::INFINITY
