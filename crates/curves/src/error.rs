@@ -94,13 +94,22 @@ impl fmt::Display for Error {
         match *self {
             Error::NonFinite => f.write_str("a value is NaN or infinite"),
             Error::TooFewPoints { required, found } => {
-                write!(f, "too few points: {found} given, at least {required} required")
+                write!(
+                    f,
+                    "too few points: {found} given, at least {required} required"
+                )
             }
             Error::CapacityExceeded { capacity, required } => {
-                write!(f, "capacity exceeded: {required} items do not fit into storage for {capacity}")
+                write!(
+                    f,
+                    "capacity exceeded: {required} items do not fit into storage for {capacity}"
+                )
             }
             Error::KnotCount { expected, found } => {
-                write!(f, "wrong number of knots: {found} given, {expected} required")
+                write!(
+                    f,
+                    "wrong number of knots: {found} given, {expected} required"
+                )
             }
             Error::KnotsUnsorted { index } => write!(
                 f,
@@ -108,7 +117,10 @@ impl fmt::Display for Error {
                 index.saturating_sub(1)
             ),
             Error::KnotMultiplicity { index } => {
-                write!(f, "knot {index} has a multiplicity above what the degree allows")
+                write!(
+                    f,
+                    "knot {index} has a multiplicity above what the degree allows"
+                )
             }
             Error::NodesNotIncreasing { index } => write!(
                 f,
@@ -130,9 +142,9 @@ impl fmt::Display for Error {
             Error::LengthMismatch { expected, found } => {
                 write!(f, "length mismatch: {found} given, {expected} required")
             }
-            Error::InvalidArgument => {
-                f.write_str("an argument (tolerance, accuracy, count) is zero, negative or unusable")
-            }
+            Error::InvalidArgument => f.write_str(
+                "an argument (tolerance, accuracy, count) is zero, negative or unusable",
+            ),
         }
     }
 }
