@@ -13,28 +13,15 @@
 //! `s = (t − u_i)/Δ_i` is `c(t) = H_0(s) q_i + Δ_i H_1(s) m_i + Δ_i H_2(s) m_{i+1} + H_3(s) q_{i+1}`
 //! (seeds/002 "Lösung der Interpolationsaufgabe").
 //!
-//! # Relation to the matrix `K⁻¹` of seeds/003
-//! seeds/003 writes a cubic segment on `[0, 1]` as
-//! `Q(t) = [t³ t² t 1] · K⁻¹ · [P_r, P_{r+1}, P'_r, P'_{r+1}]ᵀ` with
-//! [`HERMITE_K_INV`] `= [[2,−2,1,1],[−3,3,−2,−1],[0,0,1,0],[1,0,0,0]]`. Column `j` of `K⁻¹`
-//! holds the coefficients of the `j`-th blending function in *descending* powers, and the
-//! geometry vector lists both points before both tangents. Hence the columns of `K⁻¹` are
-//! `H_0, H_3, H_1, H_2` of seeds/002 (003 calls them `H_{r,0}, H_{r+1,0}, H_{r,1}, H_{r+1,1}`).
-//!
-//! The formulas agree, including the sign of the end-tangent function:
-//! 003's `H_{r+1,1}(t) = t³ − t²` is 002's `H_2(t) = −t²(1 − t)`; both weight the end
-//! tangent as a derivative vector pointing *forward* (in the direction of motion). The
-//! difference is only in the drawings: seeds/002 warns ("Vorsicht") that its figure draws the
-//! arrow at the end point *against* the vector `m` used in the formula. `H_2` is negative on
-//! `(0, 1)` because a forward end tangent pulls the curve back before the end point; do not
-//! negate it. [`HERMITE_MONOMIAL`] is the same matrix in the order of seeds/002.
+//! The relation to the matrix `K⁻¹` of seeds/003 is documented in the
+//! [`basis`](crate::basis) module docs.
 
 use crate::scalar::Scalar;
 
 /// The matrix `K⁻¹` of seeds/003: `Q(t) = [t³ t² t 1] · K⁻¹ · [P_r, P_{r+1}, P'_r, P'_{r+1}]ᵀ`.
 ///
 /// Rows: powers `t³, t², t, 1`; columns: start point, end point, start tangent, end tangent
-/// (i.e. the monomial coefficients of `H_0, H_3, H_1, H_2`, see the [module docs](self)).
+/// (i.e. the monomial coefficients of `H_0, H_3, H_1, H_2`, see the [`basis`](crate::basis) module docs).
 ///
 /// ```
 /// use strak_curves::basis::{HERMITE_K_INV, hermite};

@@ -1,37 +1,8 @@
 //! Basis changes between the monomial and the Bernstein basis (seeds/000
 //! "Basistransformation", "Beispieltransformation") for any degree `g = N − 1`.
 //!
-//! Notation of seeds/000: a polynomial has the monomial coefficient vector `a⃗`
-//! (`f = Σ a_j tʲ`) and the Bernstein coefficient vector `b⃗` (`f = Σ b_i B_i^g`);
-//! `b⃗ = T_{B←M} a⃗`, `a⃗ = T_{M←B} b⃗ = (T_{B←M})⁻¹ b⃗`, and the bases themselves are related by
-//! `B⃗^g(t) = A_{B←M} M⃗^g(t)` with `T_{M←B} = A_{B←M}ᵀ`.
-//!
-//! # Derivation of the entries
-//! **`A_{B←M}` and `T_{M←B}`.** Expanding `(1 − t)^{g−i}` binomially,
-//! `B_i^g(t) = C(g,i) tⁱ (1−t)^{g−i} = Σ_{j≥i} (−1)^{j−i} C(g,i) C(g−i, j−i) tʲ`, and
-//! `C(g,i) C(g−i, j−i) = C(g,j) C(j,i)`. So row `i` of `A_{B←M}` is
-//! `A[i][j] = (−1)^{j−i} C(g,j) C(j,i)` (`j ≥ i`, else 0), and
-//! `T_{M←B}[j][i] = A[i][j]`: `a_j = C(g,j) Σ_{i≤j} (−1)^{j−i} C(j,i) b_i = C(g,j) Δʲ b_0`
-//! (the `j`-th forward difference of the Bézier points). Lower triangular, integer entries.
-//!
-//! **`T_{B←M}`.** Multiplying `tʲ` by `1 = (t + (1 − t))^{g−j}`,
-//! `tʲ = Σ_{i≥j} C(g−j, i−j) tⁱ (1−t)^{g−i} = Σ_{i≥j} [C(g−j, i−j) / C(g,i)] B_i^g(t)`, and
-//! `C(g−j, i−j)/C(g,i) = C(i,j)/C(g,j)`. Hence `b_i = Σ_{j≤i} C(i,j)/C(g,j) · a_j`:
-//! `T_{B←M}[i][j] = C(i,j) / C(g,j)` (`j ≤ i`, else 0), lower triangular with entries in
-//! `[0, 1]`. For `g = 3` this is the matrix of seeds/000:
-//! `[[1,0,0,0],[1,1/3,0,0],[1,2/3,1/3,0],[1,1,1,1]]`.
-//!
-//! # Erratum in seeds/000
-//! The worked example converts the Bernstein coefficients `(2, −2, 5, 1)` and prints the result
-//! `2 − 12t + 33t² − 23t³`. Its own intermediate lines sum the cubic terms to
-//! `−2 − 6 − 15 + 1 = −22`, and `f(1)` must equal `b_3 = 1`: the correct monomial vector is
-//! `(2, −12, 33, −22)`, which is what [`bernstein_to_monomial`] returns.
-//!
-//! # Numbers
-//! Entries are computed in `f64` (binomials exact while below 2⁵³, i.e. `g ≤ 56`) and rounded
-//! once to the scalar type; `T_{M←B}` grows like `3^g` and leaves the fixed-point range early
-//! (`I16F16`: degree ≤ 11, `I32F32`: degree ≤ 21), which is reported as
-//! [`Error::OutOfRange`]. The point conversions also work in `f64` and round each result once.
+//! The formulas, their derivation and an erratum of seeds/000 are documented in the
+//! [`basis`](crate::basis) module docs ("Basis changes").
 
 use super::bernstein::binomial_f64;
 use crate::error::Error;
@@ -72,7 +43,7 @@ fn matrix_from<S: Scalar, const N: usize>(
 
 /// The coefficient transformation `T_{M←B}` (Bernstein → monomial) of degree `g = N − 1`:
 /// `a⃗ = T_{M←B} b⃗`, entries `T[j][i] = (−1)^{j−i} C(g,j) C(j,i)` (see the
-/// [module docs](self) for the derivation).
+/// [`basis`](crate::basis) module docs for the derivation).
 ///
 /// # Errors
 /// [`Error::OutOfRange`] when an entry does not fit the scalar type.
@@ -95,7 +66,7 @@ pub fn bernstein_to_monomial_matrix<S: Scalar, const N: usize>() -> Result<[[S; 
 }
 
 /// The coefficient transformation `T_{B←M}` (monomial → Bernstein) of degree `g = N − 1`:
-/// `b⃗ = T_{B←M} a⃗`, entries `T[i][j] = C(i,j) / C(g,j)` (see the [module docs](self)).
+/// `b⃗ = T_{B←M} a⃗`, entries `T[i][j] = C(i,j) / C(g,j)` (see the [`basis`](crate::basis) module docs).
 ///
 /// # Errors
 /// [`Error::OutOfRange`] when an entry cannot be represented (only for absurd degrees; the
@@ -192,7 +163,7 @@ pub(crate) fn map_coordinates<P: Point, const N: usize>(
 ///
 /// ```
 /// use strak_curves::basis::bernstein_to_monomial;
-/// // seeds/000 worked example (its printed −23 is a typo for −22, see the module docs)
+/// // seeds/000 worked example (its printed −23 is a typo for −22, see the `basis` module docs)
 /// let a = bernstein_to_monomial(&[[2.0], [-2.0], [5.0], [1.0]])?;
 /// assert_eq!(a, [[2.0], [-12.0], [33.0], [-22.0]]);
 /// # Ok::<(), strak_curves::Error>(())
