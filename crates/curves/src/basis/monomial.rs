@@ -16,7 +16,13 @@ use crate::scalar::Scalar;
 /// The polynomial `Σ a_i tⁱ` with scalar coefficients `coeffs = [a_0, …, a_g]`, by the Horner
 /// scheme (seeds/000: `f = a_g; for i = g−1..0: f = a_i + t·f`). Zero for no coefficients.
 ///
-/// No clamping and no range check: for fixed-point the caller keeps `Σ |a_i| |t|ⁱ` in range.
+/// No clamping and no range check.
+///
+/// # Panics
+/// Never for `f32`/`f64`. For fixed-point, an intermediate beyond the type's range overflows
+/// (a panic in debug builds, wrapping in release) unless the caller keeps every partial Horner
+/// sum `Σ_{i≥j} |a_i| |t|^{i−j}` in range; [`MonomialCurve`] checks exactly that at
+/// construction.
 ///
 /// ```
 /// use strak_curves::basis::horner;
@@ -37,7 +43,11 @@ pub fn horner<S: Scalar>(coeffs: &[S], t: S) -> S {
 /// The polynomial curve `Σ a_i tⁱ` with point coefficients `coeffs = [a_0, …, a_g]`, by the
 /// Horner scheme applied coordinate-wise. The origin for no coefficients.
 ///
-/// No clamping and no range check (see [`MonomialCurve`] for a validated curve).
+/// No clamping and no range check.
+///
+/// # Panics
+/// As [`horner`]: only on fixed-point overflow of an unvalidated input; [`MonomialCurve`]
+/// validates the range at construction.
 ///
 /// ```
 /// use strak_curves::basis::horner_points;
@@ -56,13 +66,17 @@ pub fn horner_points<P: Point>(coeffs: &[P], t: P::Scalar) -> P {
 }
 
 /// The monomial basis `M⃗^g(t) = (1, t, t², …, t^g)` with `g = N − 1` (seeds/000), by
-/// repeated multiplication. No clamping.
+/// repeated multiplication. `t` is clamped to `[0, 1]`, the domain of the seed's comparison
+/// of bases ("Wichtig ist, dass nur der Definitionsbereich t ∈ [0,1] betrachtet wird"), so
+/// every value lies in `[0, 1]`.
 ///
 /// ```
 /// use strak_curves::basis::monomials;
-/// assert_eq!(monomials::<f64, 4>(2.0), [1.0, 2.0, 4.0, 8.0]);
+/// assert_eq!(monomials::<f64, 4>(0.5), [1.0, 0.5, 0.25, 0.125]);
+/// assert_eq!(monomials::<f64, 3>(2.0), [1.0, 1.0, 1.0]); // clamped to t = 1
 /// ```
 pub fn monomials<S: Scalar, const N: usize>(t: S) -> [S; N] {
+    let t = t.clamp_to(S::ZERO, S::ONE);
     let mut out = [S::ONE; N];
     let mut p = S::ONE;
     for o in out.iter_mut().skip(1) {
@@ -295,6 +309,18 @@ mod tests {
             Err(Error::TooFewPoints {
                 required: 1,
                 found: 0
+            })
+        );
+    }
+
+    #[test]
+    fn error_degree_too_high() {
+        let coeffs = [[I16F16::ZERO]; MAX_DEGREE + 2];
+        assert_eq!(
+            MonomialCurve::new(coeffs),
+            Err(Error::DegreeTooHigh {
+                max: MAX_DEGREE,
+                found: MAX_DEGREE + 1
             })
         );
     }
