@@ -67,7 +67,7 @@ pub fn horner_points<P: Point>(coeffs: &[P], t: P::Scalar) -> P {
 
 /// The monomial basis `M⃗^g(t) = (1, t, t², …, t^g)` with `g = N − 1` (seeds/000), by
 /// repeated multiplication. `t` is clamped to `[0, 1]`, the domain of the seed's comparison
-/// of bases ("Wichtig ist, dass nur der Definitionsbereich t ∈ [0,1] betrachtet wird"), so
+/// of bases ("Wichtig ist, dass nur der Definitionsbereich `t ∈ [0,1]` betrachtet wird"), so
 /// every value lies in `[0, 1]`.
 ///
 /// ```
