@@ -1,1 +1,19 @@
-//! (module under construction)
+//! Bézier curves (seeds/000 and 002 "Beziér Kurven", seeds/004 "Bézier-Kurven").
+//!
+//! [`Bezier`] is one polynomial segment `c(t) = Σ b_i B_i^g(t)`, `t ∈ [0, 1]`, given by its
+//! `N = g + 1` Bézier points, evaluated with de Casteljau's algorithm. The operations live in
+//! one file each: evaluation and validation (`curve.rs`), derivatives and the hodograph
+//! (`derivative.rs`), subdivision and sub-segments (`subdivide.rs`), degree elevation
+//! (`elevate.rs`), conversion to and from the monomial basis (`convert.rs`), C¹/G¹ joining
+//! (`join.rs`) and the cubic quarter circle (`circle.rs`).
+
+mod circle;
+mod convert;
+mod curve;
+mod derivative;
+mod elevate;
+mod join;
+mod subdivide;
+
+pub use circle::*;
+pub use curve::*;
