@@ -147,7 +147,10 @@ impl CurveFile {
     pub fn check(&self) -> Result<(), FieldError> {
         let k = self.kind;
         if self.points.is_empty() {
-            return Err(FieldError::new("points", "the path is empty: give at least one point"));
+            return Err(FieldError::new(
+                "points",
+                "the path is empty: give at least one point",
+            ));
         }
         let dim = self.dim();
         if !(1..=4).contains(&dim) {
@@ -159,7 +162,10 @@ impl CurveFile {
         if let Some(i) = self.points.iter().position(|p| p.len() != dim) {
             return Err(FieldError::new(
                 "points",
-                format!("point {i} has {} coordinates, point 0 has {dim}", self.points[i].len()),
+                format!(
+                    "point {i} has {} coordinates, point 0 has {dim}",
+                    self.points[i].len()
+                ),
             ));
         }
         let uses = |field: &'static str, present: bool, allowed: &[Kind]| {
@@ -184,19 +190,29 @@ impl CurveFile {
         )?;
         uses("tangents", self.tangents.is_some(), &[Hermite])?;
         uses("boundary", self.boundary.is_some(), &[CubicSpline])?;
-        uses("start_tangent", self.start_tangent.is_some(), &[CubicSpline])?;
+        uses(
+            "start_tangent",
+            self.start_tangent.is_some(),
+            &[CubicSpline],
+        )?;
         uses("end_tangent", self.end_tangent.is_some(), &[CubicSpline])?;
 
         let n = self.points.len();
         if matches!(k, Bspline | Nurbs) && self.degree.is_none() {
-            return Err(FieldError::new("degree", format!("required for kind `{}`", k.name())));
+            return Err(FieldError::new(
+                "degree",
+                format!("required for kind `{}`", k.name()),
+            ));
         }
         if k == Bezier {
             if let Some(g) = self.degree {
                 if g + 1 != n {
                     return Err(FieldError::new(
                         "degree",
-                        format!("a Bézier curve with {n} points has degree {}, not {g}", n - 1),
+                        format!(
+                            "a Bézier curve with {n} points has degree {}, not {g}",
+                            n - 1
+                        ),
                     ));
                 }
             }
@@ -234,19 +250,28 @@ impl CurveFile {
             if let Some(i) = t.iter().position(|v| v.len() != dim) {
                 return Err(FieldError::new(
                     "tangents",
-                    format!("tangent {i} has {} coordinates, points have {dim}", t[i].len()),
+                    format!(
+                        "tangent {i} has {} coordinates, points have {dim}",
+                        t[i].len()
+                    ),
                 ));
             }
         }
         if k == CubicSpline {
             let clamped = self.boundary == Some(BoundaryName::Clamped);
-            for (field, v) in [("start_tangent", &self.start_tangent), ("end_tangent", &self.end_tangent)] {
+            for (field, v) in [
+                ("start_tangent", &self.start_tangent),
+                ("end_tangent", &self.end_tangent),
+            ] {
                 match v {
                     Some(_) if !clamped => {
                         return Err(FieldError::new(field, "only with boundary = \"clamped\""));
                     }
                     None if clamped => {
-                        return Err(FieldError::new(field, "required with boundary = \"clamped\""));
+                        return Err(FieldError::new(
+                            field,
+                            "required with boundary = \"clamped\"",
+                        ));
                     }
                     Some(v) if v.len() != dim => {
                         return Err(FieldError::new(
@@ -278,7 +303,10 @@ mod tests {
         .unwrap();
         assert_eq!(f.kind, Kind::Bspline);
         assert_eq!(f.dim(), 3);
-        assert_eq!(f.knots.as_deref(), Some(&[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0][..]));
+        assert_eq!(
+            f.knots.as_deref(),
+            Some(&[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0][..])
+        );
     }
 
     #[test]
@@ -289,12 +317,27 @@ mod tests {
         assert!(err("kind = \"bezier\"\npoints = [[0.0], [1.0, 2.0]]").contains("field `points`"));
         assert!(err("kind = \"bezier\"\npoints = [[1,2,3,4,5]]").contains("field `points`"));
         assert!(err("kind = \"bspline\"\npoints = [[0.0], [1.0]]").contains("field `degree`"));
-        assert!(err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\nweights = [1, 1]").contains("field `weights`"));
-        assert!(err("kind = \"nurbs\"\npoints = [[0.0], [1.0]]\ndegree = 1\nweights = [1]").contains("field `weights`"));
+        assert!(
+            err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\nweights = [1, 1]")
+                .contains("field `weights`")
+        );
+        assert!(
+            err("kind = \"nurbs\"\npoints = [[0.0], [1.0]]\ndegree = 1\nweights = [1]")
+                .contains("field `weights`")
+        );
         assert!(err("kind = \"hermite\"\npoints = [[0.0], [1.0]]").contains("field `tangents`"));
-        assert!(err("kind = \"cubic-spline\"\npoints = [[0.0], [1.0]]\nboundary = \"clamped\"").contains("field `start_tangent`"));
-        assert!(err("kind = \"lagrange\"\npoints = [[0.0], [1.0]]\nparams = [0]").contains("field `params`"));
+        assert!(
+            err("kind = \"cubic-spline\"\npoints = [[0.0], [1.0]]\nboundary = \"clamped\"")
+                .contains("field `start_tangent`")
+        );
+        assert!(
+            err("kind = \"lagrange\"\npoints = [[0.0], [1.0]]\nparams = [0]")
+                .contains("field `params`")
+        );
         assert!(err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\ncolour = 3").contains("colour"));
-        assert!(err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\ndegree = 3").contains("field `degree`"));
+        assert!(
+            err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\ndegree = 3")
+                .contains("field `degree`")
+        );
     }
 }

@@ -67,8 +67,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         } => {
             let text = fs::read_to_string(&curve)
                 .with_context(|| format!("cannot read {}", curve.display()))?;
-            let file = CurveFile::parse(&text)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
+            let file =
+                CurveFile::parse(&text).map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
             let options = SampleOptions {
                 count: count as usize,
                 derivatives,

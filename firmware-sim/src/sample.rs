@@ -116,7 +116,9 @@ pub fn sample_to_csv(file: &CurveFile, options: &SampleOptions) -> Result<String
     let rows = sample_rows(file, options)?;
     let mut writer = csv::Writer::from_writer(Vec::new());
     let io = |e: csv::Error| FieldError::new("out", e.to_string());
-    writer.write_record(header(file.dim(), options.derivatives)).map_err(io)?;
+    writer
+        .write_record(header(file.dim(), options.derivatives))
+        .map_err(io)?;
     let mut cell = String::new();
     for row in &rows {
         let cells: Vec<String> = row
@@ -130,7 +132,9 @@ pub fn sample_to_csv(file: &CurveFile, options: &SampleOptions) -> Result<String
             .collect();
         writer.write_record(&cells).map_err(io)?;
     }
-    let bytes = writer.into_inner().map_err(|e| FieldError::new("out", e.to_string()))?;
+    let bytes = writer
+        .into_inner()
+        .map_err(|e| FieldError::new("out", e.to_string()))?;
     String::from_utf8(bytes).map_err(|e| FieldError::new("out", e.to_string()))
 }
 

@@ -54,7 +54,10 @@ fn reference(file: &CurveFile) -> Reference {
             let closed = file.closed.unwrap_or(false);
             let weights = file.weights.clone();
             if closed {
-                let knots = file.knots.clone().unwrap_or_else(|| r::periodic_uniform_knots(n));
+                let knots = file
+                    .knots
+                    .clone()
+                    .unwrap_or_else(|| r::periodic_uniform_knots(n));
                 let domain = (knots[0], knots[n]);
                 Reference {
                     domain,
@@ -124,7 +127,10 @@ fn extent(points: &[Vec<f64>]) -> f64 {
     (0..dim)
         .map(|i| {
             let lo = points.iter().map(|p| p[i]).fold(f64::INFINITY, f64::min);
-            let hi = points.iter().map(|p| p[i]).fold(f64::NEG_INFINITY, f64::max);
+            let hi = points
+                .iter()
+                .map(|p| p[i])
+                .fold(f64::NEG_INFINITY, f64::max);
             hi - lo
         })
         .fold(0.0, f64::max)
@@ -144,15 +150,19 @@ fn relative_errors(file: &CurveFile, number: Number) -> Vec<f64> {
     let ext = extent(&file.points);
     let (a, b) = reference.domain;
     assert_eq!(rows.len(), COUNT);
-    assert!((rows[0][0] - a).abs() <= 1e-9 * (b - a), "first u {} vs {a}", rows[0][0]);
-    assert!((rows[COUNT - 1][0] - b).abs() <= 1e-9 * (b - a), "last u vs {b}");
+    assert!(
+        (rows[0][0] - a).abs() <= 1e-9 * (b - a),
+        "first u {} vs {a}",
+        rows[0][0]
+    );
+    assert!(
+        (rows[COUNT - 1][0] - b).abs() <= 1e-9 * (b - a),
+        "last u vs {b}"
+    );
     (0..=DERIVATIVES)
         .map(|k| {
             let refs: Vec<Vec<f64>> = rows.iter().map(|row| (reference.eval)(row[0], k)).collect();
-            let scale = refs
-                .iter()
-                .flatten()
-                .fold(ext, |m, v| m.max(v.abs()));
+            let scale = refs.iter().flatten().fold(ext, |m, v| m.max(v.abs()));
             rows.iter()
                 .zip(&refs)
                 .flat_map(|(row, want)| {
@@ -203,7 +213,11 @@ fn one_and_four_coordinates() {
         "kind = \"bspline\"\ndegree = 2\npoints = [[0,0,0,0],[1,2,3,4],[2,0,1,0],[3,1,0,2]]",
     ] {
         let file = CurveFile::parse(text).unwrap();
-        for (number, tol) in [(Number::F64, 1e-10), (Number::F32, 1e-5), (Number::Fixed, 1e-7)] {
+        for (number, tol) in [
+            (Number::F64, 1e-10),
+            (Number::F32, 1e-5),
+            (Number::Fixed, 1e-7),
+        ] {
             for (k, e) in relative_errors(&file, number).iter().enumerate() {
                 assert!(*e <= tol, "{text}: derivative {k} {number:?}: {e:e}");
             }
@@ -216,10 +230,21 @@ fn one_and_four_coordinates() {
 fn command_line_writes_the_library_rows() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hermite.toml");
     let out = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
-        .args(["sample", path.to_str().unwrap(), "--count", "9", "--derivatives", "1"])
+        .args([
+            "sample",
+            path.to_str().unwrap(),
+            "--count",
+            "9",
+            "--derivatives",
+            "1",
+        ])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some(header(3, 1).join(",").as_str()));
@@ -242,7 +267,10 @@ fn command_line_writes_the_library_rows() {
 fn run_bad(text: &str) -> String {
     let dir = std::env::temp_dir().join(format!("strak-sim-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{:x}.toml", text.len() * 31 + text.bytes().map(usize::from).sum::<usize>()));
+    let path = dir.join(format!(
+        "{:x}.toml",
+        text.len() * 31 + text.bytes().map(usize::from).sum::<usize>()
+    ));
     std::fs::write(&path, text).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
         .args(["sample", path.to_str().unwrap()])
@@ -251,7 +279,11 @@ fn run_bad(text: &str) -> String {
     assert!(!out.status.success(), "accepted a bad file: {text}");
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(!stderr.contains("panicked"), "panic for {text}: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one error line: {stderr}");
+    assert_eq!(
+        stderr.trim_end().lines().count(),
+        1,
+        "one error line: {stderr}"
+    );
     stderr
 }
 
@@ -259,24 +291,57 @@ fn run_bad(text: &str) -> String {
 #[test]
 fn bad_files_name_the_field() {
     let cases = [
-        ("kind = \"bspline\"\ndegree = 3\npoints = [[0,0],[1,1],[2,0],[3,1]]\nknots = [0,0,0,0,2,1,1,1]", "knots"),
-        ("kind = \"bspline\"\ndegree = 3\npoints = [[0,0],[1,1],[2,0],[3,1]]\nknots = [0,0,0,1,1,1]", "knots"),
-        ("kind = \"bspline\"\ndegree = 3\npoints = [[0,0],[1,1]]", "points"),
-        ("kind = \"nurbs\"\ndegree = 1\npoints = [[0,0],[1,1]]\nweights = [1, -1]", "weights"),
-        ("kind = \"lagrange\"\npoints = [[0,0],[1,1],[2,2]]\nparams = [0, 2, 1]", "params"),
-        ("kind = \"cubic-spline\"\npoints = [[0,0],[0,0],[2,2]]", "points"),
-        ("kind = \"cubic-spline\"\npoints = [[0,0],[1,1],[2,2]]\nboundary = \"periodic\"", "points"),
-        ("kind = \"hermite\"\npoints = [[0,0],[1,1]]\ntangents = [[1,0]]", "tangents"),
-        ("kind = \"bezier\"\npoints = [[0,0],[1,1]]\nknots = [0,1]", "knots"),
+        (
+            "kind = \"bspline\"\ndegree = 3\npoints = [[0,0],[1,1],[2,0],[3,1]]\nknots = [0,0,0,0,2,1,1,1]",
+            "knots",
+        ),
+        (
+            "kind = \"bspline\"\ndegree = 3\npoints = [[0,0],[1,1],[2,0],[3,1]]\nknots = [0,0,0,1,1,1]",
+            "knots",
+        ),
+        (
+            "kind = \"bspline\"\ndegree = 3\npoints = [[0,0],[1,1]]",
+            "points",
+        ),
+        (
+            "kind = \"nurbs\"\ndegree = 1\npoints = [[0,0],[1,1]]\nweights = [1, -1]",
+            "weights",
+        ),
+        (
+            "kind = \"lagrange\"\npoints = [[0,0],[1,1],[2,2]]\nparams = [0, 2, 1]",
+            "params",
+        ),
+        (
+            "kind = \"cubic-spline\"\npoints = [[0,0],[0,0],[2,2]]",
+            "points",
+        ),
+        (
+            "kind = \"cubic-spline\"\npoints = [[0,0],[1,1],[2,2]]\nboundary = \"periodic\"",
+            "points",
+        ),
+        (
+            "kind = \"hermite\"\npoints = [[0,0],[1,1]]\ntangents = [[1,0]]",
+            "tangents",
+        ),
+        (
+            "kind = \"bezier\"\npoints = [[0,0],[1,1]]\nknots = [0,1]",
+            "knots",
+        ),
         ("kind = \"bezier\"\npoints = [[0, 0],[1, nan]]", "points"),
         ("kind = \"bezier\"\npoints = [[0, 0],[1, 1e308]]", "points"),
-        ("kind = \"parabolic-blend\"\npoints = [[0,0],[1,1]]", "points"),
+        (
+            "kind = \"parabolic-blend\"\npoints = [[0,0],[1,1]]",
+            "points",
+        ),
         ("kind = \"bezier\"\npoints = []", "points"),
         ("kind = \"bezier\"", "points"),
         ("kind = 3\npoints = [[0]]", "kind"),
     ];
     for (text, field) in cases {
         let err = run_bad(text);
-        assert!(err.contains(field), "{text}: error does not name `{field}`: {err}");
+        assert!(
+            err.contains(field),
+            "{text}: error does not name `{field}`: {err}"
+        );
     }
 }

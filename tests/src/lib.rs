@@ -7,7 +7,9 @@ use strak_curves::Point;
 
 /// The coordinates of a point as strak-ref's `Vec<f64>`.
 pub fn to_vec<P: Point>(p: P) -> Vec<f64> {
-    (0..P::DIM).map(|i| strak_curves::Scalar::to_f64(p.coord(i))).collect()
+    (0..P::DIM)
+        .map(|i| strak_curves::Scalar::to_f64(p.coord(i)))
+        .collect()
 }
 
 /// All points as strak-ref's `&[Vec<f64>]`.
@@ -28,7 +30,10 @@ pub fn pts<P: Point>(points: &[Vec<f64>]) -> Vec<P> {
 /// The largest coordinate difference.
 pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len(), "dimension mismatch");
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 /// The extent of a point set: the largest coordinate range (at least `f64::MIN_POSITIVE`).
@@ -37,7 +42,10 @@ pub fn extent(points: &[Vec<f64>]) -> f64 {
     (0..dim)
         .map(|i| {
             let lo = points.iter().map(|p| p[i]).fold(f64::INFINITY, f64::min);
-            let hi = points.iter().map(|p| p[i]).fold(f64::NEG_INFINITY, f64::max);
+            let hi = points
+                .iter()
+                .map(|p| p[i])
+                .fold(f64::NEG_INFINITY, f64::max);
             hi - lo
         })
         .fold(0.0, f64::max)
@@ -45,13 +53,22 @@ pub fn extent(points: &[Vec<f64>]) -> f64 {
 }
 
 /// `n` points of dimension `dim` with coordinates in `[-range, range]`.
-pub fn points(n: std::ops::RangeInclusive<usize>, dim: usize, range: f64) -> impl Strategy<Value = Vec<Vec<f64>>> {
+pub fn points(
+    n: std::ops::RangeInclusive<usize>,
+    dim: usize,
+    range: f64,
+) -> impl Strategy<Value = Vec<Vec<f64>>> {
     prop::collection::vec(prop::collection::vec(-range..range, dim), n)
 }
 
 /// `n` strictly increasing nodes starting at `start`, with gaps in `[min_gap, max_gap]`
 /// (well separated, so interpolation problems are well conditioned).
-pub fn increasing_nodes(n: usize, start: f64, min_gap: f64, max_gap: f64) -> impl Strategy<Value = Vec<f64>> {
+pub fn increasing_nodes(
+    n: usize,
+    start: f64,
+    min_gap: f64,
+    max_gap: f64,
+) -> impl Strategy<Value = Vec<f64>> {
     prop::collection::vec(min_gap..max_gap, n.saturating_sub(1)).prop_map(move |gaps| {
         let mut u = vec![start];
         for g in gaps {
@@ -66,6 +83,12 @@ pub fn increasing_nodes(n: usize, start: f64, min_gap: f64, max_gap: f64) -> imp
 pub fn linspace(a: f64, b: f64, count: usize) -> Vec<f64> {
     let last = (count - 1).max(1) as f64;
     (0..count)
-        .map(|i| if i + 1 == count { b } else { a + (b - a) * (i as f64 / last) })
+        .map(|i| {
+            if i + 1 == count {
+                b
+            } else {
+                a + (b - a) * (i as f64 / last)
+            }
+        })
         .collect()
 }

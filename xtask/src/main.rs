@@ -53,12 +53,28 @@ fn test() -> Result<(), String> {
     step("format", &["fmt", "--all", "--", "--check"], &[])?;
     step(
         "clippy (host, all targets)",
-        &["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"],
+        &[
+            "clippy",
+            "--workspace",
+            "--all-targets",
+            "--",
+            "-D",
+            "warnings",
+        ],
         &[],
     )?;
     step(
         "clippy (strak-curves with defmt)",
-        &["clippy", "-p", "strak-curves", "--features", "defmt", "--", "-D", "warnings"],
+        &[
+            "clippy",
+            "-p",
+            "strak-curves",
+            "--features",
+            "defmt",
+            "--",
+            "-D",
+            "warnings",
+        ],
         &[],
     )?;
     step("host tests and doctests", &["test", "--workspace"], &[])?;

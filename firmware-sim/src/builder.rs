@@ -1,0 +1,218 @@
+//! Building a strak-curves curve from a [`CurveFile`], in the requested number format.
+//!
+//! The file's points become `[S; D]` arrays (D = 1 to 4 coordinates, S = f64, f32 or I32F32);
+//! each constructor's typed error is reported against the field it concerns.
+
+use strak_curves::{
+    CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, ParabolicBlend, Parameterization,
+    Point, Scalar, SplineBoundary,
+};
+
+use crate::curve_file::{BoundaryName, CurveFile, FieldError, Kind};
+use crate::sample::{FixedScalar, Number, Sampled};
+
+/// The largest number of points (control points, interpolation points) a file may have.
+pub const CAPACITY: usize = 256;
+
+/// Builds the curve of `file` in the number format `number`.
+pub fn build_curve(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+    check_finite(file)?;
+    match number {
+        Number::F64 => build_dim::<f64>(file, number),
+        Number::F32 => build_dim::<f32>(file, number),
+        Number::Fixed => build_dim::<FixedScalar>(file, number),
+    }
+}
+
+fn build_dim<S: Scalar>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+    match file.dim() {
+        1 => build::<[S; 1]>(file, number),
+        2 => build::<[S; 2]>(file, number),
+        3 => build::<[S; 3]>(file, number),
+        4 => build::<[S; 4]>(file, number),
+        d => Err(FieldError::new(
+            "points",
+            format!("points need 1 to 4 coordinates, not {d}"),
+        )),
+    }
+}
+
+/// Non-finite values are reported against their own field before any constructor runs.
+fn check_finite(file: &CurveFile) -> Result<(), FieldError> {
+    let all_finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    let fields: [(&'static str, bool); 7] = [
+        ("points", file.points.iter().all(|p| all_finite(p))),
+        ("knots", file.knots.as_deref().is_none_or(all_finite)),
+        ("weights", file.weights.as_deref().is_none_or(all_finite)),
+        ("params", file.params.as_deref().is_none_or(all_finite)),
+        (
+            "tangents",
+            file.tangents
+                .as_ref()
+                .is_none_or(|t| t.iter().all(|p| all_finite(p))),
+        ),
+        (
+            "start_tangent",
+            file.start_tangent.as_deref().is_none_or(all_finite),
+        ),
+        (
+            "end_tangent",
+            file.end_tangent.as_deref().is_none_or(all_finite),
+        ),
+    ];
+    match fields.iter().find(|(_, ok)| !ok) {
+        Some((field, _)) => Err(FieldError::new(field, "a value is NaN or infinite")),
+        None => Ok(()),
+    }
+}
+
+/// Converts a list of coordinate vectors to points of type `P`.
+fn points_of<P: Point>(
+    field: &'static str,
+    coords: &[Vec<f64>],
+    number: Number,
+) -> Result<Vec<P>, FieldError> {
+    coords
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            P::from_f64_slice(c)
+                .ok_or_else(|| out_of_range(field, &format!("{field}[{i}]"), number))
+        })
+        .collect()
+}
+
+fn scalars_of<S: Scalar>(
+    field: &'static str,
+    values: &[f64],
+    number: Number,
+) -> Result<Vec<S>, FieldError> {
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            S::from_f64(*v).ok_or_else(|| out_of_range(field, &format!("{field}[{i}]"), number))
+        })
+        .collect()
+}
+
+fn out_of_range(field: &'static str, what: &str, number: Number) -> FieldError {
+    FieldError::new(
+        field,
+        format!(
+            "{what} is out of range for --number {}",
+            number_name(number)
+        ),
+    )
+}
+
+fn number_name(number: Number) -> &'static str {
+    match number {
+        Number::F64 => "f64",
+        Number::F32 => "f32",
+        Number::Fixed => "fixed (I32F32)",
+    }
+}
+
+/// The field a constructor error is about, for the kind at hand.
+fn field_of(kind: Kind, has_params: bool, error: Error) -> &'static str {
+    match error {
+        Error::KnotCount { .. } | Error::KnotsUnsorted { .. } | Error::KnotMultiplicity { .. } => {
+            "knots"
+        }
+        Error::NodesNotIncreasing { .. } => "params",
+        Error::ZeroLengthInterval { .. } => match kind {
+            Kind::Bspline | Kind::Nurbs => "knots",
+            _ if has_params => "params",
+            _ => "points",
+        },
+        Error::NonPositiveWeight { .. } => "weights",
+        Error::DegreeTooHigh { .. } => "degree",
+        Error::LengthMismatch { .. } => match kind {
+            Kind::Hermite => "tangents",
+            Kind::Nurbs => "weights",
+            Kind::Bspline => "knots",
+            _ => "points",
+        },
+        _ => "points",
+    }
+}
+
+fn constructor_error(file: &CurveFile, number: Number) -> impl Fn(Error) -> FieldError + '_ {
+    move |e| {
+        let field = field_of(file.kind, file.params.is_some(), e);
+        let message = match e {
+            Error::OutOfRange => format!(
+                "a value of the curve (or one its evaluation produces) is out of range for --number {}",
+                number_name(number)
+            ),
+            Error::InvalidArgument if file.boundary == Some(BoundaryName::Periodic) => {
+                "a periodic cubic spline needs the last point to repeat the first".to_owned()
+            }
+            other => other.to_string(),
+        };
+        FieldError::new(field, message)
+    }
+}
+
+fn build<P: Point>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+    let err = constructor_error(file, number);
+    let points: Vec<P> = points_of("points", &file.points, number)?;
+    let params: Option<Vec<P::Scalar>> = file
+        .params
+        .as_deref()
+        .map(|p| scalars_of("params", p, number))
+        .transpose()?;
+    let nodes = || -> NodeSource<'_, P::Scalar> {
+        match &params {
+            Some(p) => NodeSource::Given(p),
+            None => NodeSource::Computed(Parameterization::ChordLength),
+        }
+    };
+    let curve: Box<dyn Sampled> = match file.kind {
+        Kind::Lagrange => {
+            Box::new(LagrangeCurve::<P, CAPACITY>::new(&points, nodes()).map_err(&err)?)
+        }
+        Kind::Hermite => {
+            let tangents: Vec<P> = points_of(
+                "tangents",
+                file.tangents.as_deref().unwrap_or_default(),
+                number,
+            )?;
+            Box::new(HermiteSpline::<P, CAPACITY>::new(&points, &tangents, nodes()).map_err(&err)?)
+        }
+        Kind::CatmullRom => {
+            Box::new(HermiteSpline::<P, CAPACITY>::catmull_rom(&points, nodes()).map_err(&err)?)
+        }
+        Kind::CubicSpline => {
+            let boundary = match file.boundary.unwrap_or_default() {
+                BoundaryName::Natural => SplineBoundary::Natural,
+                BoundaryName::Periodic => SplineBoundary::Periodic,
+                BoundaryName::Clamped => {
+                    let start = points_of(
+                        "start_tangent",
+                        std::slice::from_ref(file.start_tangent.as_ref().unwrap_or(&Vec::new())),
+                        number,
+                    )?;
+                    let end = points_of(
+                        "end_tangent",
+                        std::slice::from_ref(file.end_tangent.as_ref().unwrap_or(&Vec::new())),
+                        number,
+                    )?;
+                    SplineBoundary::Clamped {
+                        start: start[0],
+                        end: end[0],
+                    }
+                }
+            };
+            Box::new(CubicSpline::<P, CAPACITY>::new(&points, nodes(), boundary).map_err(&err)?)
+        }
+        Kind::ParabolicBlend => {
+            Box::new(ParabolicBlend::<P, CAPACITY>::new(&points).map_err(&err)?)
+        }
+        Kind::Bezier | Kind::Bspline | Kind::Nurbs => {
+            build_control_point_curve::<P>(file, &points, number)?
+        }
+    };
+    Ok(curve)
+}
