@@ -66,7 +66,9 @@ const MAX_SEGMENTS: usize = 1 << 24;
 /// # Errors
 /// - [`Error::InvalidArgument`]: `tolerance` is not finite and positive.
 /// - [`Error::CapacityExceeded`]: `out` is too short; `required` is the number of vertices
-///   needed (then `out` holds the first `out.len()` of them).
+///   needed (then `out` holds the first `out.len()` of them). Also when one piece would need
+///   more than 2²⁴ segments (a tolerance far below the curve's size); then `capacity` is
+///   2²⁴ and `required` a lower estimate.
 /// - [`Error::NonFinite`]: a derivative of the curve is not finite.
 ///
 /// ```
