@@ -1,0 +1,1013 @@
+//! Arc length `s(u) = ∫ |c'(u)| du`, its inverse `u(s)`, and an arc-length table for time laws.
+//!
+//! The quadrature and its accuracy are documented at [`arc_length`].
+
+use crate::curve::{ParamCurve, ParamCurveDeriv, ScalarOf};
+use crate::error::Error;
+use crate::point::Point;
+use crate::scalar::Scalar;
+
+use super::{check_positive, greater, norm64, param};
+
+/// Nodes of the 8-point Gauss–Legendre rule on `[−1, 1]` (the positive half).
+const GL_X: [f64; 4] = [
+    0.183_434_642_495_649_8,
+    0.525_532_409_916_329,
+    0.796_666_477_413_626_7,
+    0.960_289_856_497_536_3,
+];
+/// Weights of the 8-point Gauss–Legendre rule, matching [`GL_X`].
+const GL_W: [f64; 4] = [
+    0.362_683_783_378_362,
+    0.313_706_645_877_887_3,
+    0.222_381_034_453_374_5,
+    0.101_228_536_290_376_26,
+];
+
+/// The deepest bisection of an interval (parameter widths down to `2⁻³²` of a piece).
+const MAX_DEPTH: u32 = 32;
+
+/// Iteration limit of the safeguarded Newton method in [`param_at_length`].
+const MAX_NEWTON: usize = 100;
+
+/// The speed `|c'(u)|` in `f64`, with `u` rounded to the scalar and clamped to `[lo, hi]`.
+fn speed<C: ParamCurveDeriv>(curve: &C, u: f64, lo: ScalarOf<C>, hi: ScalarOf<C>) -> f64 {
+    norm64(&curve.deriv(param(u, lo, hi), 1))
+}
+
+/// 8-point Gauss–Legendre of `|c'|` over `[a, b] ⊂ [lo, hi]`.
+fn gauss<C: ParamCurveDeriv>(curve: &C, a: f64, b: f64, lo: ScalarOf<C>, hi: ScalarOf<C>) -> f64 {
+    let mid = 0.5 * (a + b);
+    let half = 0.5 * (b - a);
+    let mut sum = 0.0;
+    for (x, w) in GL_X.iter().zip(GL_W.iter()) {
+        let d = half * x;
+        sum += w * (speed(curve, mid - d, lo, hi) + speed(curve, mid + d, lo, hi));
+    }
+    sum * half
+}
+
+/// Adaptive Gauss–Legendre of `|c'|` over `[a, b]`, inside the piece `[lo, hi]`.
+fn integrate<C: ParamCurveDeriv>(
+    curve: &C,
+    a: f64,
+    b: f64,
+    lo: ScalarOf<C>,
+    hi: ScalarOf<C>,
+    accuracy: f64,
+) -> Result<f64, Error> {
+    if !greater(b, a) {
+        return Ok(0.0);
+    }
+    let eps = ScalarOf::<C>::EPSILON;
+    let rel_floor = 8.0 * f64::EPSILON.max(eps);
+    // Depth-first stack of (a, b, estimate on [a, b], accuracy share, depth).
+    let mut stack = [(0.0, 0.0, 0.0, 0.0, 0_u32); MAX_DEPTH as usize + 2];
+    let mut top = 1;
+    if let Some(first) = stack.first_mut() {
+        *first = (a, b, gauss(curve, a, b, lo, hi), accuracy, 0);
+    }
+    let mut total = 0.0;
+    while top > 0 {
+        top -= 1;
+        let Some(&(a, b, whole, share, depth)) = stack.get(top) else {
+            break;
+        };
+        let m = 0.5 * (a + b);
+        let left = gauss(curve, a, m, lo, hi);
+        let right = gauss(curve, m, b, lo, hi);
+        let fine = left + right;
+        if !fine.is_finite() || !whole.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let tiny = (b - a) <= 4.0 * eps * a.abs().max(b.abs()).max(1.0);
+        if (fine - whole).abs() <= share.max(rel_floor * fine.abs()) || tiny {
+            total += fine;
+            continue;
+        }
+        if depth >= MAX_DEPTH {
+            return Err(Error::InvalidArgument);
+        }
+        let half = 0.5 * share;
+        for item in [
+            (m, b, right, half, depth + 1),
+            (a, m, left, half, depth + 1),
+        ] {
+            match stack.get_mut(top) {
+                Some(slot) => *slot = item,
+                None => return Err(Error::InvalidArgument),
+            }
+            top += 1;
+        }
+    }
+    Ok(total)
+}
+
+/// The length of `curve` between the `f64` parameters `x0 ≤ x1` (inside the domain),
+/// piece by piece, with the accuracy shared in proportion to parameter length.
+fn length_between<C: ParamCurveDeriv>(
+    curve: &C,
+    x0: f64,
+    x1: f64,
+    accuracy: f64,
+) -> Result<f64, Error> {
+    let width = x1 - x0;
+    if !greater(width, 0.0) {
+        return Ok(0.0);
+    }
+    let (start, end) = curve.domain();
+    let pieces = curve.piece_count();
+    let mut total = 0.0;
+    for i in 0..pieces {
+        let (lo, hi) = piece_bounds(curve, i, pieces, start, end);
+        let a = lo.to_f64().max(x0);
+        let b = hi.to_f64().min(x1);
+        if b > a {
+            total += integrate(curve, a, b, lo, hi, accuracy * ((b - a) / width))?;
+        }
+    }
+    Ok(total)
+}
+
+/// Piece `i` clamped to the domain (the last piece ends exactly at the domain end).
+fn piece_bounds<C: ParamCurve>(
+    curve: &C,
+    i: usize,
+    pieces: usize,
+    start: ScalarOf<C>,
+    end: ScalarOf<C>,
+) -> (ScalarOf<C>, ScalarOf<C>) {
+    let (a, b) = curve.piece_domain(i);
+    let b = if i + 1 == pieces { end } else { b.min_of(end) };
+    (a.max_of(start), b)
+}
+
+/// The arc length of the whole curve, `∫ |c'(u)| du` over the domain, within `accuracy`
+/// (absolute, in the curve's length unit).
+///
+/// Computed and returned in `f64`.
+///
+/// # Quadrature
+///
+/// The integral is computed per piece (the speed `|c'|` is smooth inside a piece, but may jump
+/// at piece boundaries) with the 8-point Gauss–Legendre rule, exact for polynomials of degree
+/// 15, and adaptive bisection: an interval is accepted when the rule on the whole interval
+/// and the sum over its two halves agree within the interval's share of the accuracy
+/// (proportional to its parameter length); otherwise both halves are refined with half the
+/// share each. The shares add up to the requested accuracy, and the accepted (finer) value is
+/// far more accurate than the difference that is tested for smooth speeds, so the result is
+/// within the accuracy — a standard error estimate, not a proof. Accuracies below the
+/// resolution of the curve's scalar type are raised to `8 · max(ε_f64, ε_S) · length` per
+/// interval, since the derivative values themselves carry that rounding.
+///
+/// Everything is computed in `f64` from the curve's derivatives ([`Scalar::to_f64`]) and
+/// lengths are returned as `f64`: the quadrature sums many terms, fixed-point scalars lack
+/// the resolution for an accuracy like `1e-9`, and a length can exceed the range of a
+/// fixed-point scalar even when every point fits. [`ArcLengthTable`] converts its samples to
+/// the curve's scalar (checking the range) for use in firmware.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive (or, for
+/// pathological speeds, cannot be reached within 32 bisections); [`Error::NonFinite`] when a
+/// derivative is not finite.
+///
+/// ```
+/// use strak_curves::{arc_length, ParamCurve, ParamCurveDeriv};
+///
+/// /// The unit circle (cos t, sin t) on [0, π].
+/// struct Half;
+/// impl ParamCurve for Half {
+///     type Point = [f64; 2];
+///     fn domain(&self) -> (f64, f64) { (0.0, core::f64::consts::PI) }
+///     fn eval(&self, t: f64) -> [f64; 2] { self.deriv(t, 0) }
+/// }
+/// impl ParamCurveDeriv for Half {
+///     fn deriv(&self, t: f64, k: usize) -> [f64; 2] {
+///         let p = t + k as f64 * core::f64::consts::FRAC_PI_2;
+///         [p.cos(), p.sin()]
+///     }
+/// }
+/// let l = arc_length(&Half, 1e-12)?;
+/// assert!((l - core::f64::consts::PI).abs() <= 1e-12);
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, Error> {
+    check_positive(accuracy)?;
+    let (start, end) = curve.domain();
+    length_between(curve, start.to_f64(), end.to_f64(), accuracy)
+}
+
+/// The arc length between the parameters `u0` and `u1` (both clamped to the domain) within
+/// `accuracy`: `s(u1) − s(u0)`, negative when `u1 < u0`.
+///
+/// Errors as for [`arc_length`].
+///
+/// ```
+/// use strak_curves::{arc_length_between, ParamCurve, ParamCurveDeriv};
+///
+/// /// The line (3u, 4u) on [0, 2]: speed 5.
+/// struct Line;
+/// impl ParamCurve for Line {
+///     type Point = [f64; 2];
+///     fn domain(&self) -> (f64, f64) { (0.0, 2.0) }
+///     fn eval(&self, u: f64) -> [f64; 2] { self.deriv(u, 0) }
+/// }
+/// impl ParamCurveDeriv for Line {
+///     fn deriv(&self, u: f64, k: usize) -> [f64; 2] {
+///         match k { 0 => [3.0 * u, 4.0 * u], 1 => [3.0, 4.0], _ => [0.0, 0.0] }
+///     }
+/// }
+/// let s = arc_length_between(&Line, 0.5, 1.5, 1e-12)?;
+/// assert!((s - 5.0).abs() <= 1e-12);
+/// let back = arc_length_between(&Line, 1.5, 9.0, 1e-12)?; // 9.0 is clamped to 2.0
+/// assert!((back - 2.5).abs() <= 1e-12);
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+pub fn arc_length_between<C: ParamCurveDeriv>(
+    curve: &C,
+    u0: ScalarOf<C>,
+    u1: ScalarOf<C>,
+    accuracy: f64,
+) -> Result<f64, Error> {
+    check_positive(accuracy)?;
+    let (start, end) = curve.domain();
+    let x0 = u0.clamp_to(start, end).to_f64();
+    let x1 = u1.clamp_to(start, end).to_f64();
+    if x1 >= x0 {
+        length_between(curve, x0, x1, accuracy)
+    } else {
+        Ok(-length_between(curve, x1, x0, accuracy)?)
+    }
+}
+
+/// The parameter `u` at which the arc length from the domain start is `s`: the inverse of
+/// `s(u)`, with `|s(u) − s| ≤ accuracy` (up to the parameter resolution of the scalar type).
+///
+/// `s` is clamped to `[0, L]`: `s ≤ 0` gives the domain start, `s ≥ L` the domain end, exactly.
+/// The piece containing `s` is found by summing piece lengths (with half the accuracy);
+/// inside it a safeguarded Newton method solves `s(u) = s` (`ds/du = |c'(u)|`), falling back
+/// to bisection of the bracketing interval when a Newton step leaves the bracket or the speed
+/// is zero (cusps).
+///
+/// # Errors
+/// [`Error::NonFinite`] when `s` is NaN or a derivative is not finite;
+/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive.
+///
+/// ```
+/// use strak_curves::{param_at_length, ParamCurve, ParamCurveDeriv};
+///
+/// /// The parabola (t, t²/2) on [0, 2]: s(t) = (t·√(1+t²) + asinh t) / 2.
+/// struct Parabola;
+/// impl ParamCurve for Parabola {
+///     type Point = [f64; 2];
+///     fn domain(&self) -> (f64, f64) { (0.0, 2.0) }
+///     fn eval(&self, t: f64) -> [f64; 2] { self.deriv(t, 0) }
+/// }
+/// impl ParamCurveDeriv for Parabola {
+///     fn deriv(&self, t: f64, k: usize) -> [f64; 2] {
+///         match k { 0 => [t, t * t / 2.0], 1 => [1.0, t], 2 => [0.0, 1.0], _ => [0.0, 0.0] }
+///     }
+/// }
+/// let t: f64 = 1.25;
+/// let s = (t * (1.0 + t * t).sqrt() + t.asinh()) / 2.0;
+/// let u = param_at_length(&Parabola, s, 1e-12)?;
+/// assert!((u - t).abs() <= 1e-11);
+/// assert_eq!(param_at_length(&Parabola, 1e9, 1e-9)?, 2.0);
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+pub fn param_at_length<C: ParamCurveDeriv>(
+    curve: &C,
+    s: f64,
+    accuracy: f64,
+) -> Result<ScalarOf<C>, Error> {
+    check_positive(accuracy)?;
+    if s.is_nan() {
+        return Err(Error::NonFinite);
+    }
+    let (start, end) = curve.domain();
+    if !greater(s, 0.0) {
+        return Ok(start);
+    }
+    let width = end.to_f64() - start.to_f64();
+    if !greater(width, 0.0) {
+        return Ok(start);
+    }
+    let pieces = curve.piece_count();
+    let mut before = 0.0;
+    for i in 0..pieces {
+        let (lo, hi) = piece_bounds(curve, i, pieces, start, end);
+        let (a, b) = (lo.to_f64(), hi.to_f64());
+        if !greater(b, a) {
+            continue;
+        }
+        let len = integrate(curve, a, b, lo, hi, 0.5 * accuracy * ((b - a) / width))?;
+        if before + len >= s {
+            return solve_in_piece(curve, lo, hi, s - before, len, 0.5 * accuracy);
+        }
+        before += len;
+    }
+    Ok(end)
+}
+
+/// Solves `∫_lo^u |c'| = r` for `u` in the piece `[lo, hi]` of length `len`, to within
+/// `accuracy` in length.
+fn solve_in_piece<C: ParamCurveDeriv>(
+    curve: &C,
+    lo: ScalarOf<C>,
+    hi: ScalarOf<C>,
+    r: f64,
+    len: f64,
+    accuracy: f64,
+) -> Result<ScalarOf<C>, Error> {
+    if !greater(r, 0.0) {
+        return Ok(lo);
+    }
+    if r >= len {
+        return Ok(hi);
+    }
+    let (a, b) = (lo.to_f64(), hi.to_f64());
+    let resolution = 4.0 * f64::EPSILON.max(ScalarOf::<C>::EPSILON) * a.abs().max(b.abs()).max(1.0);
+    let (mut x0, mut x1) = (a, b);
+    let mut u = a + (b - a) * (r / len);
+    let half = 0.5 * accuracy;
+    for _ in 0..MAX_NEWTON {
+        let f = integrate(curve, a, u, lo, hi, half)? - r;
+        if f.abs() <= half {
+            break;
+        }
+        if f < 0.0 {
+            x0 = u;
+        } else {
+            x1 = u;
+        }
+        if x1 - x0 <= resolution {
+            break;
+        }
+        let v = speed(curve, u, lo, hi);
+        let newton = u - f / v;
+        u = if v > 0.0 && newton > x0 && newton < x1 {
+            newton
+        } else {
+            0.5 * (x0 + x1)
+        };
+    }
+    Ok(param(u, lo, hi))
+}
+
+/// A table of arc length against parameter for a time law: `N` samples `(u_i, s_i)`, uniform
+/// in the parameter over the domain, with `u(s)` and `s(u)` interpolated by C¹ piecewise
+/// cubic Hermite (never linearly: linear interpolation of `u(s)` makes the speed jump at every
+/// sample and the jerk chatter, see DESIGN.md).
+///
+/// # Interpolation
+///
+/// On interval `i`, with `t = (s − s_i)/Δs_i`, `u(s) = u_i + h₀₁(t)·Δu_i + h₁₀(t)·Δs_i·m_i +
+/// h₁₁(t)·Δs_i·m_{i+1}` (cubic Hermite basis `h₀₁ = t²(3 − 2t)`, `h₁₀ = t(1 − t)²`,
+/// `h₁₁ = −t²(1 − t)`), where the tangents `m_i = du/ds = 1/|c'(u_i)|` are exact derivatives,
+/// limited as by Fritsch–Carlson to `m_i ≤ 3·min(Δu/Δs)` of the two adjacent intervals: this
+/// keeps `u(s)` monotone and finite at zero speed (cusps), and leaves smooth curves with
+/// sampled speed ratios below 3 untouched. `s(u)` is interpolated the same way with slopes
+/// `ds/du = |c'(u_i)|`. The tangents are stored pre-multiplied by the interval width, which
+/// bounds them by `3·Δu` (resp. `3·Δs`) and makes fixed-point evaluation overflow-free.
+///
+/// # Accuracy
+///
+/// The samples `s_i` are within `accuracy / 2` of the true arc length. Where `u(s)` is smooth,
+/// cubic Hermite interpolation with exact slopes has the error `Δs⁴/384 · max|u⁗(s)|` per
+/// interval (fourth order; linear interpolation is second order, `Δs²/8 · max|u''|`). The
+/// constructor measures the interpolation error at every interval midpoint (where the Hermite
+/// error kernel `t²(1 − t)²` peaks) in length units and reports the largest value plus the
+/// accuracy as [`ArcLengthTable::error_estimate`]. At a piece boundary where the speed jumps
+/// (a `C⁰` or `G¹` join) `u(s)` has a kink and the error is first order there.
+///
+/// Evaluation clamps its argument to the table, returns the domain ends exactly at the
+/// table's ends, and has no panic path.
+///
+/// ```
+/// use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv};
+///
+/// /// The parabola (t, t²/2) on [0, 2].
+/// struct Parabola;
+/// impl ParamCurve for Parabola {
+///     type Point = [f64; 2];
+///     fn domain(&self) -> (f64, f64) { (0.0, 2.0) }
+///     fn eval(&self, t: f64) -> [f64; 2] { self.deriv(t, 0) }
+/// }
+/// impl ParamCurveDeriv for Parabola {
+///     fn deriv(&self, t: f64, k: usize) -> [f64; 2] {
+///         match k { 0 => [t, t * t / 2.0], 1 => [1.0, t], 2 => [0.0, 1.0], _ => [0.0, 0.0] }
+///     }
+/// }
+/// let table = ArcLengthTable::<f64, 16>::new(&Parabola, 1e-10)?;
+/// let exact = (2.0 * 5.0_f64.sqrt() + 2.0_f64.asinh()) / 2.0;
+/// assert!((table.length() - exact).abs() <= 1e-10);
+/// assert!(table.error_estimate() < 1e-5);
+/// let u = table.param_at(table.length_at(1.25));
+/// assert!((u - 1.25).abs() < 1e-5);
+/// assert_eq!(table.param_at(table.length()), 2.0); // exact end
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArcLengthTable<S: Scalar, const N: usize> {
+    /// Sample parameters, strictly increasing, `u[0]` and `u[N − 1]` the domain ends.
+    u: [S; N],
+    /// Arc length at the samples, strictly increasing, `s[0] = 0`.
+    s: [S; N],
+    /// Interval `i`: Hermite tangents of `u(s)` at its start and end, times `Δs_i`.
+    u_tan: [[S; 2]; N],
+    /// Interval `i`: Hermite tangents of `s(u)` at its start and end, times `Δu_i`.
+    s_tan: [[S; 2]; N],
+    /// Largest measured midpoint error plus the accuracy, in length units.
+    error: f64,
+}
+
+/// Element `i` of `a`, or the default value (never reached for valid indices).
+#[inline]
+fn at<T: Copy + Default>(a: &[T], i: usize) -> T {
+    a.get(i).copied().unwrap_or_default()
+}
+
+/// Cubic Hermite on one interval: `y0 + h01·(y1 − y0) + h10·m0 + h11·m1`, with the tangents
+/// `m0`, `m1` already scaled by the interval width, clamped to `[y0, y1]`.
+#[inline]
+fn hermite<S: Scalar>(y0: S, y1: S, m: [S; 2], t: S) -> S {
+    let omt = S::ONE - t;
+    let t2 = t * t;
+    let h01 = t2 * (S::from_i16(3) - S::TWO * t);
+    let h10 = t * omt * omt;
+    let h11 = t2 * omt;
+    (y0 + h01 * (y1 - y0) + h10 * m[0] - h11 * m[1]).clamp_to(y0, y1)
+}
+
+/// The interval `i ∈ [0, N − 2]` with `xs[i] ≤ x < xs[i + 1]` (clamped at the ends).
+#[inline]
+fn interval<S: Scalar>(xs: &[S], x: S) -> usize {
+    xs.partition_point(|v| *v <= x)
+        .saturating_sub(1)
+        .min(xs.len().saturating_sub(2))
+}
+
+impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
+    /// Builds the table for `curve` with `N` samples uniform in the parameter, the arc lengths
+    /// computed within `accuracy / 2` (see the [type documentation](Self)).
+    ///
+    /// # Errors
+    /// - [`Error::InvalidArgument`]: `N < 2`, or `accuracy` not finite and positive.
+    /// - [`Error::ZeroLengthInterval`]: two samples have the same parameter or the same arc
+    ///   length in `S` (a curve standing still over a whole interval, or a domain too short
+    ///   for the scalar's resolution); `index` is the interval.
+    /// - [`Error::OutOfRange`]: the length does not fit the scalar type.
+    /// - [`Error::NonFinite`]: a derivative of the curve is not finite.
+    ///
+    /// ```
+    /// use strak_curves::{ArcLengthTable, Error, ParamCurve, ParamCurveDeriv};
+    ///
+    /// /// The line (3u, 4u) on [0, 1].
+    /// struct Line;
+    /// impl ParamCurve for Line {
+    ///     type Point = [f32; 2];
+    ///     fn domain(&self) -> (f32, f32) { (0.0, 1.0) }
+    ///     fn eval(&self, u: f32) -> [f32; 2] { self.deriv(u, 0) }
+    /// }
+    /// impl ParamCurveDeriv for Line {
+    ///     fn deriv(&self, u: f32, k: usize) -> [f32; 2] {
+    ///         match k { 0 => [3.0 * u, 4.0 * u], 1 => [3.0, 4.0], _ => [0.0, 0.0] }
+    ///     }
+    /// }
+    /// let table = ArcLengthTable::<f32, 8>::new(&Line, 1e-6)?;
+    /// assert_eq!(table.length(), 5.0);
+    /// assert!((table.param_at(2.5) - 0.5).abs() < 1e-6);
+    /// assert_eq!(ArcLengthTable::<f32, 1>::new(&Line, 1e-6), Err(Error::InvalidArgument));
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
+    pub fn new<C>(curve: &C, accuracy: f64) -> Result<Self, Error>
+    where
+        C: ParamCurveDeriv,
+        C::Point: Point<Scalar = S>,
+    {
+        if N < 2 {
+            return Err(Error::InvalidArgument);
+        }
+        check_positive(accuracy)?;
+        let (start, end) = curve.domain();
+        let (a, b) = (start.to_f64(), end.to_f64());
+        #[allow(clippy::cast_precision_loss)]
+        let last = (N - 1) as f64;
+        let mut u = [S::ZERO; N];
+        for (i, ui) in u.iter_mut().enumerate() {
+            #[allow(clippy::cast_precision_loss)]
+            let t = i as f64 / last;
+            *ui = if i == 0 {
+                start
+            } else if i + 1 == N {
+                end
+            } else {
+                param(a + (b - a) * t, start, end)
+            };
+        }
+        for i in 1..N {
+            if !greater(at(&u, i), at(&u, i - 1)) {
+                return Err(Error::ZeroLengthInterval { index: i - 1 });
+            }
+        }
+
+        // Arc lengths, accumulated in f64, each interval within accuracy / (2 (N − 1)).
+        let share = 0.5 * accuracy / last;
+        let mut s = [S::ZERO; N];
+        let mut acc = 0.0;
+        for i in 1..N {
+            acc += length_between(curve, at(&u, i - 1).to_f64(), at(&u, i).to_f64(), share)?;
+            let si = S::from_f64(acc).ok_or(Error::OutOfRange)?;
+            if !greater(si, at(&s, i - 1)) {
+                return Err(Error::ZeroLengthInterval { index: i - 1 });
+            }
+            if let Some(slot) = s.get_mut(i) {
+                *slot = si;
+            }
+        }
+
+        // Hermite slopes at the samples, limited to three times the adjacent secants.
+        let du = |i: usize| at(&u, i + 1).to_f64() - at(&u, i).to_f64();
+        let ds = |i: usize| at(&s, i + 1).to_f64() - at(&s, i).to_f64();
+        let mut u_tan = [[S::ZERO; 2]; N];
+        let mut s_tan = [[S::ZERO; 2]; N];
+        let slopes = |i: usize| -> Result<(f64, f64), Error> {
+            let v = norm64(&curve.deriv(at(&u, i), 1));
+            if !v.is_finite() {
+                return Err(Error::NonFinite);
+            }
+            let (mut du_ds, mut ds_du) = (1.0 / v, v);
+            // The intervals i − 1 and i, where they exist.
+            for j in i.saturating_sub(1)..(i + 1).min(N - 1) {
+                du_ds = du_ds.min(3.0 * du(j) / ds(j));
+                ds_du = ds_du.min(3.0 * ds(j) / du(j));
+            }
+            Ok((du_ds, ds_du))
+        };
+        let mut here = slopes(0)?;
+        for i in 0..N - 1 {
+            let next = slopes(i + 1)?;
+            let scaled = |x: f64| S::from_f64(x).ok_or(Error::OutOfRange);
+            if let Some(slot) = u_tan.get_mut(i) {
+                *slot = [scaled(here.0 * ds(i))?, scaled(next.0 * ds(i))?];
+            }
+            if let Some(slot) = s_tan.get_mut(i) {
+                *slot = [scaled(here.1 * du(i))?, scaled(next.1 * du(i))?];
+            }
+            here = next;
+        }
+
+        let mut table = Self {
+            u,
+            s,
+            u_tan,
+            s_tan,
+            error: 0.0,
+        };
+
+        // Measure the interpolation error at the interval midpoints.
+        let mut worst = 0.0_f64;
+        for i in 0..N - 1 {
+            let (u0, u1) = (at(&table.u, i), at(&table.u, i + 1));
+            let um = param(0.5 * (u0.to_f64() + u1.to_f64()), u0, u1);
+            let sm =
+                at(&table.s, i).to_f64() + length_between(curve, u0.to_f64(), um.to_f64(), share)?;
+            let v = norm64(&curve.deriv(um, 1));
+            let sm_s = S::from_f64(sm).ok_or(Error::OutOfRange)?;
+            let err_u = (table.param_at(sm_s).to_f64() - um.to_f64()).abs() * v;
+            let err_s = (table.length_at(um).to_f64() - sm).abs();
+            worst = worst.max(err_u).max(err_s);
+        }
+        if !worst.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        table.error = worst + accuracy;
+        Ok(table)
+    }
+
+    /// The total arc length `L` (the last sample).
+    #[inline]
+    pub fn length(&self) -> S {
+        at(&self.s, N.saturating_sub(1))
+    }
+
+    /// The parameter domain covered by the table, `(u_start, u_end)`.
+    #[inline]
+    pub fn domain(&self) -> (S, S) {
+        (at(&self.u, 0), at(&self.u, N.saturating_sub(1)))
+    }
+
+    /// Sample `i` as `(u_i, s_i)`, `None` for `i ≥ N`.
+    #[inline]
+    pub fn sample(&self, i: usize) -> Option<(S, S)> {
+        Some((*self.u.get(i)?, *self.s.get(i)?))
+    }
+
+    /// The estimated largest interpolation error in length units: the largest error measured
+    /// at the interval midpoints when the table was built (for `u(s)` as `|c'|·|Δu|`, for
+    /// `s(u)` directly), plus the arc-length accuracy. An estimate, not a bound: the midpoint
+    /// is where the Hermite error kernel `t²(1 − t)²` peaks, and the tests find the true
+    /// maximum within 1.5 times this value.
+    #[inline]
+    pub fn error_estimate(&self) -> f64 {
+        self.error
+    }
+
+    /// The arc length `s(u)` from the domain start, by cubic Hermite interpolation; `u` is
+    /// clamped to the domain.
+    pub fn length_at(&self, u: S) -> S {
+        let (start, end) = self.domain();
+        if u <= start {
+            return S::ZERO;
+        }
+        if u >= end {
+            return self.length();
+        }
+        let i = interval(&self.u, u);
+        let (u0, u1) = (at(&self.u, i), at(&self.u, i + 1));
+        // u1 > u0 was checked at construction, and u0 ≤ u < u1.
+        let t = ((u - u0) / (u1 - u0)).clamp_to(S::ZERO, S::ONE);
+        hermite(at(&self.s, i), at(&self.s, i + 1), at(&self.s_tan, i), t)
+    }
+
+    /// The parameter `u(s)` at arc length `s`, by C¹ cubic Hermite interpolation; `s` is
+    /// clamped to `[0, L]`, and `0` and `L` give the domain ends exactly. Binary search for
+    /// the interval (`O(log N)`); see [`param_at_from`](Self::param_at_from) for monotone
+    /// playback.
+    pub fn param_at(&self, s: S) -> S {
+        self.param_in(s, interval(&self.s, s))
+    }
+
+    /// [`param_at`](Self::param_at) starting the interval search at `*cursor` and storing the
+    /// interval found there: constant time per call when `s` changes monotonically by less
+    /// than one interval per call (playback at a fixed rate).
+    ///
+    /// ```
+    /// use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv};
+    /// # struct Line;
+    /// # impl ParamCurve for Line {
+    /// #     type Point = [f64; 2];
+    /// #     fn domain(&self) -> (f64, f64) { (0.0, 1.0) }
+    /// #     fn eval(&self, u: f64) -> [f64; 2] { self.deriv(u, 0) }
+    /// # }
+    /// # impl ParamCurveDeriv for Line {
+    /// #     fn deriv(&self, u: f64, k: usize) -> [f64; 2] {
+    /// #         match k { 0 => [3.0 * u, 4.0 * u], 1 => [3.0, 4.0], _ => [0.0, 0.0] }
+    /// #     }
+    /// # }
+    /// // `Line` is (3u, 4u) on [0, 1], of length 5.
+    /// let table = ArcLengthTable::<f64, 8>::new(&Line, 1e-9)?;
+    /// let mut cursor = 0;
+    /// for k in 0..=50 {
+    ///     let s = 0.1 * f64::from(k);
+    ///     assert_eq!(table.param_at_from(s, &mut cursor), table.param_at(s));
+    /// }
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
+    pub fn param_at_from(&self, s: S, cursor: &mut usize) -> S {
+        let last = N.saturating_sub(2);
+        let mut i = (*cursor).min(last);
+        while i < last && s >= at(&self.s, i + 1) {
+            i += 1;
+        }
+        while i > 0 && s < at(&self.s, i) {
+            i -= 1;
+        }
+        *cursor = i;
+        self.param_in(s, i)
+    }
+
+    /// `u(s)` on interval `i`.
+    fn param_in(&self, s: S, i: usize) -> S {
+        if s <= S::ZERO {
+            return at(&self.u, 0);
+        }
+        if s >= self.length() {
+            return at(&self.u, N.saturating_sub(1));
+        }
+        let (s0, s1) = (at(&self.s, i), at(&self.s, i + 1));
+        // s1 > s0 was checked at construction, and s0 ≤ s < s1.
+        let t = ((s - s0) / (s1 - s0)).clamp_to(S::ZERO, S::ONE);
+        hermite(at(&self.u, i), at(&self.u, i + 1), at(&self.u_tan, i), t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec::Vec;
+
+    use super::*;
+    use crate::analysis::testcurves::{FnCurve, PolyCurve, arc};
+    use crate::scalar::{I16F16, I32F32};
+    use core::f64::consts::PI;
+
+    /// (t, t²) on [a, b].
+    fn parabola(a: f64, b: f64) -> PolyCurve<f64> {
+        PolyCurve::single(a, b, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    }
+
+    /// The closed-form arc length of (t, t²) from 0 to t: (t√(1+4t²))/2 + asinh(2t)/4.
+    fn parabola_s(t: f64) -> f64 {
+        t * libm::sqrt(1.0 + 4.0 * t * t) / 2.0 + libm::asinh(2.0 * t) / 4.0
+    }
+
+    #[test]
+    fn gauss_legendre_rule() {
+        let w: f64 = GL_W.iter().sum();
+        assert!((2.0 * w - 2.0).abs() < 1e-15);
+        // Exact for x^14: ∫_{-1}^{1} x^14 = 2/15.
+        let m: f64 = GL_X
+            .iter()
+            .zip(GL_W.iter())
+            .map(|(x, w)| 2.0 * w * x.powi(14))
+            .sum();
+        assert!((m - 2.0 / 15.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn circle_arc_length() {
+        for (r, fraction) in [(1.0, 1.0), (2.0, 0.3), (0.5, 0.77), (10.0, 0.05)] {
+            let c = arc(r, 0.4, 0.4 + 2.0 * PI * fraction);
+            let l = arc_length(&c, 1e-12).unwrap();
+            assert!(
+                (l - 2.0 * PI * r * fraction).abs() <= 1e-12,
+                "{r} {fraction}: {l}"
+            );
+        }
+    }
+
+    #[test]
+    fn straight_line_is_exact() {
+        // (1 + 3u, 2 − 4u) on [0, 2]: speed 5, length 10.
+        let line = PolyCurve::<f64>::single(0.0, 2.0, &[[1.0, 2.0], [3.0, -4.0]]);
+        let l = arc_length(&line, 1e-12).unwrap();
+        assert!((l - 10.0).abs() <= 4.0 * f64::EPSILON * 10.0, "{l}");
+        assert!((arc_length_between(&line, 0.5, 1.0, 1e-12).unwrap() - 2.5).abs() < 1e-14);
+        assert!((param_at_length(&line, 5.0, 1e-12).unwrap() - 1.0).abs() <= 1e-12 / 5.0);
+    }
+
+    #[test]
+    fn parabola_against_closed_form() {
+        let c = parabola(-0.5, 2.0);
+        let exact = parabola_s(2.0) + parabola_s(0.5);
+        assert!((arc_length(&c, 1e-12).unwrap() - exact).abs() <= 1e-12);
+        let part = arc_length_between(&c, 0.25, 1.5, 1e-12).unwrap();
+        assert!((part - (parabola_s(1.5) - parabola_s(0.25))).abs() <= 1e-12);
+        let back = arc_length_between(&c, 1.5, 0.25, 1e-12).unwrap();
+        assert_eq!(back, -part);
+        // Accuracies are honoured loosely too (not more accurate than asked is fine).
+        assert!((arc_length(&c, 1e-3).unwrap() - exact).abs() <= 1e-3);
+    }
+
+    #[test]
+    fn cusp_with_a_kink_in_the_speed() {
+        // The seeds' (t³, t²): |c'| = |t|·√(9t² + 4) has a kink at t = 0 (not a dyadic point
+        // of [−1, 2]). ∫₀ᵃ t√(9t²+4) dt = ((9a²+4)^{3/2} − 8)/27.
+        let c =
+            PolyCurve::<f64>::single(-1.0, 2.0, &[[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]);
+        let part = |a: f64| (libm::pow(9.0 * a * a + 4.0, 1.5) - 8.0) / 27.0;
+        let exact = part(1.0) + part(2.0);
+        assert!((arc_length(&c, 1e-10).unwrap() - exact).abs() <= 1e-10);
+        // The inverse passes the cusp (zero speed) by bisection.
+        let u = param_at_length(&c, part(1.0), 1e-10).unwrap();
+        assert!(u.abs() < 1e-4, "{u}"); // s(u) − s(0) ≈ u² near the cusp
+        let u = param_at_length(&c, part(1.0) + part(0.5), 1e-10).unwrap();
+        assert!((u - 0.5).abs() < 1e-9, "{u}");
+    }
+
+    #[test]
+    fn piecewise_lengths_add_up() {
+        // Three cubic pieces, C⁰ only: the sum over pieces equals the per-piece integrals.
+        let c = PolyCurve::<f64>::new(
+            &[0.0, 1.0, 3.0, 3.5],
+            &[
+                &[[0.0, 0.0], [1.0, 2.0], [0.5, -3.0], [-0.2, 1.0]],
+                &[[1.3, 0.0], [1.5, 0.2], [1.0, 0.5], [0.3, -2.0]],
+                &[[0.0, 0.0], [4.0, 0.0]],
+            ],
+        );
+        let total = arc_length(&c, 1e-12).unwrap();
+        let parts: f64 = [(0.0, 1.0), (1.0, 3.0), (3.0, 3.5)]
+            .iter()
+            .map(|&(a, b)| arc_length_between(&c, a, b, 1e-13).unwrap())
+            .sum();
+        assert!((total - parts).abs() <= 2e-12);
+        assert!((arc_length_between(&c, 3.0, 3.5, 1e-12).unwrap() - 2.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn inverse_round_trip() {
+        let c = PolyCurve::<f64>::new(
+            &[0.0, 1.0, 2.5],
+            &[
+                &[[0.0, 0.0], [1.0, 2.0], [0.5, -3.0], [-0.2, 1.0]],
+                &[[1.3, 0.0], [1.5, 0.2], [1.0, 0.5], [0.3, -2.0]],
+            ],
+        );
+        for k in 0..=25 {
+            let u = 0.1 * f64::from(k);
+            let s = arc_length_between(&c, 0.0, u, 1e-12).unwrap();
+            let back = param_at_length(&c, s, 1e-10).unwrap();
+            let speed = norm64(&c.deriv(u, 1));
+            assert!((back - u).abs() * speed <= 2e-10, "{u}: {back}");
+        }
+        let a = arc(3.0, -1.0, 2.0);
+        for k in 0..=9 {
+            let s = f64::from(k);
+            let u = param_at_length(&a, s, 1e-12).unwrap();
+            assert!(
+                (u - (-1.0 + s / 3.0)).abs() <= 1e-12 / 3.0 + 1e-15,
+                "{s}: {u}"
+            );
+        }
+        // Clamping of s.
+        assert_eq!(param_at_length(&a, -1.0, 1e-9).unwrap(), -1.0);
+        assert_eq!(param_at_length(&a, 100.0, 1e-9).unwrap(), 2.0);
+        assert_eq!(param_at_length(&a, f64::INFINITY, 1e-9).unwrap(), 2.0);
+    }
+
+    #[test]
+    fn errors() {
+        let c = parabola(0.0, 1.0);
+        for acc in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(arc_length(&c, acc), Err(Error::InvalidArgument));
+            assert_eq!(
+                arc_length_between(&c, 0.0, 1.0, acc),
+                Err(Error::InvalidArgument)
+            );
+            assert_eq!(param_at_length(&c, 0.5, acc), Err(Error::InvalidArgument));
+            assert_eq!(
+                ArcLengthTable::<f64, 4>::new(&c, acc),
+                Err(Error::InvalidArgument)
+            );
+        }
+        assert_eq!(param_at_length(&c, f64::NAN, 1e-9), Err(Error::NonFinite));
+        let bad = FnCurve {
+            f: |t: f64, k: usize| if k == 1 { [f64::NAN, 0.0] } else { [t, 0.0] },
+            a: 0.0,
+            b: 1.0,
+        };
+        assert_eq!(arc_length(&bad, 1e-9), Err(Error::NonFinite));
+        assert_eq!(param_at_length(&bad, 0.5, 1e-9), Err(Error::NonFinite));
+        assert_eq!(
+            ArcLengthTable::<f64, 4>::new(&bad, 1e-9),
+            Err(Error::NonFinite)
+        );
+    }
+
+    #[test]
+    fn fixed_point_and_f32_lengths() {
+        let c = PolyCurve::<I32F32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        let l = arc_length(&c, 1e-8).unwrap();
+        assert!((l - parabola_s(2.0)).abs() <= 1e-8);
+        let u = param_at_length(&c, parabola_s(1.25), 1e-8).unwrap();
+        assert!((u.to_f64() - 1.25).abs() <= 1e-8);
+        let c = PolyCurve::<f32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        // An accuracy below f32 resolution is raised to it: still converges.
+        let l = arc_length(&c, 1e-15).unwrap();
+        assert!((l - parabola_s(2.0)).abs() <= 1e-5);
+    }
+
+    /// The exact inverse of the closed-form parabola length, by bisection.
+    fn parabola_u(s: f64) -> f64 {
+        let (mut lo, mut hi) = (0.0, 10.0);
+        for _ in 0..200 {
+            let m = 0.5 * (lo + hi);
+            if parabola_s(m) < s { lo = m } else { hi = m }
+        }
+        0.5 * (lo + hi)
+    }
+
+    #[test]
+    fn table_hermite_beats_linear_and_meets_its_estimate() {
+        let c = parabola(0.0, 2.0);
+        let table = ArcLengthTable::<f64, 16>::new(&c, 1e-12).unwrap();
+        let l = parabola_s(2.0);
+        assert!((table.length() - l).abs() <= 1e-12);
+        let (mut herm, mut lin) = (0.0_f64, 0.0_f64);
+        let samples: Vec<f64> = (0..=3000).map(|k| l * f64::from(k) / 3000.0).collect();
+        for &s in &samples {
+            let exact = parabola_u(s);
+            let speed = libm::sqrt(1.0 + 4.0 * exact * exact);
+            herm = herm.max((table.param_at(s) - exact).abs() * speed);
+            // Linear interpolation on the same samples.
+            let i = interval(&table.s, s);
+            let (s0, s1) = (table.s[i], table.s[i + 1]);
+            let (u0, u1) = (table.u[i], table.u[i + 1]);
+            let linear = u0 + (u1 - u0) * (s - s0) / (s1 - s0);
+            lin = lin.max((linear - exact).abs() * speed);
+        }
+        // Stated bound: the error estimate (midpoint errors) holds within a factor 1.5, and
+        // is below 2e-5 for 16 samples; linear interpolation is ~100× worse.
+        assert!(
+            herm <= 1.5 * table.error_estimate(),
+            "{herm} vs {}",
+            table.error_estimate()
+        );
+        assert!(table.error_estimate() < 2e-5, "{}", table.error_estimate());
+        assert!(herm * 50.0 < lin, "hermite {herm}, linear {lin}");
+        // s(u) too.
+        let mut s_err = 0.0_f64;
+        for k in 0..=1000 {
+            let u = 2.0 * f64::from(k) / 1000.0;
+            s_err = s_err.max((table.length_at(u) - parabola_s(u)).abs());
+        }
+        assert!(s_err <= 1.5 * table.error_estimate(), "{s_err}");
+        // Fourth order: doubling the samples cuts the error by about 16.
+        let fine = ArcLengthTable::<f64, 31>::new(&c, 1e-12).unwrap();
+        assert!(fine.error_estimate() * 8.0 < table.error_estimate());
+    }
+
+    #[test]
+    fn table_ends_are_exact_and_monotone() {
+        let c = parabola(-1.0, 1.5);
+        let table = ArcLengthTable::<f64, 12>::new(&c, 1e-10).unwrap();
+        assert_eq!(table.domain(), (-1.0, 1.5));
+        assert_eq!(table.param_at(0.0), -1.0);
+        assert_eq!(table.param_at(-5.0), -1.0);
+        assert_eq!(table.param_at(table.length()), 1.5);
+        assert_eq!(table.param_at(1e9), 1.5);
+        assert_eq!(table.length_at(-1.0), 0.0);
+        assert_eq!(table.length_at(1.5), table.length());
+        assert_eq!(table.sample(0), Some((-1.0, 0.0)));
+        assert_eq!(table.sample(12), None);
+        let mut prev = -1.0;
+        let mut cursor = 5;
+        for k in 0..=2000 {
+            let s = table.length() * f64::from(k) / 2000.0;
+            let u = table.param_at(s);
+            assert!(u >= prev);
+            assert_eq!(table.param_at_from(s, &mut cursor), u);
+            prev = u;
+        }
+    }
+
+    #[test]
+    fn table_through_a_cusp_stays_monotone() {
+        // (t³, t²) on [−1, 1.3]: zero speed at t = 0 → du/ds infinite; the slope limit keeps
+        // the interpolant finite and monotone.
+        let c =
+            PolyCurve::<f64>::single(-1.0, 1.3, &[[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]);
+        let table = ArcLengthTable::<f64, 24>::new(&c, 1e-10).unwrap();
+        let mut prev = -1.0;
+        for k in 0..=5000 {
+            let s = table.length() * f64::from(k) / 5000.0;
+            let u = table.param_at(s);
+            assert!(u.is_finite() && u >= prev, "{s}: {u}");
+            prev = u;
+        }
+        assert!(table.error_estimate() < 1e-2);
+    }
+
+    #[test]
+    fn table_in_f32_and_fixed_point() {
+        let c = PolyCurve::<f32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        let t = ArcLengthTable::<f32, 16>::new(&c, 1e-6).unwrap();
+        assert!((t.param_at(t.length_at(1.25)) - 1.25).abs() < 1e-4);
+        let c = PolyCurve::<I16F16>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        let t = ArcLengthTable::<I16F16, 16>::new(&c, 1e-4).unwrap();
+        let s = I16F16::from_num(parabola_s(1.25));
+        assert!((t.param_at(s).to_f64() - 1.25).abs() < 1e-3);
+        assert!(t.error_estimate() < 1e-3);
+        assert_eq!(t.param_at(t.length()).to_f64(), 2.0);
+    }
+
+    #[test]
+    fn table_errors() {
+        let c = parabola(0.0, 1.0);
+        assert_eq!(
+            ArcLengthTable::<f64, 1>::new(&c, 1e-9),
+            Err(Error::InvalidArgument)
+        );
+        assert_eq!(
+            ArcLengthTable::<f64, 0>::new(&c, 1e-9),
+            Err(Error::InvalidArgument)
+        );
+        // A curve standing still: all arc lengths zero.
+        let still = PolyCurve::<f64>::single(0.0, 1.0, &[[1.0, 1.0]]);
+        assert_eq!(
+            ArcLengthTable::<f64, 4>::new(&still, 1e-9),
+            Err(Error::ZeroLengthInterval { index: 0 })
+        );
+        // A domain of 3 fixed-point steps cannot hold 8 distinct samples.
+        let short = PolyCurve::<I16F16>::single(0.0, 3.0 / 65536.0, &[[0.0, 0.0], [1.0, 0.0]]);
+        assert!(matches!(
+            ArcLengthTable::<I16F16, 8>::new(&short, 1e-3),
+            Err(Error::ZeroLengthInterval { .. })
+        ));
+        // Back and forth over 8000 units three times: length 24000 > I16F16 limit 16383.
+        let long = PolyCurve::<I16F16>::new(
+            &[0.0, 1.0, 2.0, 3.0],
+            &[
+                &[[0.0, 0.0], [8000.0, 0.0]],
+                &[[8000.0, 0.0], [-8000.0, 0.0]],
+                &[[0.0, 0.0], [8000.0, 0.0]],
+            ],
+        );
+        assert_eq!(
+            ArcLengthTable::<I16F16, 8>::new(&long, 1e-3),
+            Err(Error::OutOfRange)
+        );
+    }
+}
