@@ -4,8 +4,8 @@
 //! each constructor's typed error is reported against the field it concerns.
 
 use strak_curves::{
-    CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, ParabolicBlend, Parameterization,
-    Point, Scalar, SplineBoundary,
+    Bezier, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, ParabolicBlend,
+    Parameterization, Point, Scalar, SplineBoundary,
 };
 
 use crate::curve_file::{BoundaryName, CurveFile, FieldError, Kind};
@@ -210,9 +210,40 @@ fn build<P: Point>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>,
         Kind::ParabolicBlend => {
             Box::new(ParabolicBlend::<P, CAPACITY>::new(&points).map_err(&err)?)
         }
-        Kind::Bezier | Kind::Bspline | Kind::Nurbs => {
-            build_control_point_curve::<P>(file, &points, number)?
-        }
+        Kind::Bezier => build_bezier(&points, &err)?,
+        Kind::Bspline | Kind::Nurbs => build_bspline::<P>(file, &points, number, &err)?,
     };
     Ok(curve)
+}
+
+/// The largest number of control points of a Bézier curve in a file (degree 11).
+pub const BEZIER_MAX_POINTS: usize = 12;
+
+/// A Bézier curve with `N` control points, `N` being the length of `points`.
+fn bezier<P: Point, const N: usize>(
+    points: &[P],
+    err: &dyn Fn(Error) -> FieldError,
+) -> Result<Box<dyn Sampled>, FieldError> {
+    let array: [P; N] = points
+        .try_into()
+        .map_err(|_| FieldError::new("points", format!("expected {N} points")))?;
+    Ok(Box::new(Bezier::new(array).map_err(err)?))
+}
+
+fn build_bezier<P: Point>(
+    points: &[P],
+    err: &dyn Fn(Error) -> FieldError,
+) -> Result<Box<dyn Sampled>, FieldError> {
+    macro_rules! by_count {
+        ($($n:literal)*) => {
+            match points.len() {
+                $($n => bezier::<P, $n>(points, err),)*
+                n => Err(FieldError::new(
+                    "points",
+                    format!("a Bézier curve takes 1 to {BEZIER_MAX_POINTS} points, not {n}"),
+                )),
+            }
+        };
+    }
+    by_count!(1 2 3 4 5 6 7 8 9 10 11 12)
 }
