@@ -48,3 +48,46 @@ pub trait ParamCurveDeriv: ParamCurve {
     /// except at the end of the domain, where the last piece is used.
     fn deriv(&self, u: ScalarOf<Self>, k: usize) -> Self::Point;
 }
+
+/// A piecewise curve that can differentiate each piece on its own closed interval, which is
+/// what the left-hand limit at a piece boundary needs.
+///
+/// [`ParamCurveDeriv::deriv`] at an inner piece boundary returns the derivative of the piece
+/// that *starts* there, so it cannot give the left limit of the piece that ends there.
+/// `piece_deriv(i, u, k)` differentiates the polynomial (or rational function) of piece `i`
+/// with `u` clamped to `piece_domain(i)`; at the piece's end it is the left limit.
+///
+/// ```
+/// use strak_curves::{ParamCurve, ParamCurveDeriv, PieceDeriv};
+///
+/// /// |u| on [-1, 1] as a 1-D curve with two linear pieces.
+/// struct Abs;
+/// impl ParamCurve for Abs {
+///     type Point = [f64; 1];
+///     fn domain(&self) -> (f64, f64) { (-1.0, 1.0) }
+///     fn eval(&self, u: f64) -> [f64; 1] { [u.clamp(-1.0, 1.0).abs()] }
+///     fn piece_count(&self) -> usize { 2 }
+///     fn piece_domain(&self, i: usize) -> (f64, f64) {
+///         if i == 0 { (-1.0, 0.0) } else { (0.0, 1.0) }
+///     }
+/// }
+/// impl ParamCurveDeriv for Abs {
+///     fn deriv(&self, u: f64, k: usize) -> [f64; 1] {
+///         self.piece_deriv(usize::from(u >= 0.0), u, k)
+///     }
+/// }
+/// impl PieceDeriv for Abs {
+///     fn piece_deriv(&self, i: usize, u: f64, k: usize) -> [f64; 1] {
+///         let (a, b) = self.piece_domain(i);
+///         let (u, sign) = (u.clamp(a, b), if i == 0 { -1.0 } else { 1.0 });
+///         match k { 0 => [sign * u], 1 => [sign], _ => [0.0] }
+///     }
+/// }
+/// assert_eq!(Abs.piece_deriv(0, 0.0, 1), [-1.0]); // left limit
+/// assert_eq!(Abs.deriv(0.0, 1), [1.0]); // the piece starting at 0
+/// ```
+pub trait PieceDeriv: ParamCurveDeriv {
+    /// The derivative of order `k` of piece `piece` (the last piece for
+    /// `piece >= piece_count()`) at `u` clamped to that piece's interval.
+    fn piece_deriv(&self, piece: usize, u: ScalarOf<Self>, k: usize) -> Self::Point;
+}

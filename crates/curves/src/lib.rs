@@ -16,7 +16,7 @@ mod scalar;
 pub use analysis::*;
 pub use bezier::*;
 pub use bspline::*;
-pub use curve::{ParamCurve, ParamCurveDeriv, ScalarOf};
+pub use curve::{ParamCurve, ParamCurveDeriv, PieceDeriv, ScalarOf};
 pub use error::Error;
 pub use interpolate::*;
 pub use nurbs::*;

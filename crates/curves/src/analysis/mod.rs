@@ -79,7 +79,7 @@ pub(crate) mod testcurves {
     use crate::curve::{ParamCurve, ParamCurveDeriv};
     use crate::scalar::Scalar;
 
-    use super::PieceDeriv;
+    use crate::curve::PieceDeriv;
 
     /// A piecewise polynomial in monomial form: piece `i` on `[breaks[i], breaks[i+1]]` is
     /// `Σ_j coeffs[i][j] (u − breaks[i])^j`; evaluated in `f64`, returned as `[S; 2]`.

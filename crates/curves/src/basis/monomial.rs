@@ -8,7 +8,7 @@
 //! `Q(u) = p_0 + p_1 u + p_2 u² + p_3 u³`).
 
 use super::{MAX_DEGREE, falling_factorial_f64, int_scalar};
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -238,6 +238,13 @@ impl<P: Point, const N: usize> ParamCurveDeriv for MonomialCurve<P, N> {
             });
         }
         f.unwrap_or_else(P::zero)
+    }
+}
+
+/// A single piece: [`PieceDeriv::piece_deriv`] is [`ParamCurveDeriv::deriv`].
+impl<P: Point, const N: usize> PieceDeriv for MonomialCurve<P, N> {
+    fn piece_deriv(&self, _piece: usize, u: P::Scalar, k: usize) -> P {
+        self.deriv(u, k)
     }
 }
 

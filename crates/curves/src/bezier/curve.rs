@@ -2,7 +2,7 @@
 //! "Kurvenauswertung nach de Casteljau").
 
 use crate::basis::{MAX_DEGREE, falling_factorial_f64, int_scalar};
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -193,6 +193,13 @@ impl<P: Point, const N: usize> ParamCurveDeriv for Bezier<P, N> {
             d = d.times(int_scalar(g - m));
         }
         d
+    }
+}
+
+/// A single piece: [`PieceDeriv::piece_deriv`] is [`ParamCurveDeriv::deriv`].
+impl<P: Point, const N: usize> PieceDeriv for Bezier<P, N> {
+    fn piece_deriv(&self, _piece: usize, u: P::Scalar, k: usize) -> P {
+        self.deriv(u, k)
     }
 }
 

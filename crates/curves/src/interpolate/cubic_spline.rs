@@ -20,7 +20,7 @@ use heapless::Vec;
 use super::hermite::{HermiteSpline, check_points};
 use super::parameterization::NodeSource;
 use super::tridiagonal::{solve_cyclic_tridiagonal, solve_tridiagonal};
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -287,6 +287,12 @@ impl<P: Point, const N: usize> ParamCurve for CubicSpline<P, N> {
 impl<P: Point, const N: usize> ParamCurveDeriv for CubicSpline<P, N> {
     fn deriv(&self, u: P::Scalar, k: usize) -> P {
         self.hermite.deriv(u, k)
+    }
+}
+
+impl<P: Point, const N: usize> PieceDeriv for CubicSpline<P, N> {
+    fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        self.hermite.piece_deriv(piece, u, k)
     }
 }
 
@@ -691,6 +697,32 @@ mod tests {
         assert_eq!(
             CubicSpline::<_, 8>::new(&pts, CHORD, SplineBoundary::Periodic),
             Err(Error::InvalidArgument)
+        );
+    }
+
+    #[test]
+    fn breaks_are_c2_but_not_c3_and_left_limits_differ() {
+        use crate::{PieceDeriv, classify_breaks};
+        let pts = [
+            [0.0_f64, 0.0],
+            [1.0, 2.0],
+            [3.0, 3.0],
+            [4.0, 0.0],
+            [6.0, 1.0],
+        ];
+        let c =
+            CubicSpline::<_, 8>::new(&pts, Parameterization::ChordLength, SplineBoundary::Natural)
+                .unwrap();
+        let k = classify_breaks(&c, 1e-9).unwrap();
+        assert_eq!(k.parametric, Some(2));
+        let (_, end) = c.piece_domain(0);
+        let left = c.piece_deriv(0, end, 3);
+        let right = c.piece_deriv(1, end, 3);
+        assert_ne!(left, right, "the third derivative jumps at an inner node");
+        assert_eq!(
+            c.deriv(end, 3),
+            right,
+            "deriv at a node uses the piece starting there"
         );
     }
 }

@@ -15,7 +15,7 @@
 use heapless::Vec;
 
 use super::parameterization::NodeSource;
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -126,6 +126,12 @@ impl<P: Point> ParamCurve for HermiteSegment<P> {
 impl<P: Point> ParamCurveDeriv for HermiteSegment<P> {
     fn deriv(&self, u: P::Scalar, k: usize) -> P {
         eval_piece(self.u0, self.u1, self.q0, self.q1, self.m0, self.m1, u, k)
+    }
+}
+
+impl<P: Point> PieceDeriv for HermiteSegment<P> {
+    fn piece_deriv(&self, _piece: usize, u: P::Scalar, k: usize) -> P {
+        self.deriv(u, k)
     }
 }
 
@@ -289,6 +295,15 @@ impl<P: Point, const N: usize> ParamCurveDeriv for HermiteSpline<P, N> {
         let (start, end) = self.domain();
         let u = u.clamp_to(start, end);
         match self.piece_data(self.piece_index(u)) {
+            Some((u0, u1, q0, q1, m0, m1)) => eval_piece(u0, u1, q0, q1, m0, m1, u, k),
+            None => P::zero(),
+        }
+    }
+}
+
+impl<P: Point, const N: usize> PieceDeriv for HermiteSpline<P, N> {
+    fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        match self.piece_data(piece.min(self.pieces() - 1)) {
             Some((u0, u1, q0, q1, m0, m1)) => eval_piece(u0, u1, q0, q1, m0, m1, u, k),
             None => P::zero(),
         }

@@ -13,7 +13,7 @@ use heapless::Vec;
 
 use super::hermite::check_points;
 use super::parameterization::NodeSource;
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -319,6 +319,13 @@ impl<P: Point, const N: usize> ParamCurveDeriv for LagrangeCurve<P, N> {
         } else {
             self.newton_deriv(u, k)
         }
+    }
+}
+
+/// A single piece: [`PieceDeriv::piece_deriv`] is [`ParamCurveDeriv::deriv`].
+impl<P: Point, const N: usize> PieceDeriv for LagrangeCurve<P, N> {
+    fn piece_deriv(&self, _piece: usize, u: P::Scalar, k: usize) -> P {
+        self.deriv(u, k)
     }
 }
 

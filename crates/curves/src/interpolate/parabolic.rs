@@ -23,7 +23,7 @@ use heapless::Vec;
 
 use super::hermite::{HermiteSpline, check_points};
 use super::parameterization::Parameterization;
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 
@@ -123,6 +123,12 @@ impl<P: Point, const N: usize> ParamCurve for ParabolicBlend<P, N> {
 impl<P: Point, const N: usize> ParamCurveDeriv for ParabolicBlend<P, N> {
     fn deriv(&self, u: P::Scalar, k: usize) -> P {
         self.hermite.deriv(u, k)
+    }
+}
+
+impl<P: Point, const N: usize> PieceDeriv for ParabolicBlend<P, N> {
+    fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        self.hermite.piece_deriv(piece, u, k)
     }
 }
 
