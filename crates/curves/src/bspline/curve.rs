@@ -29,8 +29,8 @@ use crate::scalar::Scalar;
 /// knot vector (end multiplicity `g + 1`) makes the curve interpolate `d_0` and `d_{K−1}`.
 ///
 /// **Closed** curves ([`BSpline::closed`], seeds/000: `K = n`) with `K` de Boor points are
-/// stored as the open B-spline over the periodically extended knot vector with the first `g`
-/// points repeated at the end: they need `N ≥ K + g` and `M ≥ K + 2g + 1`, and
+/// stored as the open B-spline over the periodically extended knot vector with the last `g`
+/// points repeated in front: they need `N ≥ K + g` and `M ≥ K + 2g + 1`, and
 /// [`BSpline::control_points`] / [`BSpline::knots`] return that extended representation.
 ///
 /// ```
@@ -169,12 +169,16 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
     /// `knots = None` gives uniform knots with period `[0, 1]`. Otherwise `knots` holds the
     /// `K + 1` values `u_0 ≤ u_1 ≤ … ≤ u_K` (`u_0 < u_K`) whose `K` intervals make one period;
     /// `u_K` closes the period, so knot multiplicities are counted around the circle and must
-    /// be at most `g`. The domain is `[u_0, u_K]`.
+    /// be at most `g`. The domain is `[u_0, u_K]`; as for every curve, parameters outside it
+    /// are clamped (not wrapped), and at `u_K` the last piece is used.
     ///
-    /// Internally this is the open B-spline over the periodically extended knot vector
-    /// (`u_{j+K} = u_j + (u_K − u_0)`, `K + 2g + 1` knots) with the first `g` points
-    /// repeated, so it needs `N ≥ K + g` and `M ≥ K + 2g + 1`. The curve closes with
-    /// `C^{g−μ}` continuity at the seam (`C^{g−1}` for a simple seam knot).
+    /// As for open B-splines (seeds/002), `d_i` acts on `[u_i, u_{i+g+1}]`, read modulo the
+    /// period. Internally this is the open B-spline over the periodically extended knot vector
+    /// `u_{−g}, …, u_{K+g}` (`u_{j+K} = u_j + (u_K − u_0)`, `K + 2g + 1` knots) with the de Boor
+    /// points `d_{K−g}, …, d_{K−1}, d_0, …, d_{K−1}` (the last `g` repeated in front), so it
+    /// needs `N ≥ K + g` and `M ≥ K + 2g + 1`. The curve closes with `C^{g−μ}` continuity at
+    /// the seam (`C^{g−1}` for a simple seam knot). For a uniform cubic,
+    /// `c(u_0) = (d_{K−3} + 4 d_{K−2} + d_{K−1}) / 6`.
     ///
     /// # Errors
     /// As [`BSpline::new`], and [`Error::InvalidArgument`] for degree 0,
@@ -211,7 +215,7 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
             Some(u) => periodic_knots(degree, k, u)?,
         };
         let mut ext: Vec<P, N> = Vec::new();
-        for p in points.iter().chain(points.iter().take(degree)) {
+        for p in points.iter().skip(k - degree).chain(points.iter()) {
             ext.push(*p).map_err(|_| Error::CapacityExceeded {
                 capacity: N,
                 required: k + degree,
@@ -228,8 +232,8 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
         self.knots.degree()
     }
 
-    /// The de Boor points (for a closed curve the extended list: the `K` given points followed
-    /// by the first `g` again).
+    /// The de Boor points (for a closed curve the extended list: the last `g` given points,
+    /// then all `K`).
     #[inline]
     pub fn control_points(&self) -> &[P] {
         &self.points
@@ -280,6 +284,26 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
         for (k, o) in out.iter_mut().enumerate() {
             *o = all.get(k).copied().unwrap_or_else(P::zero);
         }
+    }
+
+    /// The derivative of order `k` of the polynomial of piece `piece` (the last piece for
+    /// `piece ≥ piece_count()`) at `u` clamped to
+    /// [`piece_domain(piece)`](crate::ParamCurve::piece_domain): at the end of a piece this is
+    /// the limit from the left, which [`ParamCurveDeriv::deriv`] (the piece starting at a knot)
+    /// does not give. `k = 0` is the point; zero for `k > g`.
+    ///
+    /// ```
+    /// use strak_curves::{BSpline, ParamCurveDeriv};
+    /// // Degree 1 through (0), (1), (3): slope 1 on the first piece, 2 on the second.
+    /// let c = BSpline::<[f64; 1], 4, 8>::new(1, &[[0.0], [1.0], [3.0]], &[0., 0., 1., 2., 2.])
+    ///     .unwrap();
+    /// assert_eq!(c.piece_deriv(0, 1.0, 1), [1.0]); // left limit at the knot
+    /// assert_eq!(c.deriv(1.0, 1), [2.0]); // the piece starting there
+    /// ```
+    pub fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        let s = self.knots.piece_span(piece);
+        let u = u.clamp_to(self.knots.knot(s), self.knots.knot(s + 1));
+        self.deriv_in_span(s, u, k)
     }
 
     /// The de Boor points `d_{s−g}, …, d_s` acting on span `s`.
@@ -641,10 +665,28 @@ mod tests {
                 assert_eq!(c.piece_count(), 5);
             }
         }
-        // Closed linear: passes through its points at the knots.
+        // Closed linear: d_i acts on [u_i, u_{i+2}], so c(u_{i+1}) = d_i.
         let c = C2::closed(1, &pts, Some(&knots)).unwrap();
-        assert!(close(c.eval(0.5), pts[1], 1e-15));
-        assert!(close(c.eval(4.0), pts[0], 1e-15));
+        assert_eq!(
+            c.control_points(),
+            &[pts[4], pts[0], pts[1], pts[2], pts[3], pts[4]]
+        );
+        assert!(close(c.eval(0.5), pts[0], 1e-15));
+        assert!(close(c.eval(1.5), pts[1], 1e-15));
+        assert!(close(c.eval(0.0), pts[4], 1e-15));
+        assert!(close(c.eval(4.0), pts[4], 1e-15));
+        // Uniform quadratic on a square (as strak-ref): c(u_0) = (d_2 + d_3)/2, c'(u_0) = 4(d_3 − d_2).
+        let sq = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
+        let c = C2::closed(2, &sq, None).unwrap();
+        assert!(close(c.eval(0.0), [-0.5, -0.5], 1e-15));
+        assert!(close(c.deriv(0.0, 1), [4.0, -4.0], 1e-13));
+        // Uniform cubic: c(u_0) = (d_{K−3} + 4 d_{K−2} + d_{K−1})/6.
+        let c = C2::closed(3, &pts, None).unwrap();
+        let e = [
+            (pts[2][0] + 4.0 * pts[3][0] + pts[4][0]) / 6.0,
+            (pts[2][1] + 4.0 * pts[3][1] + pts[4][1]) / 6.0,
+        ];
+        assert!(close(c.eval(0.0), e, 1e-15));
         // Seam with multiplicity 2 on a cubic (u_0 = u_1): C¹ there.
         let c = C2::closed(3, &pts, Some(&[0.0, 0.0, 1.0, 2.0, 3.0, 4.0])).unwrap();
         let (a, b) = (c.deriv(0.0, 1), c.deriv(4.0, 1));

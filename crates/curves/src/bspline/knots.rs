@@ -177,7 +177,7 @@ impl<S: Scalar, const M: usize> KnotVector<S, M> {
     /// The periodically extended uniform knot vector of a closed B-spline with `count`
     /// de Boor points (seeds/000: `K = n`, one segment per point) over one period `[u0, u1]`:
     /// `count + 2g + 1` knots `u_j = u0 + (j − g)·h`, `h = (u1 − u0)/count`. It belongs to the
-    /// open B-spline with `count + g` points whose last `g` points repeat the first `g`
+    /// open B-spline with `count + g` points whose first `g` points repeat the last `g`
     /// (see [`BSpline::closed`](crate::BSpline::closed)).
     ///
     /// # Errors

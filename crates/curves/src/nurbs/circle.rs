@@ -2,9 +2,10 @@
 //!
 //! Degree 2, nine control points on the square around the circle — `(1,0), (1,1), (0,1),
 //! (−1,1), (−1,0), (−1,−1), (0,−1), (1,−1), (1,0)` — with weights `1, √2/2, 1, √2/2, …` and the
-//! knot vector `0,0,0,1,1,2,2,3,3,4,4,4`. Each quarter is a rational quadratic Bézier arc; the
-//! double inner knots make the pieces meet with `C⁰` parametric (but `G²` geometric)
-//! continuity. On the first quarter, with `t = u/4` (seeds/004, "Viertelkreis durch NURBS"):
+//! knot vector `0,0,0,1,1,2,2,3,3,4,4,4`. Each quarter is a rational quadratic Bézier arc. The
+//! double inner knots only guarantee `C⁰`; by the symmetry of the control square the pieces
+//! meet `C¹` (equal velocity `√2·radius`), while the second derivative jumps (its tangential
+//! part changes sign). On the first quarter, with `t = u/4` (seeds/004, "Viertelkreis durch NURBS"):
 //!
 //! ```text
 //! Px(t) = (16t² − 8t + 1 + √2/2·(−32t² + 8t)) / (16t² − 8t + 1 + √2/2·(−32t² + 8t) + 16t²)
@@ -184,6 +185,13 @@ mod tests {
                     "u={u} n={n} sum={sum} scale={scale}"
                 );
             }
+        }
+        // C¹ but not C² at the double knots.
+        for (i, u) in [1.0, 2.0, 3.0].into_iter().enumerate() {
+            let (l1, r1) = (c.piece_deriv(i, u, 1), c.deriv(u, 1));
+            assert!((l1[0] - r1[0]).abs() < 1e-15 && (l1[1] - r1[1]).abs() < 1e-15);
+            let (l2, r2) = (c.piece_deriv(i, u, 2), c.deriv(u, 2));
+            assert!((l2[0] - r2[0]).abs() + (l2[1] - r2[1]).abs() > 1.0);
         }
         // The tangent at the start is vertical: c'(0) = 2·w₁/w₀·(P₁ − P₀) = (0, √2).
         let d = c.deriv(0.0, 1);

@@ -431,13 +431,43 @@ impl<P: Point, const N: usize, const M: usize> Nurbs<P, N, M> {
         P::from_coords(|c| ratio(h.weighted.coord(c), w))
     }
 
-    /// `out[j] = c^{(j)}(u)` for `j ≤ min(kmax, max_deriv)` by Leibniz's rule; zero above.
+    /// The derivative of order `k` of the rational function of piece `piece` (the last piece
+    /// for `piece ≥ piece_count()`) at `u` clamped to
+    /// [`piece_domain(piece)`](crate::ParamCurve::piece_domain): at the end of a piece this is
+    /// the limit from the left. Zero for `k >` [`Nurbs::max_deriv_order`].
+    ///
+    /// ```
+    /// use strak_curves::{Nurbs, ParamCurveDeriv};
+    /// let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 1.0).unwrap();
+    /// // At the double knot u = 1 the quarters meet C¹ but not C²:
+    /// assert_eq!(c.piece_deriv(0, 1.0, 1), c.deriv(1.0, 1));
+    /// let (left, right) = (c.piece_deriv(0, 1.0, 2), c.deriv(1.0, 2));
+    /// assert!(left[0] > 0.8 && right[0] < -0.8);
+    /// ```
+    pub fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        let kv = self.curve.knot_vector();
+        let s = kv.piece_span(piece);
+        let u = u.clamp_to(kv.knot(s), kv.knot(s + 1));
+        if k > self.max_deriv {
+            return P::zero();
+        }
+        let mut all = [P::zero(); LOCAL];
+        self.rational_derivs_in_span(s, u, k, &mut all);
+        all.get(k).copied().unwrap_or_else(P::zero)
+    }
+
+    /// `out[j] = c^{(j)}(u)` for `j ≤ min(kmax, max_deriv)`; zero above.
     fn rational_derivs(&self, u: P::Scalar, kmax: usize, out: &mut [P; LOCAL]) {
-        let kmax = kmax.min(self.max_deriv).min(BSPLINE_MAX_DEGREE);
-        let g = self.degree().min(BSPLINE_MAX_DEGREE);
         let (lo, hi) = self.domain();
         let u = u.clamp_to(lo, hi);
         let s = self.curve.knot_vector().span(u);
+        self.rational_derivs_in_span(s, u, kmax, out);
+    }
+
+    /// Leibniz's rule on span `s`.
+    fn rational_derivs_in_span(&self, s: usize, u: P::Scalar, kmax: usize, out: &mut [P; LOCAL]) {
+        let kmax = kmax.min(self.max_deriv).min(BSPLINE_MAX_DEGREE);
+        let g = self.degree().min(BSPLINE_MAX_DEGREE);
         let zero = Homogeneous {
             weighted: P::zero(),
             weight: P::Scalar::ZERO,
