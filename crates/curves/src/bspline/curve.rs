@@ -24,6 +24,17 @@ use crate::scalar::Scalar;
 /// domain are clamped to it; at an inner knot the span starting there is used, at the right
 /// end the last non-empty span.
 ///
+/// Derivatives use the de Boor points of the derivative curve,
+/// `Q_i = g·(d_{i+1} − d_i)/(u_{i+g+1} − u_{i+1})` (applied `k` times), computed locally for
+/// the span of `u` (no extra storage), then de Boor's algorithm of degree `g − k`.
+///
+/// **Fixed-point range.** The constructors check, in f64, every value evaluation can produce:
+/// the knots and `u_{m−1} − u_0`, the de Boor points, and for every non-empty span and every
+/// order `1 ≤ k ≤ g` each scaled difference `(g − k + 1)·(Q_{i+1} − Q_i)` and each derivative
+/// point (which carries the `1/Δu^k` of short spans); all must satisfy [`Scalar::fits`],
+/// otherwise [`Error::OutOfRange`]. Every divisor is a knot difference over a non-empty span,
+/// so it is positive. De Boor's convex combinations add nothing to the bound.
+///
 /// **Open** curves ([`BSpline::new`], [`BSpline::clamped_uniform`],
 /// [`BSpline::from_knot_vector`]) use `K ≤ N` points and `K + g + 1 ≤ M` knots. A clamped
 /// knot vector (end multiplicity `g + 1`) makes the curve interpolate `d_0` and `d_{K−1}`.
@@ -926,5 +937,49 @@ mod tests {
         assert_eq!(c.eval(1.0), D7[1]);
         assert_eq!(c.eval(3.0), D7[2]);
         assert_eq!(c.deriv(1.5, 1), [0.0, 0.0]);
+    }
+}
+
+#[cfg(test)]
+mod range_tests {
+    use super::*;
+    use crate::curve::{ParamCurve, ParamCurveDeriv};
+    use crate::scalar::I16F16;
+
+    /// Curves near the I16F16 limits: whatever the constructor accepts must evaluate (values
+    /// and every derivative, inside and outside the domain) without an overflow panic (debug
+    /// builds of `fixed` panic on overflow).
+    #[test]
+    fn accepted_fixed_point_curves_never_overflow() {
+        let f = |x: f64| I16F16::from_num(x);
+        let mut accepted = 0;
+        for scale in [1.0, 100.0, 4000.0, 16000.0] {
+            for span in [1.0 / 64.0, 0.25, 1.0, 8.0] {
+                for g in 1..=4 {
+                    let pts: [[I16F16; 2]; 7] = core::array::from_fn(|i| {
+                        let s = if i % 2 == 0 { 1.0 } else { -1.0 };
+                        [f(scale * s), f(scale * (i as f64 / 7.0))]
+                    });
+                    let Ok(c) = BSpline::<[I16F16; 2], 8, 16>::clamped_uniform(
+                        g,
+                        &pts,
+                        f(-3.0),
+                        f(-3.0 + span * 4.0),
+                    ) else {
+                        continue;
+                    };
+                    accepted += 1;
+                    let (lo, hi) = c.domain();
+                    for i in -10..=210 {
+                        let u = lo + (hi - lo) * I16F16::from_num(i) / 200;
+                        for k in 0..=g + 1 {
+                            let _ = c.deriv(u, k);
+                        }
+                        let _ = c.eval(u);
+                    }
+                }
+            }
+        }
+        assert!(accepted >= 20, "{accepted}");
     }
 }

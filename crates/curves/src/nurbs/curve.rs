@@ -909,3 +909,55 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod range_tests {
+    use super::*;
+    use crate::scalar::I16F16;
+
+    /// Whatever the constructor accepts evaluates every rational derivative up to 8 without an
+    /// overflow panic (debug builds of `fixed` panic on overflow) or a division by zero.
+    #[test]
+    fn accepted_fixed_point_nurbs_never_overflow() {
+        let f = |x: f64| I16F16::from_num(x);
+        let mut accepted = 0;
+        let mut limited = 0;
+        for scale in [1.0, 50.0, 2000.0] {
+            for span in [1.0 / 16.0, 1.0, 4.0] {
+                for wmax in [1.0, 3.0, 40.0] {
+                    for g in 1..=3 {
+                        let pts: [[I16F16; 2]; 6] = core::array::from_fn(|i| {
+                            let s = if i % 2 == 0 { 1.0 } else { -1.0 };
+                            [f(scale * s), f(scale * (i as f64 / 6.0))]
+                        });
+                        let w: [I16F16; 6] =
+                            core::array::from_fn(|i| if i % 3 == 1 { f(wmax) } else { f(0.5) });
+                        let Ok(c) = Nurbs::<[I16F16; 2], 8, 16>::clamped_uniform(
+                            g,
+                            &pts,
+                            &w,
+                            f(0.0),
+                            f(span * 3.0),
+                        ) else {
+                            continue;
+                        };
+                        accepted += 1;
+                        if c.max_deriv_order() < BSPLINE_MAX_DEGREE {
+                            limited += 1;
+                        }
+                        let (lo, hi) = c.domain();
+                        let mut all = [[I16F16::ZERO; 2]; 9];
+                        for i in -10..=210 {
+                            let u = lo + (hi - lo) * I16F16::from_num(i) / 200;
+                            c.derivatives(u, &mut all);
+                            for k in 0..=8 {
+                                assert_eq!(c.deriv(u, k), all[k]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(accepted >= 20 && limited >= 5, "{accepted} {limited}");
+    }
+}
