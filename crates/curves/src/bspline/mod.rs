@@ -1,1 +1,17 @@
-//! (module under construction)
+//! B-splines (seeds/000 and seeds/002: "Basis-Splines"; seeds/004: "B-Splines"): knot vectors,
+//! the Cox–de Boor basis, the curve with de Boor evaluation and derivatives, knot insertion and
+//! conversion to Bézier segments.
+
+mod basis;
+mod bezier;
+mod curve;
+mod derivative;
+mod insert;
+mod knots;
+
+pub use basis::{basis_function, bspline_basis, bspline_basis_derivs};
+pub use curve::BSpline;
+pub use knots::{BSPLINE_MAX_DEGREE, KnotVector};
+
+pub(crate) use derivative::{local_coords, span_coord_bounds};
+pub(crate) use knots::{LOCAL, ratio};
