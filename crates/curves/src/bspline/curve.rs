@@ -5,7 +5,7 @@ use heapless::Vec;
 
 use super::derivative::{check_range, derive_local};
 use super::knots::{BSPLINE_MAX_DEGREE, KnotVector, LOCAL, check_degree, check_values, ratio};
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -505,6 +505,13 @@ impl<P: Point, const N: usize, const M: usize> ParamCurveDeriv for BSpline<P, N,
         let (lo, hi) = self.knots.domain();
         let u = u.clamp_to(lo, hi);
         self.deriv_in_span(self.knots.span(u), u, k)
+    }
+}
+
+/// Forwards to the inherent [`BSpline::piece_deriv`] (one-sided limits at knots).
+impl<P: Point, const N: usize, const M: usize> PieceDeriv for BSpline<P, N, M> {
+    fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        BSpline::piece_deriv(self, piece, u, k)
     }
 }
 

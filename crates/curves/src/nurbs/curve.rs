@@ -18,7 +18,7 @@ use heapless::Vec;
 use crate::bspline::{
     BSPLINE_MAX_DEGREE, BSpline, KnotVector, LOCAL, local_coords, ratio, span_coord_bounds,
 };
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -629,6 +629,13 @@ impl<P: Point, const N: usize, const M: usize> ParamCurveDeriv for Nurbs<P, N, M
         let mut all = [P::zero(); LOCAL];
         self.rational_derivs(u, k, &mut all);
         all.get(k).copied().unwrap_or_else(P::zero)
+    }
+}
+
+/// Forwards to the inherent [`Nurbs::piece_deriv`] (one-sided limits at knots).
+impl<P: Point, const N: usize, const M: usize> PieceDeriv for Nurbs<P, N, M> {
+    fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+        Nurbs::piece_deriv(self, piece, u, k)
     }
 }
 
