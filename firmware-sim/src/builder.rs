@@ -4,8 +4,8 @@
 //! each constructor's typed error is reported against the field it concerns.
 
 use strak_curves::{
-    Bezier, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, ParabolicBlend,
-    Parameterization, Point, Scalar, SplineBoundary,
+    BSpline, Bezier, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, Nurbs,
+    ParabolicBlend, Parameterization, Point, Scalar, SplineBoundary,
 };
 
 use crate::curve_file::{BoundaryName, CurveFile, FieldError, Kind};
@@ -80,6 +80,16 @@ fn points_of<P: Point>(
                 .ok_or_else(|| out_of_range(field, &format!("{field}[{i}]"), number))
         })
         .collect()
+}
+
+/// One point of type `P` from an optional field (checked present by [`CurveFile::check`]).
+fn point_of<P: Point>(
+    field: &'static str,
+    coords: Option<&[f64]>,
+    number: Number,
+) -> Result<P, FieldError> {
+    let coords = coords.ok_or_else(|| FieldError::new(field, "required"))?;
+    P::from_f64_slice(coords).ok_or_else(|| out_of_range(field, field, number))
 }
 
 fn scalars_of<S: Scalar>(
@@ -188,22 +198,10 @@ fn build<P: Point>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>,
             let boundary = match file.boundary.unwrap_or_default() {
                 BoundaryName::Natural => SplineBoundary::Natural,
                 BoundaryName::Periodic => SplineBoundary::Periodic,
-                BoundaryName::Clamped => {
-                    let start = points_of(
-                        "start_tangent",
-                        std::slice::from_ref(file.start_tangent.as_ref().unwrap_or(&Vec::new())),
-                        number,
-                    )?;
-                    let end = points_of(
-                        "end_tangent",
-                        std::slice::from_ref(file.end_tangent.as_ref().unwrap_or(&Vec::new())),
-                        number,
-                    )?;
-                    SplineBoundary::Clamped {
-                        start: start[0],
-                        end: end[0],
-                    }
-                }
+                BoundaryName::Clamped => SplineBoundary::Clamped {
+                    start: point_of("start_tangent", file.start_tangent.as_deref(), number)?,
+                    end: point_of("end_tangent", file.end_tangent.as_deref(), number)?,
+                },
             };
             Box::new(CubicSpline::<P, CAPACITY>::new(&points, nodes(), boundary).map_err(&err)?)
         }
@@ -246,4 +244,47 @@ fn build_bezier<P: Point>(
         };
     }
     by_count!(1 2 3 4 5 6 7 8 9 10 11 12)
+}
+
+/// The largest degree of a B-spline or NURBS in a file.
+pub use strak_curves::BSPLINE_MAX_DEGREE;
+
+/// Knot capacity: the control points, plus the degree (closed curves repeat `g` points),
+/// plus `2g + 1` knots.
+const KNOT_CAPACITY: usize = CAPACITY + 3 * BSPLINE_MAX_DEGREE + 1;
+
+fn build_bspline<P: Point>(
+    file: &CurveFile,
+    points: &[P],
+    number: Number,
+    err: &dyn Fn(Error) -> FieldError,
+) -> Result<Box<dyn Sampled>, FieldError> {
+    let degree = file.degree.unwrap_or(0);
+    let knots: Option<Vec<P::Scalar>> = file
+        .knots
+        .as_deref()
+        .map(|k| scalars_of("knots", k, number))
+        .transpose()?;
+    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
+    // Closed curves store g extra points.
+    type Open<P> = BSpline<P, { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>;
+    if let Some(weights) = &file.weights {
+        let w: Vec<P::Scalar> = scalars_of("weights", weights, number)?;
+        let curve = match &knots {
+            Some(k) => Nurbs::<P, { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>::new(
+                degree, points, &w, k,
+            ),
+            None => Nurbs::clamped_uniform(degree, points, &w, zero, one),
+        };
+        return Ok(Box::new(curve.map_err(err)?));
+    }
+    let curve: Result<Open<P>, Error> = if file.closed.unwrap_or(false) {
+        BSpline::closed(degree, points, knots.as_deref())
+    } else {
+        match &knots {
+            Some(k) => BSpline::new(degree, points, k),
+            None => BSpline::clamped_uniform(degree, points, zero, one),
+        }
+    };
+    Ok(Box::new(curve.map_err(err)?))
 }

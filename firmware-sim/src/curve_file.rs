@@ -76,7 +76,7 @@ pub struct CurveFile {
     pub degree: Option<usize>,
     /// Knot vector (bspline, nurbs).
     pub knots: Option<Vec<f64>>,
-    /// Closed (periodic) B-spline or NURBS.
+    /// Closed (periodic) B-spline.
     pub closed: Option<bool>,
     /// NURBS weights, one per point.
     pub weights: Option<Vec<f64>>,
@@ -127,8 +127,16 @@ impl CurveFile {
             let msg = e.message().trim().to_owned();
             match e.span() {
                 Some(span) => {
-                    let line = text[..span.start.min(text.len())].lines().count().max(1);
-                    format!("line {line}: {msg}")
+                    let start = span.start.min(text.len());
+                    let line = text[..start].lines().count().max(1);
+                    // Name the key of the offending line, as the semantic checks do.
+                    let line_text = text[..start].rsplit('\n').next().unwrap_or_default();
+                    match line_text.split_once('=') {
+                        Some((key, _)) if !key.trim().is_empty() => {
+                            format!("line {line}, field `{}`: {msg}", key.trim())
+                        }
+                        _ => format!("line {line}: {msg}"),
+                    }
                 }
                 None => msg,
             }
@@ -181,7 +189,7 @@ impl CurveFile {
         use Kind::*;
         uses("degree", self.degree.is_some(), &[Bezier, Bspline, Nurbs])?;
         uses("knots", self.knots.is_some(), &[Bspline, Nurbs])?;
-        uses("closed", self.closed.is_some(), &[Bspline, Nurbs])?;
+        uses("closed", self.closed.is_some(), &[Bspline])?;
         uses("weights", self.weights.is_some(), &[Nurbs])?;
         uses(
             "params",
@@ -204,18 +212,16 @@ impl CurveFile {
                 format!("required for kind `{}`", k.name()),
             ));
         }
-        if k == Bezier {
-            if let Some(g) = self.degree {
-                if g + 1 != n {
-                    return Err(FieldError::new(
-                        "degree",
-                        format!(
-                            "a Bézier curve with {n} points has degree {}, not {g}",
-                            n - 1
-                        ),
-                    ));
-                }
-            }
+        if let (Bezier, Some(g)) = (k, self.degree)
+            && g + 1 != n
+        {
+            return Err(FieldError::new(
+                "degree",
+                format!(
+                    "a Bézier curve with {n} points has degree {}, not {g}",
+                    n - 1
+                ),
+            ));
         }
         if k == Nurbs {
             match &self.weights {
@@ -229,13 +235,13 @@ impl CurveFile {
                 Some(_) => {}
             }
         }
-        if let Some(p) = &self.params {
-            if p.len() != n {
-                return Err(FieldError::new(
-                    "params",
-                    format!("one node per point: {n} points, {} nodes", p.len()),
-                ));
-            }
+        if let Some(p) = &self.params
+            && p.len() != n
+        {
+            return Err(FieldError::new(
+                "params",
+                format!("one node per point: {n} points, {} nodes", p.len()),
+            ));
         }
         if k == Hermite {
             let Some(t) = &self.tangents else {
