@@ -1,3 +1,7 @@
+#![doc = include_str!("../../README.md")]
+//!
+//! # This crate
+//!
 //! Shared helpers for strak's cross-crate tests (`tests/tests/*.rs`): conversions between
 //! strak-curves point types and strak-ref's `Vec<f64>` points, error measures, and proptest
 //! strategies for well-conditioned inputs.
