@@ -189,7 +189,7 @@ fn given_nodes<S: Scalar>(nodes: &Nodes) -> Vec<S> {
 }
 
 /// The tolerance multiplier `K` for Lagrange curves: the largest measured `error/(ε·scale)`
-/// is 1.4 (f64; f32 and fixed-point ≤ 0.4, the scale being pessimistic there).
+/// is 1.8 (f64; f32 and fixed-point ≤ 0.4, the scale being pessimistic there).
 const K_LAGRANGE: f64 = 16.0;
 
 /// The tolerance multiplier `K` for the piecewise cubic curves: the largest measured
