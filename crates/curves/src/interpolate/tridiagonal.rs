@@ -106,7 +106,7 @@ pub fn solve_cyclic_tridiagonal<S: Scalar, P: Point<Scalar = S>>(
         return Ok(());
     }
     // Sherman–Morrison: A = T + u·vᵀ with u = (γ, 0, …, 0, α), v = (1, 0, …, 0, β/γ).
-    let gamma = -b0;
+    let gamma = sub_(S::ZERO, b0)?;
     let first = sub_(b0, gamma)?;
     let last = sub_(bn, div(mul(alpha, beta)?, gamma)?)?;
     for z in correction.iter_mut() {
