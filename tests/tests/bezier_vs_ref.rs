@@ -23,8 +23,8 @@ use strak_curves::{
 };
 use strak_tests::{max_diff, pt, to_vec, to_vecs};
 
-/// Cases per property: each case checks all degrees 1..=7, so 48 cases are 336 curves.
-const CASES: u32 = 48;
+/// Cases per property: each case checks all degrees 1..=7, so 64 cases are 448 curves.
+const CASES: u32 = 64;
 
 /// Largest coordinate magnitude of generated control points (fixed-point may need less).
 const CAP: f64 = 1000.0;
