@@ -333,7 +333,8 @@ fn check_hull<P: Point, const N: usize>(
     let c = curve::<P, N>(make_points(unit_points, scale::<P::Scalar>(g, 1.0)))?;
     let ctrl = to_vecs(c.control_points());
     let m = magnitude(&ctrl);
-    // de Casteljau's rounding: ≤ 2 units per level, g levels; factor 2 slack
+    // de Casteljau's rounding: ≤ 2 units per level and coordinate, g levels; the distance to a
+    // hull edge mixes two coordinates (× √2); factor √2 slack
     let tol = 4.0 * g as f64 * unit::<P::Scalar>(m);
     let hull = (P::DIM == 2).then(|| convex_hull(&ctrl));
     for &t in ts {
