@@ -135,8 +135,6 @@ fn monomial_curve_out_of_range() {
 /// A constant curve has zero derivatives, which fit every type; the documented range check
 /// ("unless each bound fits") should accept it at any degree.
 #[test]
-#[ignore = "bug: MonomialCurve::new/with_domain reject constant curves of degree ≥ 171 with \
-            OutOfRange: the f64 bound |a_i| · i!/(i−k)! is 0 · ∞ = NaN once i!/(i−k)! overflows"]
 fn monomial_curve_of_high_degree_with_zero_coefficients_is_accepted() {
     assert!(
         MonomialCurve::new([[0.0_f64]; 171]).is_ok(),
@@ -342,8 +340,6 @@ fn bezier_out_of_range() {
 /// A constant curve has zero derivatives, which fit every type; the documented range check
 /// should accept it at any degree up to `MAX_DEGREE`.
 #[test]
-#[ignore = "bug: Bezier::new rejects constant curves of degree ≥ 171 with OutOfRange: the f64 \
-            bound max|Δᵏb| · g!/(g−k)! is 0 · ∞ = NaN once g!/(g−k)! overflows"]
 fn bezier_of_high_degree_with_equal_points_is_accepted() {
     assert!(Bezier::new([[0.0_f64]; 171]).is_ok(), "degree 170 passes");
     assert!(Bezier::new([[0.0_f64]; 172]).is_ok(), "degree 171 fails");
@@ -425,8 +421,6 @@ fn elevate_out_of_range_at_the_fixed_point_limit() {
 /// `MAX_DEGREE`; with the bug above no such curve can be built (zero points are rejected, all
 /// others exceed the range), so the error is unreachable today.
 #[test]
-#[ignore = "bug: unreachable — Bezier::new rejects every curve of degree MAX_DEGREE (the 0 · ∞ \
-            = NaN range bound for equal points), so elevate's DegreeTooHigh cannot be tested"]
 fn elevate_degree_too_high() {
     let r = with_big_stack(|| {
         let c = Bezier::new([[0.0_f64]; MAX_DEGREE + 1]).map_err(|e| format!("new: {e:?}"))?;

@@ -180,7 +180,15 @@ impl<P: Point, const N: usize> MonomialCurve<P, N> {
             for k in 0..=g {
                 let mut h = 0.0_f64;
                 for (i, a) in coeffs.iter().enumerate().skip(k).rev() {
-                    h = a.coord(c).to_f64().abs() * falling_factorial_f64(i, k) + r * h;
+                    // A zero coefficient adds nothing, whatever the factor (which overflows f64
+                    // for degrees ≥ 171).
+                    let a = a.coord(c).to_f64().abs();
+                    let term = if a == 0.0 {
+                        0.0
+                    } else {
+                        a * falling_factorial_f64(i, k)
+                    };
+                    h = term + r * h;
                     if !P::Scalar::fits(h) {
                         return Err(Error::OutOfRange);
                     }

@@ -15,7 +15,9 @@ impl<P: Point, const N: usize> Bezier<P, N> {
     ///
     /// # Errors
     /// [`Error::LengthMismatch`] when `M ≠ N + 1`; [`Error::DegreeTooHigh`] when `g + 1`
-    /// exceeds [`basis::MAX_DEGREE`](crate::basis::MAX_DEGREE).
+    /// exceeds [`basis::MAX_DEGREE`](crate::basis::MAX_DEGREE); [`Error::OutOfRange`] when the
+    /// elevated curve's range check fails: the rounded weights can push a derivative bound
+    /// that sat at the limit of a fixed-point type just past it.
     ///
     /// ```
     /// use strak_curves::{Bezier, ParamCurve};
