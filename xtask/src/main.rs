@@ -12,7 +12,7 @@ use std::process::{Command, ExitCode};
 use std::time::Instant;
 
 /// The `no_std` crates, proven by cross builds (a host `cargo test` proves nothing about no_std).
-const NO_STD_CRATES: &[&str] = &["strak-curves"];
+const NO_STD_CRATES: &[&str] = &["strak-curves", "strak-trajectory"];
 
 /// The bare-metal targets the `no_std` crates must build for: Cortex-M0+ (no FPU, no
 /// hardware divide) and Cortex-M4F.
@@ -70,7 +70,7 @@ fn test() -> Result<(), String> {
             "-p",
             "strak-curves",
             "--features",
-            "defmt",
+            "strak-curves/defmt,strak-trajectory/defmt",
             "--",
             "-D",
             "warnings",

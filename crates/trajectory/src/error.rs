@@ -1,0 +1,91 @@
+//! The error type of the trajectory layer.
+
+use core::fmt;
+
+/// Why a path could not be planned, compiled or loaded.
+///
+/// Everything is checked when a path is built; afterwards [`Sampler::next`](crate::Sampler::next)
+/// has no error path.
+///
+/// ```
+/// use strak_trajectory::Error;
+/// assert_eq!(Error::InvalidRate.to_string(), "control rate must be between 100 Hz and 100 kHz");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum Error {
+    /// The curve rejected its input, or a curve operation failed.
+    Curve(strak_curves::Error),
+    /// A limit (velocity, acceleration, jerk, per-axis) is zero, negative or not finite.
+    InvalidLimit,
+    /// The control rate is outside 100 Hz ..= 100 kHz, or not finite.
+    InvalidRate,
+    /// The path has zero length (or the parameter law a zero duration): nothing to play.
+    EmptyPath,
+    /// The number of axes of the sampler does not match the curve's point dimension.
+    AxisMismatch {
+        /// Axes of the curve's points.
+        curve: usize,
+        /// Axes the path was asked for.
+        path: usize,
+    },
+    /// More pieces (or planning zones) than the fixed storage holds.
+    CapacityExceeded {
+        /// The capacity.
+        capacity: usize,
+        /// What would have been needed (a lower bound when compilation stopped early).
+        required: usize,
+    },
+    /// A value does not fit the number format of the path (fixed-point range), with the
+    /// axis concerned.
+    OutOfRange,
+    /// The path would take more ticks than a `u32` counts.
+    TooLong,
+    /// A serialized path is truncated, has a bad checksum or a foreign header.
+    CorruptBlob,
+    /// A serialized path has a format version this build does not read.
+    UnsupportedVersion {
+        /// The version found.
+        found: u16,
+    },
+    /// A serialized path was made for another number format or axis count.
+    FormatMismatch,
+}
+
+impl From<strak_curves::Error> for Error {
+    fn from(e: strak_curves::Error) -> Self {
+        Error::Curve(e)
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::Curve(e) => write!(f, "curve: {e}"),
+            Error::InvalidLimit => f.write_str("a limit is zero, negative or not finite"),
+            Error::InvalidRate => f.write_str("control rate must be between 100 Hz and 100 kHz"),
+            Error::EmptyPath => f.write_str("the path has zero length or zero duration"),
+            Error::AxisMismatch { curve, path } => {
+                write!(f, "the curve has {curve} axes, the path {path}")
+            }
+            Error::CapacityExceeded { capacity, required } => write!(
+                f,
+                "capacity exceeded: {required} pieces needed, storage for {capacity}"
+            ),
+            Error::OutOfRange => f.write_str("a value does not fit the path's number format"),
+            Error::TooLong => f.write_str("the path takes more ticks than fit a u32"),
+            Error::CorruptBlob => {
+                f.write_str("serialized path is corrupt (truncated, checksum, header)")
+            }
+            Error::UnsupportedVersion { found } => {
+                write!(f, "serialized path has unsupported format version {found}")
+            }
+            Error::FormatMismatch => {
+                f.write_str("serialized path is for another number format or axis count")
+            }
+        }
+    }
+}
+
+impl core::error::Error for Error {}
