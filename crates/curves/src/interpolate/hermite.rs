@@ -426,6 +426,45 @@ pub(super) fn piece_bound<P: Point>(
     bound
 }
 
+/// The curve traits of a type that stores its curve as a `hermite: HermiteSpline<P, N>` field
+/// (cubic splines and parabolic blending are Hermite splines with particular tangents).
+macro_rules! curve_via_hermite {
+    ($t:ident) => {
+        impl<P: Point, const N: usize> $crate::curve::ParamCurve for $t<P, N> {
+            type Point = P;
+
+            fn domain(&self) -> (P::Scalar, P::Scalar) {
+                $crate::curve::ParamCurve::domain(&self.hermite)
+            }
+
+            fn eval(&self, u: P::Scalar) -> P {
+                $crate::curve::ParamCurve::eval(&self.hermite, u)
+            }
+
+            fn piece_count(&self) -> usize {
+                $crate::curve::ParamCurve::piece_count(&self.hermite)
+            }
+
+            fn piece_domain(&self, i: usize) -> (P::Scalar, P::Scalar) {
+                $crate::curve::ParamCurve::piece_domain(&self.hermite, i)
+            }
+        }
+
+        impl<P: Point, const N: usize> $crate::curve::ParamCurveDeriv for $t<P, N> {
+            fn deriv(&self, u: P::Scalar, k: usize) -> P {
+                $crate::curve::ParamCurveDeriv::deriv(&self.hermite, u, k)
+            }
+        }
+
+        impl<P: Point, const N: usize> $crate::curve::PieceDeriv for $t<P, N> {
+            fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
+                $crate::curve::PieceDeriv::piece_deriv(&self.hermite, piece, u, k)
+            }
+        }
+    };
+}
+pub(super) use curve_via_hermite;
+
 #[cfg(test)]
 #[allow(clippy::needless_range_loop, clippy::cast_possible_truncation)]
 mod tests {

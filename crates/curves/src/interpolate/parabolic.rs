@@ -23,7 +23,6 @@ use heapless::Vec;
 
 use super::hermite::{HermiteSpline, check_points};
 use super::parameterization::Parameterization;
-use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::Point;
 
@@ -100,42 +99,13 @@ impl<P: Point, const N: usize> ParabolicBlend<P, N> {
     }
 }
 
-impl<P: Point, const N: usize> ParamCurve for ParabolicBlend<P, N> {
-    type Point = P;
-
-    fn domain(&self) -> (P::Scalar, P::Scalar) {
-        self.hermite.domain()
-    }
-
-    fn eval(&self, u: P::Scalar) -> P {
-        self.hermite.eval(u)
-    }
-
-    fn piece_count(&self) -> usize {
-        self.hermite.piece_count()
-    }
-
-    fn piece_domain(&self, i: usize) -> (P::Scalar, P::Scalar) {
-        self.hermite.piece_domain(i)
-    }
-}
-
-impl<P: Point, const N: usize> ParamCurveDeriv for ParabolicBlend<P, N> {
-    fn deriv(&self, u: P::Scalar, k: usize) -> P {
-        self.hermite.deriv(u, k)
-    }
-}
-
-impl<P: Point, const N: usize> PieceDeriv for ParabolicBlend<P, N> {
-    fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
-        self.hermite.piece_deriv(piece, u, k)
-    }
-}
+super::hermite::curve_via_hermite!(ParabolicBlend);
 
 #[cfg(test)]
 #[allow(clippy::needless_range_loop, clippy::cast_possible_truncation)]
 mod tests {
     use super::*;
+    use crate::curve::{ParamCurve, ParamCurveDeriv};
     use crate::scalar::{I16F16, I32F32};
 
     const PTS: [[f64; 2]; 6] = [
