@@ -442,6 +442,43 @@ mod tests {
     }
 
     #[test]
+    fn bezier_arc_in_f32_and_f64() {
+        use strak_curves::glam::{DVec2, Vec2};
+        // the seed's cubic quarter circle of radius 1:
+        // κ ≈ 1, a_max = 4 → v ≤ ≈ 2 < v_max = 3
+        let c64 = Bezier::<DVec2, 4>::quarter_circle(strak_curves::QUARTER_CIRCLE_KAPPA).unwrap();
+        let c32 =
+            Bezier::<Vec2, 4>::quarter_circle(strak_curves::QUARTER_CIRCLE_KAPPA as f32).unwrap();
+        let limits = Limits::<2>::new(3.0, 4.0, 50.0).unwrap();
+        let t64 = PathTiming::<_, 128, 16>::scurve(&c64, &limits).unwrap();
+        let t32 = PathTiming::<_, 128, 16>::scurve(&c32, &limits).unwrap();
+        let slowest = t64
+            .motion()
+            .zones()
+            .iter()
+            .map(|z| z.v_limit())
+            .fold(f64::INFINITY, f64::min);
+        // the cubic's curvature varies by about ±1 % around 1
+        assert!((slowest - 2.0).abs() < 2e-2, "{slowest}");
+        let rel = (t64.duration() - t32.duration()).abs() / t64.duration();
+        std::println!(
+            "Bézier arc: T64 = {} T32 = {} rel {rel:e}, zones {}",
+            t64.duration(),
+            t32.duration(),
+            t64.motion().zones().len()
+        );
+        assert!(rel < 1e-5);
+        let meas = check(&c64, &t64, &limits, 0.5, limits.jerk(), 5000);
+        std::println!(
+            "Bézier arc: v²κ/a_max {} v/v_lim {}",
+            meas.centripetal_ratio,
+            meas.v_ratio
+        );
+        assert!(meas.centripetal_ratio <= 1.0 + 1e-6 && meas.centripetal_ratio > 0.98);
+        assert!(meas.v_ratio <= 1.0 + 1e-6);
+    }
+
+    #[test]
     fn per_axis_limits_on_a_circle() {
         let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).unwrap();
         let limits = Limits::<2>::new(500.0, 1000.0, 20_000.0)
