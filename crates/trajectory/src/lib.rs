@@ -9,3 +9,5 @@ mod timing;
 pub use error::Error;
 pub use limits::Limits;
 pub use timing::Timing;
+mod profile;
+pub use profile::*;

@@ -1,0 +1,452 @@
+//! A motion along the arc length mapped onto a curve: `u(t) = u(s(t))`, `du/dt = ṡ/|c'(u)|`.
+
+use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, ScalarOf};
+
+use super::greater;
+use super::motion::MotionProfile;
+use super::planner::{PlanOptions, plan_motion};
+use crate::error::Error;
+use crate::limits::Limits;
+use crate::timing::Timing;
+
+/// Chords summed for the length estimate that scales the arc-length accuracy.
+const ESTIMATE_CHORDS: usize = 64;
+
+/// Arc-length accuracy relative to the length estimate.
+const RELATIVE_ACCURACY: f64 = 1e-10;
+
+/// The `f64` parameter `u` as the curve's scalar: clamped to the domain, rounded to nearest
+/// (the domain start when it cannot be represented).
+pub(super) fn to_param<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
+    let (lo, hi) = curve.domain();
+    if !greater(u, lo.to_f64()) {
+        return lo;
+    }
+    if u >= hi.to_f64() {
+        return hi;
+    }
+    ScalarOf::<C>::from_f64(u).unwrap_or(lo).clamp_to(lo, hi)
+}
+
+/// `|p|` in `f64`.
+pub(super) fn norm64<P: Point>(p: &P) -> f64 {
+    let mut acc = 0.0;
+    for i in 0..P::DIM {
+        let x = p.coord(i).to_f64();
+        acc += x * x;
+    }
+    libm::sqrt(acc)
+}
+
+/// A one-dimensional stand-in for a curve whose first derivative is the curve's speed
+/// `|c'(u)|`, in `f64`: the arc-length table of it is the curve's arc-length table, computed
+/// in `f64` whatever the curve's scalar (only first derivatives are used by the table).
+struct SpeedCurve<'a, C>(&'a C);
+
+impl<C: ParamCurveDeriv> ParamCurve for SpeedCurve<'_, C> {
+    type Point = [f64; 1];
+
+    fn domain(&self) -> (f64, f64) {
+        let (a, b) = self.0.domain();
+        (a.to_f64(), b.to_f64())
+    }
+
+    /// Not a geometric point: the table never evaluates it.
+    fn eval(&self, _u: f64) -> [f64; 1] {
+        [0.0]
+    }
+
+    fn piece_count(&self) -> usize {
+        self.0.piece_count()
+    }
+
+    fn piece_domain(&self, i: usize) -> (f64, f64) {
+        let (a, b) = self.0.piece_domain(i);
+        (a.to_f64(), b.to_f64())
+    }
+}
+
+impl<C: ParamCurveDeriv> ParamCurveDeriv for SpeedCurve<'_, C> {
+    fn deriv(&self, u: f64, k: usize) -> [f64; 1] {
+        if k == 1 {
+            [norm64(&self.0.deriv(to_param(self.0, u), 1))]
+        } else {
+            [0.0]
+        }
+    }
+}
+
+/// The arc-length table of `curve` in `f64`. The accuracy is `1e-10` of a length estimate
+/// (the sum of 64 chords, a lower bound of the length), but not below the noise of the
+/// curve's scalar: `32·ε_S·(u_end − u_start)·max(1, max|c'|)` (`ε_S` the scalar's
+/// resolution, `max|c'|` over the 65 chord ends), since each speed value carries a rounding
+/// error of a few `ε_S·max(1, |c'|)`.
+fn arc_table<C: ParamCurveDeriv, const N: usize>(
+    curve: &C,
+) -> Result<ArcLengthTable<f64, N>, Error> {
+    let (a, b) = curve.domain();
+    let (a, b) = (a.to_f64(), b.to_f64());
+    let at = |k: usize| {
+        #[allow(clippy::cast_precision_loss)]
+        let u = a + (b - a) * (k as f64 / ESTIMATE_CHORDS as f64);
+        to_param(curve, u)
+    };
+    let mut estimate = 0.0;
+    let mut max_speed = norm64(&curve.deriv(at(0), 1));
+    let mut prev = curve.eval(at(0));
+    for k in 1..=ESTIMATE_CHORDS {
+        let next = curve.eval(at(k));
+        estimate += norm64(&next.minus(prev));
+        max_speed = max_speed.max(norm64(&curve.deriv(at(k), 1)));
+        prev = next;
+    }
+    if !(estimate.is_finite() && max_speed.is_finite()) {
+        return Err(Error::Curve(strak_curves::Error::NonFinite));
+    }
+    if !greater(estimate, 0.0) {
+        return Err(Error::EmptyPath);
+    }
+    let floor = 32.0 * ScalarOf::<C>::EPSILON * (b - a) * max_speed.max(1.0);
+    let accuracy = (RELATIVE_ACCURACY * estimate).max(floor);
+    let table = ArcLengthTable::<f64, N>::new(&SpeedCurve(curve), accuracy)?;
+    if !greater(table.length(), 0.0) {
+        return Err(Error::EmptyPath);
+    }
+    Ok(table)
+}
+
+/// A motion along the arc length of a curve ([`MotionProfile`], at most `Z` zones) mapped
+/// onto the curve's parameter through an [`ArcLengthTable`] of `N` samples: the [`Timing`]
+///
+/// ```text
+/// u(t) = u(s(t))  (C¹ cubic Hermite inverse of the arc length, never linear),
+/// du/dt = ṡ(t) / |c'(u(t))|.
+/// ```
+///
+/// The time laws:
+/// * [`constant_speed`](Self::constant_speed): `s = v·t`;
+/// * [`trapezoid`](Self::trapezoid): trapezoidal speed, rest to rest, global `v_max`,
+///   `a_max` only;
+/// * [`scurve`](Self::scurve) / [`plan`](Self::plan): jerk-limited (or trapezoidal) speed,
+///   rest to rest, under [`Limits`] with the speed limit varying along the path (curvature,
+///   per-axis velocity and acceleration).
+///
+/// The table and the planning are computed in `f64` from the curve's derivatives (converted
+/// with [`Scalar::to_f64`]), whatever the curve's scalar; the arc lengths within `1e-10` of
+/// the length (see [`ArcLengthTable`] for the interpolation error, reported by
+/// [`table().error_estimate()`](ArcLengthTable::error_estimate); `N = 64 … 256` suits most
+/// paths). Where `|c'(u)| = 0` (a cusp of the parameterization) `du/dt` is returned as 0.
+///
+/// ```
+/// use strak_curves::Bezier;
+/// use strak_trajectory::{PathTiming, Timing};
+///
+/// let line = Bezier::new([[0.0, 0.0], [3.0, 4.0], [30.0, 40.0]])?; // length 50, uneven speed
+/// let timing = PathTiming::<_, 64, 1>::constant_speed(&line, 10.0)?;
+/// assert!((timing.duration() - 5.0).abs() < 1e-9);
+/// let (u, du_dt) = timing.param(2.5); // halfway along the arc length
+/// assert!((timing.table().length_at(u) - 25.0).abs() < 1e-6);
+/// assert!(du_dt > 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug)]
+pub struct PathTiming<'a, C, const N: usize, const Z: usize> {
+    curve: &'a C,
+    table: ArcLengthTable<f64, N>,
+    motion: MotionProfile<Z>,
+}
+
+/// Cloning shares the curve reference (the curve need not be `Clone`).
+impl<C, const N: usize, const Z: usize> Clone for PathTiming<'_, C, N, Z> {
+    fn clone(&self) -> Self {
+        PathTiming {
+            curve: self.curve,
+            table: self.table.clone(),
+            motion: self.motion.clone(),
+        }
+    }
+}
+
+impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N, Z> {
+    /// Constant speed along the arc length: `s = speed·t`, so `|dx/dt| = speed` up to the
+    /// table's interpolation error. Starts and ends at `speed` (not at rest).
+    ///
+    /// # Errors
+    /// [`Error::EmptyPath`] for a curve of zero length; [`Error::InvalidLimit`] for a speed
+    /// that is not finite and positive; [`Error::Curve`] when the arc-length table fails
+    /// (for example `N < 2`, or the curve stands still over a table interval);
+    /// [`Error::CapacityExceeded`] for `Z = 0`.
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{Error, PathTiming, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [3.0, 4.0]])?;
+    /// let t = PathTiming::<_, 16, 1>::constant_speed(&line, 2.0)?;
+    /// assert!((t.duration() - 2.5).abs() < 1e-12);
+    /// let still = Bezier::new([[1.0, 1.0], [1.0, 1.0]])?;
+    /// assert!(matches!(
+    ///     PathTiming::<_, 16, 1>::constant_speed(&still, 2.0),
+    ///     Err(Error::EmptyPath)
+    /// ));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn constant_speed(curve: &'a C, speed: f64) -> Result<Self, Error> {
+        let table = arc_table(curve)?;
+        let motion = MotionProfile::constant_speed(table.length(), speed)?;
+        Ok(PathTiming {
+            curve,
+            table,
+            motion,
+        })
+    }
+
+    /// The trapezoidal speed profile along the arc length, rest to rest, with the global
+    /// limits `v_max` and `a_max` only (no curvature or per-axis limits: for those use
+    /// [`plan`](Self::plan) with [`ProfileShape::Trapezoid`](crate::ProfileShape)). See
+    /// [`MotionProfile::trapezoid`].
+    ///
+    /// # Errors
+    /// As for [`constant_speed`](Self::constant_speed).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{PathTiming, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?; // length 50
+    /// let t = PathTiming::<_, 16, 1>::trapezoid(&line, 10.0, 20.0)?;
+    /// assert!((t.duration() - (50.0 / 10.0 + 10.0 / 20.0)).abs() < 1e-9);
+    /// assert_eq!(t.param(t.duration()), (1.0, 0.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn trapezoid(curve: &'a C, v_max: f64, a_max: f64) -> Result<Self, Error> {
+        let table = arc_table(curve)?;
+        let motion = MotionProfile::trapezoid(table.length(), v_max, a_max)?;
+        Ok(PathTiming {
+            curve,
+            table,
+            motion,
+        })
+    }
+
+    /// The jerk-limited S-curve, rest to rest, under all of `limits` with the speed limit
+    /// varying along the path: [`plan`](Self::plan) with the default [`PlanOptions`].
+    ///
+    /// # Errors
+    /// As for [`plan`](Self::plan).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{Limits, PathTiming, Timing};
+    /// let arc = Bezier::new([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]])?;
+    /// let limits = Limits::<2>::new(20.0, 100.0, 1000.0)?;
+    /// let t = PathTiming::<_, 64, 32>::scurve(&arc, &limits)?;
+    /// assert!(t.duration() > t.length() / 20.0);
+    /// assert_eq!(t.param(t.duration()).0, 1.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn scurve<const A: usize>(curve: &'a C, limits: &Limits<A>) -> Result<Self, Error> {
+        Self::plan(curve, limits, &PlanOptions::new())
+    }
+
+    /// Plans a rest-to-rest motion under `limits` along the curve (see [`PlanOptions`] for
+    /// the algorithm and its settings): the speed limit `v_lim(s)` is the smallest of
+    /// * the path velocity limit,
+    /// * the curvature limit `√(a_max/κ)` (centripetal acceleration `v²κ ≤ a_max`),
+    /// * per axis `i`, `v_i/|T_i|` (unit tangent `T`),
+    /// * per axis `i`, `√(share·a_i/|κN_i|)` (curvature vector `κN`, `share` the axis
+    ///   centripetal share),
+    ///
+    /// sampled along the curve and grouped into zones of nearly constant limit (at most `Z`);
+    /// in each zone the path acceleration is limited by `a_max` and, per axis, by
+    /// `(a_i − v_zone²·|κN_i|)/|T_i|`, so that `|ẍ_i| = |s̈·T_i + ṡ²·κN_i| ≤ a_i`. A forward
+    /// and a backward pass choose the speeds at the zone boundaries, and each zone gets a
+    /// double S (or trapezoid) from its entry to its exit speed, with zero acceleration at
+    /// the boundaries.
+    ///
+    /// Tangential (`s̈`) and centripetal (`v²κ`) path accelerations are each bounded by
+    /// `a_max`, not their vector sum.
+    ///
+    /// # Errors
+    /// - [`Error::AxisMismatch`] when `A` is not the curve's point dimension;
+    /// - [`Error::EmptyPath`] for a curve of zero length;
+    /// - [`Error::InvalidLimit`] for an option out of range (see [`PlanOptions`]) or an
+    ///   infinite duration;
+    /// - [`Error::CapacityExceeded`] when the speed limit needs more than `Z` zones
+    ///   (`required` is the number of zones needed; raise `Z` or the zone tolerance);
+    /// - [`Error::Curve`] when the arc-length table fails or a derivative is not finite.
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{Error, Limits, PathTiming, PlanOptions, ProfileShape, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?; // length 50
+    /// let limits = Limits::<2>::new(10.0, 20.0, 1000.0)?.with_axis_velocity([3.0, 100.0])?;
+    /// let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
+    /// let t = PathTiming::<_, 16, 4>::plan(&line, &limits, &options)?;
+    /// // |T_x| = 0.6: the x axis limits the speed to 3/0.6 = 5
+    /// assert!((t.motion().zones()[0].v_limit() - 5.0).abs() < 1e-12);
+    /// assert!((t.duration() - (50.0 / 5.0 + 5.0 / 20.0)).abs() < 1e-9);
+    /// let wrong = Limits::<3>::new(10.0, 20.0, 1000.0)?;
+    /// assert!(matches!(
+    ///     PathTiming::<_, 16, 4>::scurve(&line, &wrong),
+    ///     Err(Error::AxisMismatch { curve: 2, path: 3 })
+    /// ));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn plan<const A: usize>(
+        curve: &'a C,
+        limits: &Limits<A>,
+        options: &PlanOptions,
+    ) -> Result<Self, Error> {
+        let dim = <C::Point as Point>::DIM;
+        if dim != A {
+            return Err(Error::AxisMismatch {
+                curve: dim,
+                path: A,
+            });
+        }
+        options.validate()?;
+        let table = arc_table(curve)?;
+        let motion = plan_motion(curve, &table, limits, options)?;
+        Ok(PathTiming {
+            curve,
+            table,
+            motion,
+        })
+    }
+
+    /// The curve.
+    pub fn curve(&self) -> &'a C {
+        self.curve
+    }
+
+    /// The arc-length table (in `f64`).
+    pub fn table(&self) -> &ArcLengthTable<f64, N> {
+        &self.table
+    }
+
+    /// The motion along the arc length, `s(t)`.
+    pub fn motion(&self) -> &MotionProfile<Z> {
+        &self.motion
+    }
+
+    /// The arc length `L` of the curve.
+    pub fn length(&self) -> f64 {
+        self.table.length()
+    }
+}
+
+impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'_, C, N, Z> {
+    fn duration(&self) -> f64 {
+        self.motion.duration()
+    }
+
+    /// `u = u(s(t))` by the table's Hermite inverse, `du/dt = ṡ/|c'(u)|` (0 where
+    /// `|c'(u)| = 0`); `t` is clamped to `[0, duration]`, and the domain ends are returned
+    /// exactly at the ends. Binary searches only; no panic path.
+    fn param(&self, t: f64) -> (f64, f64) {
+        let st = self.motion.state(t);
+        let u = self.table.param_at(st.s);
+        let speed = norm64(&self.curve.deriv(to_param(self.curve, u), 1));
+        let rate = st.v / speed;
+        if speed > 0.0 && rate.is_finite() {
+            (u, rate)
+        } else {
+            (u, 0.0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use strak_curves::{Bezier, I16F16};
+
+    /// `x(t) = c(u(t))` in f64.
+    fn pos<C: ParamCurveDeriv, T: Timing>(c: &C, timing: &T, t: f64) -> [f64; 4] {
+        c.eval(to_param(c, timing.param(t).0)).to_f64_array()
+    }
+
+    fn dist(a: [f64; 4], b: [f64; 4]) -> f64 {
+        a.iter()
+            .zip(b.iter())
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    #[test]
+    fn constant_speed_is_constant() {
+        // A quadratic with strongly uneven parametric speed.
+        let c = Bezier::new([[0.0, 0.0], [1.0, 8.0], [10.0, 0.0]]).unwrap();
+        let timing = PathTiming::<_, 128, 1>::constant_speed(&c, 3.0).unwrap();
+        let err = timing.table().error_estimate();
+        let d = timing.duration();
+        assert!((d - timing.length() / 3.0).abs() < 1e-12);
+        let h = 1e-4;
+        let mut worst = 0.0_f64;
+        for k in 1..200 {
+            let t = d * k as f64 / 200.0;
+            // finite-difference speed of the composed motion
+            let fd = dist(pos(&c, &timing, t + h), pos(&c, &timing, t - h)) / (2.0 * h);
+            worst = worst.max((fd - 3.0).abs());
+            // and the analytic one: |c'(u)| du/dt
+            let (u, du) = timing.param(t);
+            let sp = norm64(&c.deriv(u, 1));
+            assert!((sp * du - 3.0).abs() < 1e-12);
+        }
+        std::println!("constant speed 3: worst |dx/dt| error {worst:e}, table error {err:e}");
+        assert!(worst < 1e-5, "worst speed error {worst}, table error {err}");
+        // ends exactly
+        assert_eq!(timing.param(0.0).0, 0.0);
+        assert_eq!(timing.param(d).0, 1.0);
+    }
+
+    #[test]
+    fn fixed_point_curve_plans_in_f64() {
+        let p = |x: f64, y: f64| [I16F16::from_num(x), I16F16::from_num(y)];
+        let c = Bezier::new([p(0.0, 0.0), p(300.0, 400.0)]).unwrap();
+        let timing = PathTiming::<_, 16, 1>::trapezoid(&c, 100.0, 1000.0).unwrap();
+        assert!((timing.length() - 500.0).abs() < 1e-6);
+        assert!((timing.duration() - (5.0 + 0.1)).abs() < 1e-6);
+        let (u, du) = timing.param(2.55);
+        assert!((u - 0.5).abs() < 1e-4);
+        assert!((du - 100.0 / 500.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn errors() {
+        let c = Bezier::new([[0.0, 0.0], [3.0, 4.0]]).unwrap();
+        let still = Bezier::new([[2.0, 2.0], [2.0, 2.0], [2.0, 2.0]]).unwrap();
+        assert!(matches!(
+            PathTiming::<_, 8, 1>::constant_speed(&still, 1.0),
+            Err(Error::EmptyPath)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 8, 1>::trapezoid(&still, 1.0, 1.0),
+            Err(Error::EmptyPath)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 8, 1>::constant_speed(&c, -1.0),
+            Err(Error::InvalidLimit)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 8, 1>::trapezoid(&c, 1.0, 0.0),
+            Err(Error::InvalidLimit)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 1, 1>::constant_speed(&c, 1.0),
+            Err(Error::Curve(strak_curves::Error::InvalidArgument))
+        ));
+        assert!(matches!(
+            PathTiming::<_, 8, 0>::constant_speed(&c, 1.0),
+            Err(Error::CapacityExceeded {
+                capacity: 0,
+                required: 1
+            })
+        ));
+        let bad = Bezier::new([[0.0, 0.0], [f64::MAX, 0.0], [-f64::MAX, 0.0]]);
+        if let Ok(bad) = bad {
+            assert!(PathTiming::<_, 8, 1>::constant_speed(&bad, 1.0).is_err());
+        }
+    }
+}

@@ -1,0 +1,636 @@
+//! Planning a rest-to-rest motion along a curve with a speed limit varying along the path:
+//! zones, the forward/backward pass over the zone boundaries, and a profile per zone.
+
+use heapless::Vec;
+use strak_curves::{ArcLengthTable, ParamCurveDeriv};
+
+use super::motion::{MotionProfile, ProfileZone};
+use super::scurve::{fill_zone, reach};
+use super::speed_limit::zones;
+use crate::error::Error;
+use crate::limits::Limits;
+
+/// The most sampling intervals [`PlanOptions::with_samples`] accepts.
+const MAX_SAMPLES: usize = 1 << 20;
+
+/// The velocity profile of each zone.
+///
+/// ```
+/// use strak_trajectory::{PlanOptions, ProfileShape};
+/// assert_eq!(PlanOptions::new().shape(), ProfileShape::SCurve);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ProfileShape {
+    /// Jerk-limited "double S": continuous acceleration, `|j| ≤` the jerk limit.
+    #[default]
+    SCurve,
+    /// Trapezoidal speed: the acceleration jumps between `±a` and 0 (the jerk limit is
+    /// ignored).
+    Trapezoid,
+}
+
+/// Settings of [`PathTiming::plan`](crate::PathTiming::plan).
+///
+/// # Algorithm
+///
+/// 1. **Sampling.** The speed limit `v_lim` and the axis loads `|T_i|`, `|κN_i|` are
+///    evaluated at the ends and midpoints of `samples` intervals uniform in the curve
+///    parameter (uniform in `u` puts more samples where the parametric speed drops, as in
+///    tight corners of splines); an interval takes the worst of its three samples. Samples
+///    where `c'(u) = 0` are skipped (the tangent is undefined there; a true cusp with a
+///    reversal of direction is not detected: split the path there).
+/// 2. **Zones.** Consecutive intervals form a zone while the largest limit in it is at most
+///    `1 + zone_tolerance` times the smallest; the zone's limit is the smallest (so the plan
+///    may be up to that ratio slower than necessary inside a zone). Limits are capped at the
+///    path velocity limit, so straight stretches form a single zone. At most `Z` zones.
+/// 3. **Boundary speeds.** A forward pass sets each zone's exit speed to the fastest
+///    reachable from its entry speed within its length (the exact minimum distance of a
+///    jerk-limited speed change with zero acceleration at both ends), capped by the limits
+///    of both adjacent zones; a backward pass lowers entry speeds to what can still brake
+///    to the exit speed. The path starts and ends at rest.
+/// 4. **Profiles.** Each zone gets the fastest double S (or trapezoid) from its entry to
+///    its exit speed, cruising at most at its limit, with zero acceleration at its ends: `s`,
+///    `v` and `a` are continuous across zones.
+///
+/// ```
+/// use strak_trajectory::{PlanOptions, ProfileShape};
+/// let o = PlanOptions::new()
+///     .with_shape(ProfileShape::Trapezoid)
+///     .with_samples(2048)
+///     .with_zone_tolerance(0.1)
+///     .with_axis_centripetal_share(0.3);
+/// assert_eq!(o.samples(), 2048);
+/// assert_eq!(o.zone_tolerance(), 0.1);
+/// assert_eq!(o.axis_centripetal_share(), 0.3);
+/// assert_eq!(PlanOptions::default(), PlanOptions::new());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PlanOptions {
+    shape: ProfileShape,
+    samples: usize,
+    zone_tolerance: f64,
+    axis_centripetal_share: f64,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl PlanOptions {
+    /// The defaults: S-curve, 1024 sampling intervals, zone tolerance 0.05 (5 %), axis
+    /// centripetal share 0.5.
+    pub fn new() -> Self {
+        PlanOptions {
+            shape: ProfileShape::SCurve,
+            samples: 1024,
+            zone_tolerance: 0.05,
+            axis_centripetal_share: 0.5,
+        }
+    }
+
+    /// The velocity profile of the zones.
+    pub fn with_shape(mut self, shape: ProfileShape) -> Self {
+        self.shape = shape;
+        self
+    }
+
+    /// The number of sampling intervals along the parameter (`1 ..= 2²⁰`; each costs two
+    /// evaluations of `c'` and `c''`).
+    pub fn with_samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// The relative spread of the speed limit allowed inside one zone (finite, `≥ 0`; 0
+    /// merges only equal limits).
+    pub fn with_zone_tolerance(mut self, tolerance: f64) -> Self {
+        self.zone_tolerance = tolerance;
+        self
+    }
+
+    /// The share of each axis acceleration limit reserved for the centripetal part
+    /// `ṡ²·|κN_i|` (in `(0, 1)`); the rest is left for the tangential part `s̈·|T_i|`.
+    pub fn with_axis_centripetal_share(mut self, share: f64) -> Self {
+        self.axis_centripetal_share = share;
+        self
+    }
+
+    /// The velocity profile of the zones.
+    pub fn shape(&self) -> ProfileShape {
+        self.shape
+    }
+
+    /// The number of sampling intervals.
+    pub fn samples(&self) -> usize {
+        self.samples
+    }
+
+    /// The relative spread of the speed limit inside one zone.
+    pub fn zone_tolerance(&self) -> f64 {
+        self.zone_tolerance
+    }
+
+    /// The share of each axis acceleration limit reserved for the centripetal part.
+    pub fn axis_centripetal_share(&self) -> f64 {
+        self.axis_centripetal_share
+    }
+
+    /// [`Error::InvalidLimit`] for a setting out of range.
+    pub(super) fn validate(&self) -> Result<(), Error> {
+        let share = self.axis_centripetal_share;
+        let tol = self.zone_tolerance;
+        if (1..=MAX_SAMPLES).contains(&self.samples)
+            && share > 0.0
+            && share < 1.0
+            && tol.is_finite()
+            && tol >= 0.0
+        {
+            Ok(())
+        } else {
+            Err(Error::InvalidLimit)
+        }
+    }
+}
+
+/// The forward/backward pass over the zone boundaries: sets `v_start`, `v_end` of every
+/// zone so that each zone can go from one to the other within its length (`j` the jerk
+/// limit, `∞` for trapezoids). Starts and ends at rest.
+fn boundary_speeds(zones: &mut [ProfileZone], j: f64) {
+    let mut v = 0.0;
+    for i in 0..zones.len() {
+        let next_limit = zones.get(i + 1).map_or(0.0, |z| z.v_limit);
+        if let Some(z) = zones.get_mut(i) {
+            z.v_start = v;
+            let cap = z.v_limit.min(next_limit);
+            z.v_end = reach(v, z.end - z.start, cap, z.a_limit, j);
+            v = z.v_end;
+        }
+    }
+    let mut v = 0.0;
+    for z in zones.iter_mut().rev() {
+        z.v_end = z.v_end.min(v);
+        z.v_start = reach(z.v_end, z.end - z.start, z.v_start, z.a_limit, j);
+        v = z.v_start;
+    }
+}
+
+/// Plans the motion along `curve` (whose arc-length table is `table`): zones of the speed
+/// limit, boundary speeds, and a profile per zone. `options` must be valid and the axis
+/// count checked.
+pub(super) fn plan_motion<C, const A: usize, const N: usize, const Z: usize>(
+    curve: &C,
+    table: &ArcLengthTable<f64, N>,
+    limits: &Limits<A>,
+    options: &PlanOptions,
+) -> Result<MotionProfile<Z>, Error>
+where
+    C: ParamCurveDeriv,
+{
+    let mut zones: Vec<ProfileZone, Z> = zones(curve, table, limits, options)?;
+    let j = match options.shape() {
+        ProfileShape::SCurve => limits.jerk(),
+        ProfileShape::Trapezoid => f64::INFINITY,
+    };
+    boundary_speeds(&mut zones, j);
+    let (mut t, mut s) = (0.0, 0.0);
+    for z in zones.iter_mut() {
+        z.t_start = t;
+        fill_zone(z, s, j);
+        t = z.t_end();
+        s = z.end_state().s;
+    }
+    MotionProfile::from_zones(zones, table.length())
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec::Vec as StdVec;
+
+    use super::*;
+    use crate::profile::path_timing::to_param;
+    use crate::profile::scurve::change_distance;
+    use crate::profile::testcurves::{LineArcLine, textbook_scurve_duration};
+    use crate::{PathTiming, Timing};
+    use strak_curves::{Bezier, Nurbs, Point, Scalar};
+
+    /// The per-axis and path limits at `u`, computed directly: (v_lim, T, κN).
+    fn limit_at<C: ParamCurveDeriv>(
+        c: &C,
+        u: f64,
+        limits: &Limits<2>,
+        share: f64,
+    ) -> (f64, [f64; 2], [f64; 2]) {
+        let d1 = c.deriv(to_param(c, u), 1).to_f64_array();
+        let d2 = c.deriv(to_param(c, u), 2).to_f64_array();
+        let sp = (d1[0] * d1[0] + d1[1] * d1[1]).sqrt();
+        let t = [d1[0] / sp, d1[1] / sp];
+        // κN = (c' × c'') / |c'|³ rotated: for 2-D, κ = |x'y'' − y'x''| / |c'|³
+        let cross = d1[0] * d2[1] - d1[1] * d2[0];
+        let kappa = cross / (sp * sp * sp);
+        let n = [-t[1] * kappa, t[0] * kappa];
+        let mut v = limits.velocity();
+        if kappa != 0.0 {
+            v = v.min((limits.acceleration() / kappa.abs()).sqrt());
+        }
+        for i in 0..2 {
+            v = v.min(limits.axis_velocity()[i] / t[i].abs());
+            v = v.min((share * limits.axis_acceleration()[i] / n[i].abs()).sqrt());
+        }
+        (v, t, n)
+    }
+
+    struct Measured {
+        v_ratio: f64,
+        a_ratio: f64,
+        j_ratio: f64,
+        axis_v_ratio: f64,
+        axis_a_ratio: f64,
+        centripetal_ratio: f64,
+    }
+
+    /// Samples the planned motion: continuity of s, v, a; limits; the composed motion.
+    fn check<C: ParamCurveDeriv, const N: usize, const Z: usize>(
+        c: &C,
+        timing: &PathTiming<'_, C, N, Z>,
+        limits: &Limits<2>,
+        share: f64,
+        jerk: f64,
+        steps: usize,
+    ) -> Measured {
+        let m = timing.motion();
+        let d = m.duration();
+        let mut out = Measured {
+            v_ratio: 0.0,
+            a_ratio: 0.0,
+            j_ratio: 0.0,
+            axis_v_ratio: 0.0,
+            axis_a_ratio: 0.0,
+            centripetal_ratio: 0.0,
+        };
+        let dt = d / steps as f64;
+        let mut prev = m.state(0.0);
+        assert_eq!((prev.s, prev.v), (0.0, 0.0));
+        let aj = jerk;
+        let xdot = |t: f64| -> [f64; 2] {
+            let (u, du) = timing.param(t);
+            let d1 = c.deriv(to_param(c, u), 1).to_f64_array();
+            [d1[0] * du, d1[1] * du]
+        };
+        for k in 1..=steps {
+            let t = dt * k as f64;
+            let st = m.state(t);
+            // continuity: |Δs| ≤ v dt + ..., |Δv| ≤ a_max dt, |Δa| ≤ j_max dt
+            assert!(
+                (st.s - prev.s) >= -1e-12 && (st.s - prev.s) <= limits.velocity() * dt * 1.0001
+            );
+            assert!((st.v - prev.v).abs() <= limits.acceleration() * dt * 1.0001);
+            assert!((st.a - prev.a).abs() <= aj * dt * 1.0001 + 1e-9);
+            prev = st;
+            let (u, _) = timing.param(t);
+            let (vlim, tan, kn) = limit_at(c, u, limits, share);
+            out.v_ratio = out.v_ratio.max(st.v / vlim);
+            out.a_ratio = out.a_ratio.max(st.a.abs() / limits.acceleration());
+            out.j_ratio = out.j_ratio.max(st.j.abs() / limits.jerk());
+            let kappa = (kn[0] * kn[0] + kn[1] * kn[1]).sqrt();
+            out.centripetal_ratio = out
+                .centripetal_ratio
+                .max(st.v * st.v * kappa / limits.acceleration());
+            // per-axis velocity of the composed motion
+            let xd = xdot(t);
+            for i in 0..2 {
+                out.axis_v_ratio = out
+                    .axis_v_ratio
+                    .max(xd[i].abs() / limits.axis_velocity()[i]);
+                assert!((xd[i].abs() - tan[i].abs() * st.v).abs() <= 1e-6 * (1.0 + st.v));
+            }
+            // per-axis acceleration of the composed motion, by central differences of ẋ
+            if t > 2.0 * dt && t < d - 2.0 * dt {
+                let h = 1e-5 * d;
+                let (xp, xm) = (xdot(t + h), xdot(t - h));
+                for i in 0..2 {
+                    let xdd = (xp[i] - xm[i]) / (2.0 * h);
+                    out.axis_a_ratio = out
+                        .axis_a_ratio
+                        .max(xdd.abs() / limits.axis_acceleration()[i]);
+                }
+            }
+        }
+        let end = m.state(d);
+        assert_eq!((end.s, end.v, end.a), (timing.length(), 0.0, 0.0));
+        assert_eq!(timing.param(d), (c.domain().1.to_f64(), 0.0));
+        out
+    }
+
+    #[test]
+    fn straight_line_matches_closed_form() {
+        // uneven parametric speed along a straight line of length 100
+        // (all points on the line y = 4x/3, unevenly spaced)
+        let c = Bezier::new([[0.0, 0.0], [3.0, 4.0], [12.0, 16.0], [60.0, 80.0]]).unwrap();
+        for &(v, a, j) in &[
+            (10.0, 20.0, 100.0),  // v_max and a_max reached
+            (2.0, 20.0, 100.0),   // v_max reached, a_max not
+            (60.0, 20.0, 1000.0), // a_max reached, v_max not
+            (60.0, 500.0, 100.0), // neither
+        ] {
+            let limits = Limits::<2>::new(v, a, j).unwrap();
+            let timing = PathTiming::<_, 128, 8>::scurve(&c, &limits).unwrap();
+            assert_eq!(timing.motion().zones().len(), 1);
+            let l = timing.length();
+            assert!((l - 100.0).abs() < 1e-8);
+            let exact = textbook_scurve_duration(100.0, v, a, j);
+            let rel = (timing.duration() - exact).abs() / exact;
+            std::println!(
+                "line v={v} a={a} j={j}: T = {} closed form {exact} rel {rel:e}",
+                timing.duration()
+            );
+            assert!(rel < 1e-3);
+            assert!(rel < 1e-9);
+            let meas = check(&c, &timing, &limits, 0.5, limits.jerk(), 2000);
+            assert!(meas.v_ratio <= 1.0 + 1e-9 && meas.a_ratio <= 1.0 + 1e-9);
+            assert!(meas.j_ratio <= 1.0 + 1e-12);
+        }
+    }
+
+    #[test]
+    fn tight_curve_slows_only_there() {
+        let c = LineArcLine::new(100.0, 2.0, 100.0);
+        let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
+        let timing = PathTiming::<_, 256, 64>::scurve(&c, &limits).unwrap();
+        let m = timing.motion();
+        // the arc limits the speed to √(a r) = √200 ≈ 14.14
+        let v_arc = (100.0_f64 * 2.0).sqrt();
+        let slowest = m
+            .zones()
+            .iter()
+            .map(|z| z.v_limit())
+            .fold(f64::INFINITY, f64::min);
+        assert!((slowest - v_arc).abs() < 1e-6 * v_arc, "slowest {slowest}");
+        assert!(
+            m.zones().len() >= 3 && m.zones().len() <= 5,
+            "{} zones",
+            m.zones().len()
+        );
+        // a plan with the global minimum limit everywhere
+        let global = MotionProfile::<1>::scurve(timing.length(), v_arc, 100.0, 2000.0).unwrap();
+        std::println!(
+            "tight curve: T = {} (global-minimum plan {}), {} zones",
+            m.duration(),
+            global.duration(),
+            m.zones().len()
+        );
+        assert!(m.duration() < 0.6 * global.duration());
+        // fast on the straights, slow in the arc
+        let mut v_on_arc: f64 = 0.0;
+        let mut v_on_line: f64 = 0.0;
+        for k in 0..=4000 {
+            let t = m.duration() * k as f64 / 4000.0;
+            let st = m.state(t);
+            let (u, _) = timing.param(t);
+            if (1.0..=2.0).contains(&u) {
+                v_on_arc = v_on_arc.max(st.v);
+            } else {
+                v_on_line = v_on_line.max(st.v);
+            }
+        }
+        assert!(v_on_arc <= v_arc * (1.0 + 1e-9));
+        assert!((v_on_line - 50.0).abs() < 1e-9);
+        let meas = check(&c, &timing, &limits, 0.5, limits.jerk(), 20_000);
+        std::println!(
+            "tight curve ratios: v/v_lim {} |a|/a_max {} |j|/j_max {} v²κ/a_max {}",
+            meas.v_ratio,
+            meas.a_ratio,
+            meas.j_ratio,
+            meas.centripetal_ratio
+        );
+        assert!(meas.v_ratio <= 1.0 + 1e-6);
+        assert!(meas.a_ratio <= 1.0 + 1e-9);
+        assert!(meas.j_ratio <= 1.0 + 1e-12);
+        assert!(meas.centripetal_ratio <= 1.0 + 1e-6);
+        // boundaries: continuous v and a = 0
+        for w in m.zones().windows(2) {
+            assert_eq!(w[0].v_end(), w[1].v_start());
+            assert!(w[0].v_end() <= w[0].v_limit().min(w[1].v_limit()));
+            assert!(
+                change_distance(w[0].v_start(), w[0].v_end(), w[0].a_limit(), 2000.0)
+                    <= (w[0].end() - w[0].start()) * (1.0 + 1e-12)
+            );
+        }
+    }
+
+    #[test]
+    fn circle_centripetal_limit() {
+        // radius 10, a_max 1000: v ≤ √(a r) = 100 < v_max 500
+        let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).unwrap();
+        let limits = Limits::<2>::new(500.0, 1000.0, 20_000.0).unwrap();
+        let timing = PathTiming::<_, 256, 4>::scurve(&c, &limits).unwrap();
+        let m = timing.motion();
+        assert_eq!(m.zones().len(), 1);
+        assert!((m.zones()[0].v_limit() - 100.0).abs() < 1e-9);
+        let l = 2.0 * core::f64::consts::PI * 10.0;
+        assert!((timing.length() - l).abs() < 1e-8);
+        let exact = textbook_scurve_duration(l, 100.0, 1000.0, 20_000.0);
+        assert!((m.duration() - exact).abs() < 1e-9 * exact);
+        let meas = check(&c, &timing, &limits, 0.5, limits.jerk(), 10_000);
+        std::println!("circle: v²κ/a_max max {}", meas.centripetal_ratio);
+        assert!(meas.centripetal_ratio <= 1.0 + 1e-9);
+        assert!(meas.centripetal_ratio > 0.999);
+    }
+
+    #[test]
+    fn bezier_arc_in_f32_and_f64() {
+        use strak_curves::glam::{DVec2, Vec2};
+        // the seed's cubic quarter circle of radius 1:
+        // κ ≈ 1, a_max = 4 → v ≤ ≈ 2 < v_max = 3
+        let c64 = Bezier::<DVec2, 4>::quarter_circle(strak_curves::QUARTER_CIRCLE_KAPPA).unwrap();
+        let c32 =
+            Bezier::<Vec2, 4>::quarter_circle(strak_curves::QUARTER_CIRCLE_KAPPA as f32).unwrap();
+        let limits = Limits::<2>::new(3.0, 4.0, 50.0).unwrap();
+        let t64 = PathTiming::<_, 128, 16>::scurve(&c64, &limits).unwrap();
+        let t32 = PathTiming::<_, 128, 16>::scurve(&c32, &limits).unwrap();
+        let slowest = t64
+            .motion()
+            .zones()
+            .iter()
+            .map(|z| z.v_limit())
+            .fold(f64::INFINITY, f64::min);
+        // the cubic's curvature varies by about ±1 % around 1
+        assert!((slowest - 2.0).abs() < 2e-2, "{slowest}");
+        let rel = (t64.duration() - t32.duration()).abs() / t64.duration();
+        std::println!(
+            "Bézier arc: T64 = {} T32 = {} rel {rel:e}, zones {}",
+            t64.duration(),
+            t32.duration(),
+            t64.motion().zones().len()
+        );
+        assert!(rel < 1e-5);
+        let meas = check(&c64, &t64, &limits, 0.5, limits.jerk(), 5000);
+        std::println!(
+            "Bézier arc: v²κ/a_max {} v/v_lim {}",
+            meas.centripetal_ratio,
+            meas.v_ratio
+        );
+        assert!(meas.centripetal_ratio <= 1.0 + 1e-6 && meas.centripetal_ratio > 0.98);
+        assert!(meas.v_ratio <= 1.0 + 1e-6);
+    }
+
+    #[test]
+    fn per_axis_limits_on_a_circle() {
+        let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).unwrap();
+        let limits = Limits::<2>::new(500.0, 1000.0, 20_000.0)
+            .unwrap()
+            .with_axis_velocity([40.0, f64::INFINITY])
+            .unwrap()
+            .with_axis_acceleration([f64::INFINITY, 300.0])
+            .unwrap();
+        let share = 0.5;
+        let timing = PathTiming::<_, 256, 128>::scurve(&c, &limits).unwrap();
+        let meas = check(&c, &timing, &limits, share, limits.jerk(), 20_000);
+        std::println!(
+            "circle per axis: {} zones, T = {}, v/v_lim {} |ẋ_i|/v_i {} |ẍ_i|/a_i {}",
+            timing.motion().zones().len(),
+            timing.duration(),
+            meas.v_ratio,
+            meas.axis_v_ratio,
+            meas.axis_a_ratio
+        );
+        assert!(meas.axis_v_ratio <= 1.0 + 1e-4);
+        assert!(meas.axis_a_ratio <= 1.0 + 1e-3);
+        assert!(meas.v_ratio <= 1.0 + 1e-3);
+        // the limits bind: the x axis runs at its speed limit somewhere
+        assert!(meas.axis_v_ratio > 0.9);
+        // and it is slower than the path limits alone
+        let free = PathTiming::<_, 256, 128>::scurve(
+            &c,
+            &Limits::<2>::new(500.0, 1000.0, 20_000.0).unwrap(),
+        )
+        .unwrap();
+        assert!(timing.duration() > free.duration());
+    }
+
+    #[test]
+    fn per_axis_velocity_on_a_line() {
+        // direction (0.6, 0.8): the y axis limit 4 allows 4/0.8 = 5
+        let c = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).unwrap();
+        let limits = Limits::<2>::new(10.0, 20.0, 200.0)
+            .unwrap()
+            .with_axis_velocity([100.0, 4.0])
+            .unwrap();
+        let timing = PathTiming::<_, 16, 4>::scurve(&c, &limits).unwrap();
+        let exact = textbook_scurve_duration(50.0, 5.0, 20.0, 200.0);
+        assert!((timing.duration() - exact).abs() < 1e-9 * exact);
+        let meas = check(&c, &timing, &limits, 0.5, limits.jerk(), 2000);
+        assert!(meas.axis_v_ratio <= 1.0 + 1e-9 && meas.axis_v_ratio > 1.0 - 1e-9);
+        // per-axis acceleration on a line: |ẍ_y| = |s̈|·0.8 ≤ 8 → a ≤ 10
+        let limits = Limits::<2>::new(10.0, 20.0, 200.0)
+            .unwrap()
+            .with_axis_acceleration([100.0, 8.0])
+            .unwrap();
+        let timing = PathTiming::<_, 16, 4>::scurve(&c, &limits).unwrap();
+        assert!((timing.motion().zones()[0].a_limit() - 10.0).abs() < 1e-12);
+        let exact = textbook_scurve_duration(50.0, 10.0, 10.0, 200.0);
+        assert!((timing.duration() - exact).abs() < 1e-9 * exact);
+        let meas = check(&c, &timing, &limits, 0.5, limits.jerk(), 2000);
+        assert!(meas.axis_a_ratio <= 1.0 + 1e-6 && meas.axis_a_ratio > 0.99);
+    }
+
+    #[test]
+    fn trapezoid_shape_with_varying_limits() {
+        let c = LineArcLine::new(100.0, 2.0, 100.0);
+        let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
+        let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
+        let trap = PathTiming::<_, 256, 64>::plan(&c, &limits, &options).unwrap();
+        let s = PathTiming::<_, 256, 64>::scurve(&c, &limits).unwrap();
+        // the trapezoid ignores the jerk limit: faster
+        assert!(trap.duration() < s.duration());
+        for p in trap.motion().phases() {
+            assert_eq!(p.j, 0.0);
+            assert!(p.a0.abs() <= 100.0);
+        }
+        let meas = check(&c, &trap, &limits, 0.5, f64::INFINITY, 5000);
+        assert!(meas.v_ratio <= 1.0 + 1e-6);
+    }
+
+    #[test]
+    fn capacity_exceeded_for_zones() {
+        let c = LineArcLine::new(100.0, 2.0, 100.0);
+        let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
+        let r = PathTiming::<_, 64, 2>::scurve(&c, &limits);
+        assert!(matches!(
+            r,
+            Err(Error::CapacityExceeded {
+                capacity: 2,
+                required: 3
+            })
+        ));
+        // a continuously varying limit with tolerance 0 needs many zones
+        let b = Bezier::new([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]).unwrap();
+        let o = PlanOptions::new()
+            .with_zone_tolerance(0.0)
+            .with_samples(100);
+        let r =
+            PathTiming::<_, 64, 8>::plan(&b, &Limits::<2>::new(100.0, 10.0, 100.0).unwrap(), &o);
+        assert!(matches!(
+            r,
+            Err(Error::CapacityExceeded { capacity: 8, required }) if required > 8
+        ));
+    }
+
+    #[test]
+    fn option_and_limit_errors() {
+        let c = Bezier::new([[0.0, 0.0], [3.0, 4.0]]).unwrap();
+        let l = Limits::<2>::new(1.0, 1.0, 1.0).unwrap();
+        for o in [
+            PlanOptions::new().with_samples(0),
+            PlanOptions::new().with_samples(MAX_SAMPLES + 1),
+            PlanOptions::new().with_zone_tolerance(-0.1),
+            PlanOptions::new().with_zone_tolerance(f64::NAN),
+            PlanOptions::new().with_axis_centripetal_share(0.0),
+            PlanOptions::new().with_axis_centripetal_share(1.0),
+        ] {
+            assert!(matches!(
+                PathTiming::<_, 8, 4>::plan(&c, &l, &o),
+                Err(Error::InvalidLimit)
+            ));
+        }
+        // InvalidLimit comes from Limits itself
+        assert_eq!(Limits::<2>::new(1.0, 0.0, 1.0), Err(Error::InvalidLimit));
+        let still = Bezier::new([[1.0, 1.0], [1.0, 1.0]]).unwrap();
+        assert!(matches!(
+            PathTiming::<_, 8, 4>::scurve(&still, &l),
+            Err(Error::EmptyPath)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 8, 4>::scurve(&c, &Limits::<1>::new(1.0, 1.0, 1.0).unwrap()),
+            Err(Error::AxisMismatch { curve: 2, path: 1 })
+        ));
+        assert!(matches!(
+            PathTiming::<_, 8, 0>::scurve(&c, &l),
+            Err(Error::CapacityExceeded {
+                capacity: 0,
+                required: 1
+            })
+        ));
+    }
+
+    #[test]
+    fn deterministic_plan() {
+        let c = LineArcLine::new(100.0, 2.0, 100.0);
+        let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
+        let a = PathTiming::<_, 128, 16>::scurve(&c, &limits).unwrap();
+        let b = PathTiming::<_, 128, 16>::scurve(&c, &limits).unwrap();
+        let bits = |t: &PathTiming<'_, LineArcLine, 128, 16>| -> StdVec<u64> {
+            t.motion()
+                .phases()
+                .flat_map(|p| [p.t0, p.duration, p.s0, p.v0, p.a0, p.j])
+                .map(f64::to_bits)
+                .collect()
+        };
+        assert_eq!(bits(&a), bits(&b));
+        assert_eq!(a.param(1.234).0.to_bits(), b.param(1.234).0.to_bits());
+    }
+}
