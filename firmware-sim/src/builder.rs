@@ -5,7 +5,7 @@
 
 use strak_curves::{
     BSpline, Bezier, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, Nurbs,
-    ParabolicBlend, Parameterization, Point, Scalar, SplineBoundary,
+    ParabolicBlend, Parameterization, PieceDeriv, Point, Scalar, SplineBoundary,
 };
 
 use crate::curve_file::{BoundaryName, CurveFile, FieldError, Kind};
@@ -14,22 +14,64 @@ use crate::sample::{FixedScalar, Number, Sampled};
 /// The largest number of points (control points, interpolation points) a file may have.
 pub const CAPACITY: usize = 256;
 
-/// Builds the curve of `file` in the number format `number`.
-pub fn build_curve(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
-    check_finite(file)?;
-    match number {
-        Number::F64 => build_dim::<f64>(file, number),
-        Number::F32 => build_dim::<f32>(file, number),
-        Number::Fixed => build_dim::<FixedScalar>(file, number),
+/// What to do with a built curve, whatever its concrete type: the builder hands each curve
+/// (with points `[S; D]`) to [`CurveVisitor::visit`].
+pub trait CurveVisitor {
+    /// What the visit produces.
+    type Output;
+
+    /// Uses the curve.
+    fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+    where
+        S: Scalar,
+        C: PieceDeriv<Point = [S; D]> + 'static;
+}
+
+/// The visitor behind `strak-sim sample`: the curve, boxed behind [`Sampled`].
+#[derive(Debug, Clone, Copy)]
+pub struct BoxSampled;
+
+impl CurveVisitor for BoxSampled {
+    type Output = Box<dyn Sampled>;
+
+    fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+    where
+        S: Scalar,
+        C: PieceDeriv<Point = [S; D]> + 'static,
+    {
+        Box::new(curve)
     }
 }
 
-fn build_dim<S: Scalar>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+/// Builds the curve of `file` in the number format `number`, boxed for sampling.
+pub fn build_curve(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+    visit_curve(file, number, BoxSampled)
+}
+
+/// Builds the curve of `file` in the number format `number` and hands it to `visitor`.
+pub fn visit_curve<V: CurveVisitor>(
+    file: &CurveFile,
+    number: Number,
+    visitor: V,
+) -> Result<V::Output, FieldError> {
+    check_finite(file)?;
+    match number {
+        Number::F64 => build_dim::<f64, V>(file, number, visitor),
+        Number::F32 => build_dim::<f32, V>(file, number, visitor),
+        Number::Fixed => build_dim::<FixedScalar, V>(file, number, visitor),
+    }
+}
+
+fn build_dim<S: Scalar, V: CurveVisitor>(
+    file: &CurveFile,
+    number: Number,
+    visitor: V,
+) -> Result<V::Output, FieldError> {
     match file.dim() {
-        1 => build::<[S; 1]>(file, number),
-        2 => build::<[S; 2]>(file, number),
-        3 => build::<[S; 3]>(file, number),
-        4 => build::<[S; 4]>(file, number),
+        1 => build::<S, 1, V>(file, number, visitor),
+        2 => build::<S, 2, V>(file, number, visitor),
+        3 => build::<S, 3, V>(file, number, visitor),
+        4 => build::<S, 4, V>(file, number, visitor),
         d => Err(FieldError::new(
             "points",
             format!("points need 1 to 4 coordinates, not {d}"),
@@ -165,35 +207,43 @@ fn constructor_error(file: &CurveFile, number: Number) -> impl Fn(Error) -> Fiel
     }
 }
 
-fn build<P: Point>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+fn build<S: Scalar, const D: usize, V: CurveVisitor>(
+    file: &CurveFile,
+    number: Number,
+    visitor: V,
+) -> Result<V::Output, FieldError> {
     let err = constructor_error(file, number);
-    let points: Vec<P> = points_of("points", &file.points, number)?;
-    let params: Option<Vec<P::Scalar>> = file
+    let points: Vec<[S; D]> = points_of("points", &file.points, number)?;
+    let params: Option<Vec<S>> = file
         .params
         .as_deref()
         .map(|p| scalars_of("params", p, number))
         .transpose()?;
-    let nodes = || -> NodeSource<'_, P::Scalar> {
+    let nodes = || -> NodeSource<'_, S> {
         match &params {
             Some(p) => NodeSource::Given(p),
             None => NodeSource::Computed(Parameterization::ChordLength),
         }
     };
-    let curve: Box<dyn Sampled> = match file.kind {
+    match file.kind {
         Kind::Lagrange => {
-            Box::new(LagrangeCurve::<P, CAPACITY>::new(&points, nodes()).map_err(&err)?)
+            Ok(visitor
+                .visit(LagrangeCurve::<[S; D], CAPACITY>::new(&points, nodes()).map_err(&err)?))
         }
         Kind::Hermite => {
-            let tangents: Vec<P> = points_of(
+            let tangents: Vec<[S; D]> = points_of(
                 "tangents",
                 file.tangents.as_deref().unwrap_or_default(),
                 number,
             )?;
-            Box::new(HermiteSpline::<P, CAPACITY>::new(&points, &tangents, nodes()).map_err(&err)?)
+            Ok(visitor.visit(
+                HermiteSpline::<[S; D], CAPACITY>::new(&points, &tangents, nodes())
+                    .map_err(&err)?,
+            ))
         }
-        Kind::CatmullRom => {
-            Box::new(HermiteSpline::<P, CAPACITY>::catmull_rom(&points, nodes()).map_err(&err)?)
-        }
+        Kind::CatmullRom => Ok(visitor.visit(
+            HermiteSpline::<[S; D], CAPACITY>::catmull_rom(&points, nodes()).map_err(&err)?,
+        )),
         Kind::CubicSpline => {
             let boundary = match file.boundary.unwrap_or_default() {
                 BoundaryName::Natural => SplineBoundary::Natural,
@@ -203,39 +253,42 @@ fn build<P: Point>(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>,
                     end: point_of("end_tangent", file.end_tangent.as_deref(), number)?,
                 },
             };
-            Box::new(CubicSpline::<P, CAPACITY>::new(&points, nodes(), boundary).map_err(&err)?)
+            Ok(visitor.visit(
+                CubicSpline::<[S; D], CAPACITY>::new(&points, nodes(), boundary).map_err(&err)?,
+            ))
         }
         Kind::ParabolicBlend => {
-            Box::new(ParabolicBlend::<P, CAPACITY>::new(&points).map_err(&err)?)
+            Ok(visitor.visit(ParabolicBlend::<[S; D], CAPACITY>::new(&points).map_err(&err)?))
         }
-        Kind::Bezier => build_bezier(&points, &err)?,
-        Kind::Bspline | Kind::Nurbs => build_bspline::<P>(file, &points, number, &err)?,
-    };
-    Ok(curve)
+        Kind::Bezier => build_bezier(&points, &err, visitor),
+        Kind::Bspline | Kind::Nurbs => build_bspline(file, &points, number, &err, visitor),
+    }
 }
 
 /// The largest number of control points of a Bézier curve in a file (degree 11).
 pub const BEZIER_MAX_POINTS: usize = 12;
 
 /// A Bézier curve with `N` control points, `N` being the length of `points`.
-fn bezier<P: Point, const N: usize>(
-    points: &[P],
+fn bezier<S: Scalar, const D: usize, const N: usize, V: CurveVisitor>(
+    points: &[[S; D]],
     err: &dyn Fn(Error) -> FieldError,
-) -> Result<Box<dyn Sampled>, FieldError> {
-    let array: [P; N] = points
+    visitor: V,
+) -> Result<V::Output, FieldError> {
+    let array: [[S; D]; N] = points
         .try_into()
         .map_err(|_| FieldError::new("points", format!("expected {N} points")))?;
-    Ok(Box::new(Bezier::new(array).map_err(err)?))
+    Ok(visitor.visit(Bezier::new(array).map_err(err)?))
 }
 
-fn build_bezier<P: Point>(
-    points: &[P],
+fn build_bezier<S: Scalar, const D: usize, V: CurveVisitor>(
+    points: &[[S; D]],
     err: &dyn Fn(Error) -> FieldError,
-) -> Result<Box<dyn Sampled>, FieldError> {
+    visitor: V,
+) -> Result<V::Output, FieldError> {
     macro_rules! by_count {
         ($($n:literal)*) => {
             match points.len() {
-                $($n => bezier::<P, $n>(points, err),)*
+                $($n => bezier::<S, D, $n, V>(points, err, visitor),)*
                 n => Err(FieldError::new(
                     "points",
                     format!("a Bézier curve takes 1 to {BEZIER_MAX_POINTS} points, not {n}"),
@@ -253,32 +306,33 @@ pub use strak_curves::BSPLINE_MAX_DEGREE;
 /// plus `2g + 1` knots.
 const KNOT_CAPACITY: usize = CAPACITY + 3 * BSPLINE_MAX_DEGREE + 1;
 
-fn build_bspline<P: Point>(
+fn build_bspline<S: Scalar, const D: usize, V: CurveVisitor>(
     file: &CurveFile,
-    points: &[P],
+    points: &[[S; D]],
     number: Number,
     err: &dyn Fn(Error) -> FieldError,
-) -> Result<Box<dyn Sampled>, FieldError> {
+    visitor: V,
+) -> Result<V::Output, FieldError> {
     let degree = file.degree.unwrap_or(0);
-    let knots: Option<Vec<P::Scalar>> = file
+    let knots: Option<Vec<S>> = file
         .knots
         .as_deref()
         .map(|k| scalars_of("knots", k, number))
         .transpose()?;
-    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
+    let (zero, one) = (S::ZERO, S::ONE);
     // Closed curves store g extra points.
     type Open<P> = BSpline<P, { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>;
     if let Some(weights) = &file.weights {
-        let w: Vec<P::Scalar> = scalars_of("weights", weights, number)?;
+        let w: Vec<S> = scalars_of("weights", weights, number)?;
         let curve = match &knots {
-            Some(k) => Nurbs::<P, { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>::new(
+            Some(k) => Nurbs::<[S; D], { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>::new(
                 degree, points, &w, k,
             ),
             None => Nurbs::clamped_uniform(degree, points, &w, zero, one),
         };
-        return Ok(Box::new(curve.map_err(err)?));
+        return Ok(visitor.visit(curve.map_err(err)?));
     }
-    let curve: Result<Open<P>, Error> = if file.closed.unwrap_or(false) {
+    let curve: Result<Open<[S; D]>, Error> = if file.closed.unwrap_or(false) {
         BSpline::closed(degree, points, knots.as_deref())
     } else {
         match &knots {
@@ -286,5 +340,5 @@ fn build_bspline<P: Point>(
             None => BSpline::clamped_uniform(degree, points, zero, one),
         }
     };
-    Ok(Box::new(curve.map_err(err)?))
+    Ok(visitor.visit(curve.map_err(err)?))
 }
