@@ -1194,13 +1194,10 @@ fn bezier_segments_preserve_curve() {
     worst.report("Bézier segments");
 }
 
-/// strak-ref's `periodic_extended_knots` computes `ũ_{−1} = u_{K−1} − T` in floating point;
-/// when the seam knot is repeated (`u_{K−1} = u_K`) that is not exactly `u_0`, and the
-/// extended vector can even decrease, after which `closed_bspline_point` is wrong (its basis
-/// no longer sums to one). strak-curves snaps these knots to `u_0` / `u_K` and is right.
-/// Kept as a record of the reference's limitation; the closed comparisons use dyadic knots.
+/// strak-ref's `periodic_extended_knots` once computed `ũ_{−1} = u_{K−1} − T` in floating
+/// point; when the seam knot is repeated (`u_{K−1} = u_K`) that is not exactly `u_0`, and the
+/// extended vector could even decrease. Knots on a period boundary now map exactly.
 #[test]
-#[ignore = "bug (strak-ref): periodic_extended_knots does not snap u_{K-1} - T to u_0 at a repeated seam knot"]
 fn reference_extension_rounding_at_a_multiple_seam() {
     let period = [
         0.11557225727654868,

@@ -53,12 +53,27 @@ pub fn periodic_extended_knots(g: usize, period_knots: &[f64]) -> Vec<f64> {
         "periodic_extended_knots: need K + 1 >= 2 knots"
     );
     let k = (period_knots.len() - 1) as i64;
-    let period = period_knots[k as usize] - period_knots[0];
+    let (first, last) = (period_knots[0], period_knots[k as usize]);
+    let period = last - first;
+    // The period boundaries u_0 + qT, exact where they are given knots (q = 0, 1).
+    let boundary = |q: i64| match q {
+        0 => first,
+        1 => last,
+        _ => first + q as f64 * period,
+    };
     (-(g as i64)..=k + g as i64)
         .map(|j| {
             let r = j.rem_euclid(k) as usize;
-            let q = j.div_euclid(k) as f64;
-            period_knots[r] + q * period
+            let q = j.div_euclid(k);
+            // Knots equal to a period boundary map to the shifted boundary exactly, so that a
+            // repeated seam knot stays repeated (u_{K−1} − T would round away from u_0).
+            if period_knots[r] == first {
+                boundary(q)
+            } else if period_knots[r] == last {
+                boundary(q + 1)
+            } else {
+                period_knots[r] + q as f64 * period
+            }
         })
         .collect()
 }
