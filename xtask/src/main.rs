@@ -64,11 +64,13 @@ fn test() -> Result<(), String> {
         &[],
     )?;
     step(
-        "clippy (strak-curves with defmt)",
+        "clippy (no_std crates with defmt)",
         &[
             "clippy",
             "-p",
             "strak-curves",
+            "-p",
+            "strak-trajectory",
             "--features",
             "strak-curves/defmt,strak-trajectory/defmt",
             "--",

@@ -4,7 +4,7 @@ use core::fmt;
 
 /// Why a path could not be planned, compiled or loaded.
 ///
-/// Everything is checked when a path is built; afterwards [`Sampler::next`](crate::Sampler::next)
+/// Everything is checked when a path is built; afterwards the sampler's `next()`
 /// has no error path.
 ///
 /// ```
