@@ -1,28 +1,5 @@
 //! Serializing a compiled [`Path`] to bytes (on the host) and reading it back from a `&[u8]`
 //! (in firmware, without allocation).
-//!
-//! # Layout (format version 1, little-endian)
-//!
-//! | offset | size            | field                                                     |
-//! |--------|-----------------|-----------------------------------------------------------|
-//! | 0      | 4               | magic `"STRK"`                                            |
-//! | 4      | 2               | format version (`u16`) = 1                                |
-//! | 6      | 1               | number format id ([`Number::FORMAT_ID`]: 1 f32, 2 f64, 3 Q40) |
-//! | 7      | 1               | axes `A`                                                  |
-//! | 8      | 4               | piece count `m` (`u32`)                                   |
-//! | 12     | 4               | tick count (`u32`)                                        |
-//! | 16     | 8 × 9           | `f64`: rate, plan duration, tolerance, peak velocity, peak acceleration, peak jerk, acceleration limit, jerk limit, feed share |
-//! | 88     | 3·A·B           | end position, end velocity, end acceleration (sample type, `B` = [`Number::BYTES`] bytes each) |
-//! | …      | m·(4 + 9·A·B)   | per piece: length in ticks (`u32`), then per axis the 9 state values in the order of [`AxisState`](crate::AxisState) |
-//! | len−4  | 4               | CRC-32 (IEEE 802.3: reflected polynomial `0xEDB88320`, init and final xor `0xFFFFFFFF`) of all preceding bytes |
-//!
-//! Reading checks, in this order: length of the fixed header and magic
-//! ([`Error::CorruptBlob`]), version ([`Error::UnsupportedVersion`]), CRC
-//! ([`Error::CorruptBlob`]), number format and axes ([`Error::FormatMismatch`]), piece count
-//! against the capacity ([`Error::CapacityExceeded`]), exact length and consistent tick
-//! counts ([`Error::CorruptBlob`]); then the decoded path is validated like a freshly compiled
-//! one (range of every value: [`Error::OutOfRange`]), so a blob that passes cannot make the
-//! sampler overflow. A round trip is bit-exact.
 
 use heapless::Vec;
 
@@ -131,8 +108,31 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
         blob_len(self.pieces.len(), A, N::BYTES).unwrap_or(usize::MAX)
     }
 
-    /// Serializes the path into `out` (layout: see [`crate::blob`](self)); returns the number
-    /// of bytes written ([`Path::blob_len`]).
+    /// Serializes the path into `out`; returns the number of bytes written
+    /// ([`Path::blob_len`]).
+    ///
+    /// # Layout (format version 1, little-endian)
+    ///
+    /// | offset | size            | field                                                     |
+    /// |--------|-----------------|-----------------------------------------------------------|
+    /// | 0      | 4               | magic `"STRK"`                                            |
+    /// | 4      | 2               | format version (`u16`) = 1                                |
+    /// | 6      | 1               | number format id ([`Number::FORMAT_ID`]: 1 f32, 2 f64, 3 Q40) |
+    /// | 7      | 1               | axes `A`                                                  |
+    /// | 8      | 4               | piece count `m` (`u32`)                                   |
+    /// | 12     | 4               | tick count (`u32`)                                        |
+    /// | 16     | 8 × 9           | `f64`: rate, plan duration, tolerance, peak velocity, peak acceleration, peak jerk, acceleration limit, jerk limit, feed share |
+    /// | 88     | 3·A·B           | end position, end velocity, end acceleration (sample type, `B` = [`Number::BYTES`] bytes each) |
+    /// | …      | m·(4 + 9·A·B)   | per piece: length in ticks (`u32`), then per axis the 9 state values in the order of [`AxisState`](crate::AxisState) |
+    /// | len−4  | 4               | CRC-32 (IEEE 802.3: reflected polynomial `0xEDB88320`, init and final xor `0xFFFFFFFF`) of all preceding bytes |
+    ///
+    /// Reading checks, in this order: length of the fixed header and magic
+    /// ([`Error::CorruptBlob`]), version ([`Error::UnsupportedVersion`]), CRC
+    /// ([`Error::CorruptBlob`]), number format and axes ([`Error::FormatMismatch`]), piece count
+    /// against the capacity ([`Error::CapacityExceeded`]), exact length and consistent tick
+    /// counts ([`Error::CorruptBlob`]); then the decoded path is validated like a freshly compiled
+    /// one (range of every value: [`Error::OutOfRange`]), so a blob that passes cannot make the
+    /// sampler overflow. A round trip is bit-exact.
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when `out` is shorter than [`Path::blob_len`]
@@ -209,7 +209,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     }
 
     /// Reads a path written by [`Path::to_bytes`] (for the same `N` and `A`, with room for
-    /// its pieces), checking everything (see [`crate::blob`](self)). No allocation: the
+    /// its pieces), checking everything (see [`Path::to_bytes`]). No allocation: the
     /// pieces are decoded into the fixed-capacity path.
     ///
     /// # Errors

@@ -1,25 +1,4 @@
 //! The compiled path: polynomial pieces in control ticks, stored as forward-difference states.
-//!
-//! A path of `N` ticks at rate `f` (tick period `T = 1/f`) is a sequence of pieces with
-//! boundaries on the tick grid. Piece `j` covers the ticks `k_j ..= k_{j+1}` (`n_j ≥ 1` ticks
-//! long) and is, per axis, the cubic `p(i) = a + b·i + c·i² + d·i³` in the local tick index
-//! `i`. It is stored as the forward-difference state at `i = 0` (DESIGN.md, "Compile, then
-//! play"):
-//!
-//! | value                                    | formula            | unit            |
-//! |------------------------------------------|--------------------|-----------------|
-//! | [`position`](AxisState::position)        | `a`                | units           |
-//! | [`delta1`](AxisState::delta1)            | `b + c + d`        | units / tick    |
-//! | [`delta2`](AxisState::delta2)            | `2c + 6d`          | units / tick²   |
-//! | [`delta3`](AxisState::delta3)            | `6d`               | units / tick³   |
-//! | [`velocity`](AxisState::velocity)        | `b / T`            | units / s       |
-//! | [`velocity_delta1`](AxisState::velocity_delta1) | `(2c + 3d) / T` | units / s / tick |
-//! | [`velocity_delta2`](AxisState::velocity_delta2) | `6d / T`     | units / s / tick² |
-//! | [`acceleration`](AxisState::acceleration)| `2c / T²`          | units / s²      |
-//! | [`acceleration_delta`](AxisState::acceleration_delta) | `6d / T²` | units / s² / tick |
-//!
-//! One tick ([`AxisState::step`]) is six additions per axis; a piece switch is a load of the
-//! next piece's state, so rounding errors never carry from one piece into the next.
 
 use heapless::Vec;
 use strak_curves::Scalar;
@@ -28,9 +7,29 @@ use crate::error::Error;
 use crate::number::Number;
 use crate::sampler::Sample;
 
-/// The forward-difference state of one axis at one tick (see the [module docs](self) for the
-/// formulas). Position differences are per tick, velocity in units/s, acceleration in
-/// units/s².
+/// The forward-difference state of one axis at one tick. Position differences are per tick,
+/// velocity in units/s, acceleration in units/s².
+///
+/// A path of `N` ticks at rate `f` (tick period `T = 1/f`) is a sequence of pieces with
+/// boundaries on the tick grid. Piece `j` covers the ticks `k_j ..= k_{j+1}` (`n_j ≥ 1` ticks
+/// long) and is, per axis, the cubic `p(i) = a + b·i + c·i² + d·i³` in the local tick index
+/// `i`. It is stored as the forward-difference state at `i = 0` (DESIGN.md, "Compile, then
+/// play"):
+///
+/// | value                                    | formula            | unit            |
+/// |------------------------------------------|--------------------|-----------------|
+/// | [`position`](AxisState::position)        | `a`                | units           |
+/// | [`delta1`](AxisState::delta1)            | `b + c + d`        | units / tick    |
+/// | [`delta2`](AxisState::delta2)            | `2c + 6d`          | units / tick²   |
+/// | [`delta3`](AxisState::delta3)            | `6d`               | units / tick³   |
+/// | [`velocity`](AxisState::velocity)        | `b / T`            | units / s       |
+/// | [`velocity_delta1`](AxisState::velocity_delta1) | `(2c + 3d) / T` | units / s / tick |
+/// | [`velocity_delta2`](AxisState::velocity_delta2) | `6d / T`     | units / s / tick² |
+/// | [`acceleration`](AxisState::acceleration)| `2c / T²`          | units / s²      |
+/// | [`acceleration_delta`](AxisState::acceleration_delta) | `6d / T²` | units / s² / tick |
+///
+/// One tick ([`AxisState::step`]) is six additions per axis; a piece switch is a load of the
+/// next piece's state, so rounding errors never carry from one piece into the next.
 ///
 /// ```
 /// use strak_trajectory::AxisState;
@@ -540,7 +539,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// A bound on the error that playback in the number format adds to the compiled
     /// polynomial's position, at feed 1 (rounding of the stored states, propagated by
     /// forward differencing; float additions; conversion to the sample type). See
-    /// [`Number`](crate::number).
+    /// [`Number`].
     pub fn playback_bound(&self) -> f64 {
         self.playback_bound
     }

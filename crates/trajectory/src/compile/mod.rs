@@ -1,23 +1,5 @@
 //! Compiling a curve and a time law into a [`Path`] of polynomial pieces in control ticks
 //! (DESIGN.md, "Compile, then play"; TRAJ_BRIEF.md, pipeline step 2).
-//!
-//! 1. **Ticks.** At the rate `f` (100 Hz ..= 100 kHz) the motion takes
-//!    `N = ⌈duration · f⌉` ticks; the time law is stretched by `duration / (N/f) ≤ 1` so that
-//!    the motion ends exactly on tick `N` (velocities only decrease).
-//! 2. **Spline in time.** The positions `x(k) = c(u(k · duration/N))` at the ticks are
-//!    approximated by a C² cubic spline in the tick index with knots on the tick grid,
-//!    clamped at both ends with the exact end velocities `c'(u)·du/dt`, starting from a
-//!    uniform grid of pieces of at most `max_piece_ticks` ticks (seeds/003, "Splines").
-//! 3. **Adaptive knots.** Each piece is checked at its quarter points (`n/4, n/2, 3n/4`)
-//!    against half the tolerance; pieces that fail are split at their middle tick, the
-//!    spline is solved again, until every piece passes. At the knots the spline is exact;
-//!    a spline's error between two knots is dominated by the bump
-//!    `∝ (i − k_j)²(k_{j+1} − i)²` (largest in the middle, 9/16 of it at the quarter
-//!    points) plus terms from the knot slopes; checking three points against `tol/2` keeps
-//!    every tick within `tol` with a margin of 2 (tests check every tick, also for time laws
-//!    with jumps in acceleration).
-//! 4. **States.** Each piece becomes its forward-difference start state per axis, rounded
-//!    once into the number format `N` (range-checked: [`Error::OutOfRange`]).
 
 mod options;
 mod spline_fit;
@@ -41,10 +23,32 @@ const CHECK_FRACTION: f64 = 0.5;
 /// Compiles the motion along `curve` with the time law `timing` into a path of at most `P`
 /// pieces with `A` axes, played at `rate_hz`, in the number format `N`.
 ///
-/// See the [module docs](self) for the steps. The first sample (tick 0) is the curve's point
-/// at the time law's start; the last (tick [`Path::ticks`]) is the curve's point at the end,
-/// exactly as the curve computes it in its own scalar type, converted once into the sample
-/// type.
+/// 1. **Ticks.** At the rate `f` (100 Hz ..= 100 kHz) the motion takes
+///    `N = ⌈duration · f⌉` ticks; the time law is stretched by `duration / (N/f) ≤ 1` so that
+///    the motion ends exactly on tick `N` (velocities only decrease).
+/// 2. **Spline in time.** The positions `x(k) = c(u(k · duration/N))` at the ticks are
+///    approximated by a C² cubic spline in the tick index with knots on the tick grid,
+///    clamped at both ends with the exact end velocities `c'(u)·du/dt`, starting from a
+///    uniform grid of pieces of at most `max_piece_ticks` ticks (seeds/003, "Splines").
+/// 3. **Adaptive knots.** Each piece is checked at its quarter points (`n/4, n/2, 3n/4`)
+///    against half the tolerance; pieces that fail are split at their middle tick, the
+///    spline is solved again, until every piece passes. At the knots the spline is exact;
+///    a spline's error between two knots is dominated by the bump
+///    `∝ (i − k_j)²(k_{j+1} − i)²` (largest in the middle, 9/16 of it at the quarter
+///    points) plus terms from the knot slopes; checking three points against `tol/2` keeps
+///    every tick within `tol` with a margin of 2 (tests check every tick, also for time laws
+///    with jumps in acceleration).
+/// 4. **States.** Each piece becomes its forward-difference start state per axis, rounded
+///    once into the number format `N` (range-checked: [`Error::OutOfRange`]).
+///
+/// The first sample (tick 0) is the curve's point at the time law's start; the last (tick
+/// [`Path::ticks`]) is the curve's point at the end, exactly as the curve computes it in its
+/// own scalar type, converted once into the sample type.
+///
+/// # Memory
+/// Besides the returned path, the fit uses `P·(13 + 16·A)` bytes of stack (knots, knot
+/// values and slopes in `f64`, the elimination's scratch); the path itself holds
+/// `P·(8 + 9·A·size_of::<N>())` bytes of pieces. Compile on the host or at start-up.
 ///
 /// # Errors
 /// * [`Error::InvalidLimit`]: bad [`CompileOptions`];

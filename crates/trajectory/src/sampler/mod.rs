@@ -1,30 +1,5 @@
 //! Playing a compiled [`Path`] back at its control rate: one [`Sample`] per tick, in constant
 //! time, with feed override, feed hold, resume and abort.
-//!
-//! # Two modes, both constant time
-//! * **Forward differencing** (feed 1, no ramp running): per tick and axis six additions
-//!   ([`AxisState::step`](crate::AxisState::step)); at a piece boundary a load of the next
-//!   piece's state (copy).
-//! * **Interpolation** (feed ≠ 1 or a ramp running): the playback point advances by the feed
-//!   factor `φ` per tick, so it lies at a fractional offset `θ ∈ [0, 1)` after the current
-//!   forward-difference state; the sample is Newton's forward-difference formula at `θ`
-//!   (the piece's cubic evaluated exactly from its differences, in the number format):
-//!   `x = p(i+θ)`, `v = φ·p'(i+θ)/T`, `a = φ²·p''(i+θ)/T² + φ̇·p'(i+θ)/T`. Because `φ ≤ 1`,
-//!   the state steps at most once per tick.
-//!
-//! When the feed returns to 1, the state is shifted onto the fractional point once (the same
-//! formula) and forward differencing resumes; later piece loads are shifted by the same
-//! fraction.
-//!
-//! # Per-tick cost (A axes)
-//! | mode                        | additions | multiplications | other                     |
-//! |-----------------------------|-----------|-----------------|---------------------------|
-//! | forward differencing        | 6A        | 0               | load of 9A values per piece switch |
-//! | interpolation               | ≤ 19A + 10| ≤ 14A + 14      | one step (6A adds)         |
-//!
-//! plus the conversion into the sample type (free for floats, an add and a shift per value
-//! for `Q40`). The counts do not depend on the path; there is no search and no loop other
-//! than over the axes.
 
 mod feed;
 
@@ -74,8 +49,7 @@ pub enum SamplerState {
 ///
 /// The sampler borrows the path (firmware keeps the path in a `static`, the sampler in the
 /// interrupt's state) and holds only the current forward-difference states and the feed
-/// ramp: `O(A)` memory. [`Sampler::next`] has no panic path and a constant cost (see the
-/// [module docs](self)).
+/// ramp: `O(A)` memory. [`Sampler::next`] has no panic path and a constant cost (see below).
 ///
 /// The first sample is tick 0 of the path, the sample at path tick [`Path::ticks`] is the
 /// end point exactly ([`Path::end_position`], bit for bit in every number format), with the
@@ -87,6 +61,36 @@ pub enum SamplerState {
 /// [`resume`](Sampler::resume) and [`abort`](Sampler::abort) ramp the feed factor `φ`
 /// with the path's limits (jerk-limited: see [`CompileOptions`](crate::CompileOptions)); the
 /// motion stays on the path and never jumps.
+///
+/// # Two modes, both constant time
+/// * **Forward differencing** (feed 1, no ramp running): per tick and axis six additions
+///   ([`AxisState::step`](crate::AxisState::step)); at a piece boundary a load of the next
+///   piece's state (copy).
+/// * **Interpolation** (feed ≠ 1 or a ramp running): the playback point advances by the feed
+///   factor `φ` per tick, so it lies at a fractional offset `θ` (`|θ| < 1`) from the current
+///   forward-difference state, inside the current tick interval of the current piece; the sample is Newton's forward-difference formula at `θ`
+///   (the piece's cubic evaluated exactly from its differences, in the number format):
+///   `x = p(i+θ)`, `v = φ·p'(i+θ)/T`, `a = φ²·p''(i+θ)/T² + φ̇·p'(i+θ)/T`. Because `φ ≤ 1`,
+///   the state steps at most once per tick.
+///
+/// When the feed returns to 1, the state is shifted onto the fractional point once (the same
+/// formula) and forward differencing resumes; later piece loads are shifted by the same
+/// fraction.
+///
+/// # Per-tick cost (A axes, operations in the number format `N`)
+/// | tick                                        | additions      | multiplications |
+/// |---------------------------------------------|----------------|-----------------|
+/// | forward differencing                        | 6A             | 0               |
+/// | … at a piece switch (load: copy of 9A values)| 6A             | 0               |
+/// | … at a piece switch after an override (shifted load) | 16A + 3 | 10A + 4        |
+/// | interpolation (incl. ramp and a step)       | ≤ 13A + 17     | ≤ 9A + 11       |
+/// | … with a shifted piece load in the same tick| ≤ 23A + 20     | ≤ 19A + 15      |
+///
+/// plus comparisons and the conversion into the sample type (free for floats, an addition
+/// and a shift per value for `Q40`). A `Q40` multiplication is an `i64 × i64 → i128`
+/// product (a library call on Cortex-M0/M3). The counts do not depend on the path; there is
+/// no search and no loop other than over the axes. The interpolation mode sets the
+/// worst-case budget of an interrupt.
 ///
 /// ```
 /// use strak_trajectory::{compile, CompileOptions, Path, Q40, Sampler, Timing};
@@ -201,8 +205,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
 
     /// The next setpoint; call once per tick.
     ///
-    /// Constant time, no panic path (see the [module docs](self) for the operation
-    /// counts). After the end (or an abort) it keeps returning the last position with zero
+    /// Constant time, no panic path (see [`Sampler`] for the operation counts). After the end (or an abort) it keeps returning the last position with zero
     /// velocity and acceleration.
     #[allow(clippy::should_implement_trait)]
     pub fn next(&mut self) -> Sample<N::Out, A> {
@@ -560,6 +563,7 @@ mod tests {
         let x_slack = 2.0 * path.playback_bound() + slack(3.0);
         let mut prev: Option<Sample<N::Out, 3>> = None;
         let mut count = 0_u64;
+        let mut max_dv = 0.0_f64;
         while !sampler.is_finished() {
             control(count, &mut sampler);
             let progress = sampler.progress();
@@ -587,12 +591,20 @@ mod tests {
                     let dv = (f(s.velocity)[a] - f(p.velocity)[a]).abs() / t;
                     let lim = a_bound + slack(path.peak_velocity()) / t;
                     assert!(dv <= lim, "acceleration at {count}: {dv} > {lim}");
+                    max_dv = max_dv.max(dv);
                 }
             }
             prev = Some(s);
         }
         let last = prev.unwrap();
         assert_eq!(f(last.velocity), [0.0; 3]);
+        std::println!(
+            "{}: largest |Δv|/T {max_dv:.1}, a_peak {:.1}, a_max {:.1}, slack {:.1}",
+            N::NAME,
+            path.peak_acceleration(),
+            path.acceleration_limit(),
+            a_bound - path.acceleration_limit() + slack(path.peak_velocity()) / t
+        );
         (count, sampler)
     }
 
@@ -805,5 +817,61 @@ mod tests {
             assert_eq!(f(s.next().velocity), [0.0; 3]);
             assert!(!s.is_finished());
         });
+    }
+
+    /// A line at constant speed (no planned acceleration): a feed change may use the whole
+    /// acceleration and jerk limits, and reaches them without exceeding them.
+    fn ramp_uses_and_respects_the_limits<N: Number>() {
+        let line = strak_curves::Bezier::new([[0.0_f64, 0.0], [30.0, 40.0]]).unwrap();
+        let (a_max, j_max) = (1000.0, 1.0e5);
+        let path: Path<N, 2, 64> = compile(
+            &line,
+            &crate::compile::testing::Linear(0.5),
+            10_000.0,
+            &CompileOptions::new().with_limits(a_max, j_max),
+        )
+        .unwrap();
+        assert!((path.peak_velocity() - 100.0).abs() < 1e-9);
+        assert!(path.peak_acceleration() < 1e-9);
+        let t = path.period();
+        let mut sampler = Sampler::new(&path);
+        let norm = |x: [f64; 2]| libm::sqrt(x[0] * x[0] + x[1] * x[1]);
+        let (mut prev_v, mut prev_a) = (None::<[f64; 2]>, None::<[f64; 2]>);
+        let (mut max_fd, mut max_a, mut max_j) = (0.0_f64, 0.0_f64, 0.0_f64);
+        let mut k = 0;
+        while !sampler.is_finished() {
+            if k == 500 {
+                sampler.set_feed(0.2);
+            }
+            if k == 2000 {
+                sampler.set_feed(1.0);
+            }
+            let s = sampler.next();
+            let (v, a) = (f(s.velocity), f(s.acceleration));
+            if let (Some(pv), Some(pa)) = (prev_v, prev_a) {
+                max_fd = max_fd.max(norm([v[0] - pv[0], v[1] - pv[1]]) / t);
+                max_j = max_j.max(norm([a[0] - pa[0], a[1] - pa[1]]) / t);
+            }
+            max_a = max_a.max(norm(a));
+            prev_v = Some(v);
+            prev_a = Some(a);
+            k += 1;
+        }
+        std::println!(
+            "{}: |Δv|/T {max_fd:.2}, |a| {max_a:.2}, |Δa|/T {max_j:.0}",
+            N::NAME
+        );
+        // the finite differences of the velocity and the reported acceleration
+        assert!(max_fd <= a_max * 1.001 && max_fd > 0.95 * a_max, "{max_fd}");
+        assert!(max_a <= a_max * 1.001 && max_a > 0.95 * a_max, "{max_a}");
+        // jerk: within the limit (one tick of α may be rounded in the format)
+        assert!(max_j <= j_max * 1.01 && max_j > 0.9 * j_max, "{max_j}");
+    }
+
+    #[test]
+    fn feed_ramps_reach_but_never_exceed_the_limits() {
+        big_stack(ramp_uses_and_respects_the_limits::<f32>);
+        big_stack(ramp_uses_and_respects_the_limits::<f64>);
+        big_stack(ramp_uses_and_respects_the_limits::<Q40>);
     }
 }
