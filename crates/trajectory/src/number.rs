@@ -185,6 +185,8 @@ pub trait Number:
     const HALF: Self;
     /// 1/3 (rounded to nearest).
     const THIRD: Self;
+    /// The spacing of representable values at 1 (machine epsilon; 2⁻⁴⁰ for `Q40`).
+    const EPSILON: Self;
     /// The largest magnitude the compiler lets any value of playback reach: half the
     /// representable range, so that the sum of two such values cannot overflow.
     const LIMIT: f64;
@@ -241,6 +243,10 @@ pub trait Number:
 
     /// `true` unless NaN or infinite (always for `Q40`).
     fn is_finite(self) -> bool;
+
+    /// The product with an integer: exact in `Q40` (an integer multiplication, wrapping; the
+    /// callers keep it in range), rounded once in floats.
+    fn mul_int(self, k: i64) -> Self;
 }
 
 fn write_bytes(src: &[u8], out: &mut [u8]) {
@@ -267,6 +273,7 @@ impl Number for f32 {
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
     const THIRD: Self = 1.0 / 3.0;
+    const EPSILON: Self = f32::EPSILON;
     const LIMIT: f64 = f32::MAX as f64 / 2.0;
     const MIN_POSITIVE: f64 = f32::MIN_POSITIVE as f64;
     const OUT_ERROR: f64 = 0.0;
@@ -306,6 +313,12 @@ impl Number for f32 {
     fn is_finite(self) -> bool {
         f32::is_finite(self)
     }
+    #[inline]
+    fn mul_int(self, k: i64) -> Self {
+        #[allow(clippy::cast_precision_loss)]
+        let k = k as f32;
+        self * k
+    }
 }
 
 impl Number for f64 {
@@ -318,6 +331,7 @@ impl Number for f64 {
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
     const THIRD: Self = 1.0 / 3.0;
+    const EPSILON: Self = f64::EPSILON;
     const LIMIT: f64 = f64::MAX / 2.0;
     const MIN_POSITIVE: f64 = f64::MIN_POSITIVE;
     const OUT_ERROR: f64 = 0.0;
@@ -356,6 +370,12 @@ impl Number for f64 {
     fn is_finite(self) -> bool {
         f64::is_finite(self)
     }
+    #[inline]
+    fn mul_int(self, k: i64) -> Self {
+        #[allow(clippy::cast_precision_loss)]
+        let k = k as f64;
+        self * k
+    }
 }
 
 impl Number for Q40 {
@@ -369,6 +389,7 @@ impl Number for Q40 {
     const HALF: Self = Q40(1 << 39);
     // round(2⁴⁰ / 3)
     const THIRD: Self = Q40(((1_i64 << 40) + 1) / 3);
+    const EPSILON: Self = Q40(1);
     const LIMIT: f64 = (1_u64 << 22) as f64;
     const MIN_POSITIVE: f64 = 1.0 / Q40_SCALE;
     const OUT_ERROR: f64 = 1.0 / (1_u64 << 33) as f64;
@@ -415,6 +436,10 @@ impl Number for Q40 {
     fn is_finite(self) -> bool {
         true
     }
+    #[inline]
+    fn mul_int(self, k: i64) -> Self {
+        Q40(self.0.wrapping_mul(k))
+    }
 }
 
 #[cfg(test)]
@@ -451,6 +476,8 @@ mod tests {
         // multiplying by one is exact
         let y = Q40::from_bits(-123_456_789_012_345);
         assert_eq!(y * Q40::ONE, y);
+        assert_eq!(Q40::from_bits(-7).mul_int(3).to_bits(), -21);
+        assert_eq!(0.25_f32.mul_int(-6), -1.5);
     }
 
     #[test]

@@ -253,13 +253,20 @@ pub(crate) struct PathMeta {
 /// The feed-ramp constants of a path in its number format, per tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FeedRampLimits<N> {
-    /// Largest change of the feed factor per tick (`|ω| ≤ omega_max`).
-    pub(crate) omega_max: N,
-    /// Largest change of `ω` per tick.
+    /// Largest change of the feed factor's rate `ω` per tick; `ω` is a whole multiple of it.
     pub(crate) alpha: N,
+    /// Largest `|ω|` in multiples of `α` (1 ..= 2²⁰).
+    pub(crate) k_max: i64,
     /// The rate in ticks per second (`φ̇ = ω · rate`).
     pub(crate) rate: N,
+    /// Within this distance of its target, at a rate at most this, the feed factor snaps onto
+    /// the target: `max(α, ε)` (ε: the format's spacing at 1, below which a float `φ` near 1
+    /// cannot move).
+    pub(crate) snap: N,
 }
+
+/// The smallest change of the feed rate per tick: 2⁻⁴⁰ (one `Q40` ulp).
+const MIN_ALPHA: f64 = 1.0 / (1_u64 << 40) as f64;
 
 /// The lowest and highest control rates in Hz.
 pub(crate) const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);
@@ -336,8 +343,9 @@ fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> PieceBounds {
 /// The feed factor `φ` may change by at most `ω_max = a_ramp / (v_peak · f)` per tick, and
 /// `ω` by at most `α = j_ramp / (v_peak · f²)` per tick, with the acceleration and jerk
 /// available to the ramp `a_ramp = max(a_max − a_peak, share · a_max)`,
-/// `j_ramp = max(j_max − j_peak, share · j_max)`. `α ≤ ¼`, `ω_max ≤ min(½, √α)` (a ramp of
-/// `φ` over at most 1 cannot reach a larger `ω` anyway).
+/// `j_ramp = max(j_max − j_peak, share · j_max)`. `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in
+/// every format), `ω_max ≤ min(½, √α)` (a ramp of `φ` over at most 1 cannot reach a larger
+/// `ω` anyway).
 pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     let a_ramp = (meta.acceleration_limit - meta.peak_acceleration)
         .max(meta.feed_share * meta.acceleration_limit);
@@ -350,7 +358,7 @@ pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     } else {
         (0.5, 0.25)
     };
-    let alpha = alpha.min(0.25);
+    let alpha = alpha.clamp(MIN_ALPHA, 0.25);
     let omega = omega.min(0.5).min(libm::sqrt(alpha));
     (omega, alpha)
 }
@@ -443,13 +451,23 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
             return Err(Error::CorruptBlob);
         }
         let (omega, alpha) = feed_ramp_f64(&meta);
+        let alpha = N::from_f64(alpha).ok_or(Error::OutOfRange)?;
+        // ω_max a whole multiple of α, so that ω stays one and the ramp's braking distance is
+        // exact: at most 2²⁰ steps, as ω_max ≤ √α and α ≥ 2⁻⁴⁰.
+        #[allow(clippy::cast_possible_truncation)]
+        let k_max = libm::floor(omega / alpha.to_f64()).clamp(1.0, f64::from(1_u32 << 20)) as i64;
         let ramp = FeedRampLimits {
-            omega_max: N::from_f64(omega.max(N::MIN_POSITIVE)).ok_or(Error::OutOfRange)?,
-            alpha: N::from_f64(alpha.max(N::MIN_POSITIVE)).ok_or(Error::OutOfRange)?,
+            alpha,
+            k_max,
             rate: N::from_f64(meta.rate).ok_or(Error::OutOfRange)?,
+            snap: if alpha > N::EPSILON {
+                alpha
+            } else {
+                N::EPSILON
+            },
         };
         // φ̇ = ω·f never exceeds this; the acceleration output adds φ̇·v.
-        let phi_dot_max = ramp.omega_max.to_f64() * meta.rate;
+        let phi_dot_max = ramp.alpha.to_f64() * (ramp.k_max as f64) * meta.rate;
         let mut next_start = 0_u32;
         let mut playback_bound = 0.0_f64;
         for piece in &pieces {

@@ -83,12 +83,14 @@ pub enum SamplerState {
 /// | forward differencing                        | 6A             | 0               |
 /// | … at a piece switch (load: copy of 9A values)| 6A             | 0               |
 /// | … at a piece switch after an override (shifted load) | 16A + 3 | 10A + 4        |
-/// | interpolation (incl. ramp and a step)       | ≤ 13A + 17     | ≤ 9A + 11       |
-/// | … with a shifted piece load in the same tick| ≤ 23A + 20     | ≤ 19A + 15      |
+/// | interpolation (incl. ramp and a step)       | ≤ 13A + 14     | ≤ 9A + 6, and 4 by an integer |
+/// | … with a shifted piece load in the same tick| ≤ 23A + 17     | ≤ 19A + 10, and 4 by an integer |
 ///
 /// plus comparisons and the conversion into the sample type (free for floats, an addition
 /// and a shift per value for `Q40`). A `Q40` multiplication is an `i64 × i64 → i128`
-/// product (a library call on Cortex-M0/M3). The counts do not depend on the path; there is
+/// product (a library call on Cortex-M0/M3); a multiplication by an integer is an `i64`
+/// product. On the host (x86-64, release, 3 axes) a sample takes about 6–13 ns with forward
+/// differencing and 14–25 ns in interpolation. The counts do not depend on the path; there is
 /// no search and no loop other than over the axes. The interpolation mode sets the
 /// worst-case budget of an interrupt.
 ///
@@ -288,8 +290,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             return sample;
         }
         // Advance: the ramp, then the playback point by φ.
-        self.feed
-            .step(self.path.ramp.omega_max, self.path.ramp.alpha);
+        self.feed.step(&self.path.ramp);
         // Invariant: shift + θ ∈ [0, 1), so the playback point stays inside the current
         // tick interval of the current piece (θ may be negative after a step).
         self.theta = self.theta + self.feed.phi;
