@@ -1,0 +1,659 @@
+//! Compiling a curve and a time law into a [`Path`] of polynomial pieces in control ticks
+//! (DESIGN.md, "Compile, then play"; TRAJ_BRIEF.md, pipeline step 2).
+
+mod options;
+mod spline_fit;
+#[cfg(test)]
+pub(crate) mod testing;
+
+pub use options::{CompileOptions, Tolerance};
+
+use heapless::Vec;
+use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
+
+use crate::error::Error;
+use crate::number::Number;
+use crate::path::{AxisState, Path, PathEnd, PathMeta, Piece, RATE_RANGE};
+use crate::timing::Timing;
+use spline_fit::SplineFit;
+
+/// The fraction of the tolerance the quarter points are checked against.
+const CHECK_FRACTION: f64 = 0.5;
+
+/// Compiles the motion along `curve` with the time law `timing` into a path of at most `P`
+/// pieces with `A` axes, played at `rate_hz`, in the number format `N`.
+///
+/// 1. **Ticks.** At the rate `f` (100 Hz ..= 100 kHz) the motion takes
+///    `N = ⌈duration · f⌉` ticks; the time law is stretched by `duration / (N/f) ≤ 1` so that
+///    the motion ends exactly on tick `N` (velocities only decrease).
+/// 2. **Spline in time.** The positions `x(k) = c(u(k · duration/N))` at the ticks are
+///    approximated by a C² cubic spline in the tick index with knots on the tick grid,
+///    clamped at both ends with the exact end velocities `c'(u)·du/dt`, starting from a
+///    uniform grid of pieces of at most `max_piece_ticks` ticks (seeds/003, "Splines").
+/// 3. **Adaptive knots.** Each piece is checked at its quarter points (`n/4, n/2, 3n/4`)
+///    against half the tolerance; pieces that fail are split at their middle tick, the
+///    spline is solved again, until every piece passes. At the knots the spline is exact;
+///    a spline's error between two knots is dominated by the bump
+///    `∝ (i − k_j)²(k_{j+1} − i)²` (largest in the middle, 9/16 of it at the quarter
+///    points) plus terms from the knot slopes; checking three points against `tol/2` keeps
+///    every tick within `tol` with a margin of 2 (tests check every tick, also for time laws
+///    with jumps in acceleration).
+/// 4. **States.** Each piece becomes its forward-difference start state per axis, rounded
+///    once into the number format `N` (range-checked: [`Error::OutOfRange`]).
+///
+/// The first sample (tick 0) is the curve's point at the time law's start; the last (tick
+/// [`Path::ticks`]) is the curve's point at the end, exactly as the curve computes it in its
+/// own scalar type, converted once into the sample type.
+///
+/// # Memory
+/// Besides the returned path, the fit uses `P·(13 + 16·A)` bytes of stack (knots, knot
+/// values and slopes in `f64`, the elimination's scratch); the path itself holds
+/// `P·(8 + 9·A·size_of::<N>())` bytes of pieces. Compile on the host or at start-up.
+///
+/// # Errors
+/// * [`Error::InvalidLimit`]: bad [`CompileOptions`];
+/// * [`Error::InvalidRate`]: `rate_hz` outside 100 Hz ..= 100 kHz (or NaN);
+/// * [`Error::AxisMismatch`]: `A` differs from the curve's point dimension;
+/// * [`Error::EmptyPath`]: the time law's duration is zero, negative or NaN;
+/// * [`Error::TooLong`]: more ticks than a `u32` counts (or an infinite duration);
+/// * [`Error::CapacityExceeded`]: more than `P` pieces needed (`required` is a lower bound);
+/// * [`Error::OutOfRange`]: a value does not fit the number format (fixed-point range);
+/// * [`Error::Curve`]: the time law or the curve produced a non-finite value.
+///
+/// ```
+/// use strak_trajectory::{compile, CompileOptions, Path, Sampler, Timing};
+/// use strak_curves::Bezier;
+///
+/// /// Rest to rest in 0.2 s: u = 3τ² − 2τ³.
+/// struct Smooth;
+/// impl Timing for Smooth {
+///     fn duration(&self) -> f64 { 0.2 }
+///     fn param(&self, t: f64) -> (f64, f64) {
+///         let s = t.clamp(0.0, 0.2) / 0.2;
+///         (s * s * (3.0 - 2.0 * s), 6.0 * s * (1.0 - s) / 0.2)
+///     }
+/// }
+/// let curve = Bezier::new([[0.0_f64, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 5.0]])?;
+/// let options = CompileOptions::new().with_tolerance(1e-6);
+/// let path: Path<f32, 3, 64> = compile(&curve, &Smooth, 10_000.0, &options)?;
+/// assert_eq!(path.ticks(), 2_000);
+/// assert_eq!(path.end_position(), [10.0, 10.0, 5.0]);
+/// assert!(path.pieces().len() >= 8); // at most 256 ticks per piece
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn compile<N, const A: usize, const P: usize, C, T>(
+    curve: &C,
+    timing: &T,
+    rate_hz: f64,
+    options: &CompileOptions,
+) -> Result<Path<N, A, P>, Error>
+where
+    N: Number,
+    C: ParamCurveDeriv + ?Sized,
+    T: Timing + ?Sized,
+{
+    options.validate()?;
+    if !(rate_hz >= RATE_RANGE.0 && rate_hz <= RATE_RANGE.1) {
+        return Err(Error::InvalidRate);
+    }
+    let dim = <C::Point as Point>::DIM;
+    if dim != A {
+        return Err(Error::AxisMismatch {
+            curve: dim,
+            path: A,
+        });
+    }
+    let duration = timing.duration();
+    if duration.is_nan() || duration <= 0.0 {
+        return Err(Error::EmptyPath);
+    }
+    if !duration.is_finite() {
+        return Err(Error::TooLong);
+    }
+    let raw = duration * rate_hz;
+    // A duration that is a whole number of ticks up to rounding is not stretched by a tick.
+    let ticks_f = libm::ceil(raw - raw * 1e-12).max(1.0);
+    if ticks_f > f64::from(u32::MAX) {
+        return Err(Error::TooLong);
+    }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let ticks = ticks_f as u32;
+    let period = 1.0 / rate_hz;
+    let per_tick = duration / ticks_f; // time-law seconds per tick (= T · time scale)
+
+    let (u_lo, u_hi) = curve.domain();
+    let (u_lo, u_hi) = (u_lo.to_f64(), u_hi.to_f64());
+    // The curve parameter at time-law time t, in the curve's scalar type.
+    let param = |t: f64| -> Result<(ScalarOf<C>, f64), Error> {
+        let (u, du) = timing.param(t);
+        if !(u.is_finite() && du.is_finite()) {
+            return Err(Error::Curve(strak_curves::Error::NonFinite));
+        }
+        let s = <ScalarOf<C> as Scalar>::from_f64(u.clamp(u_lo, u_hi))
+            .ok_or(Error::Curve(strak_curves::Error::OutOfRange))?;
+        Ok((s, du))
+    };
+    let coords = |p: C::Point| -> Result<[f64; A], Error> {
+        let x: [f64; A] = core::array::from_fn(|i| p.coord(i).to_f64());
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(x)
+        } else {
+            Err(Error::Curve(strak_curves::Error::NonFinite))
+        }
+    };
+    let mut exact = |k: u32| -> Result<[f64; A], Error> {
+        let t = if k == ticks {
+            duration
+        } else {
+            f64::from(k) * per_tick
+        };
+        coords(curve.eval(param(t)?.0))
+    };
+    // Clamped ends: dx/dk = c'(u) · du/dt · (time-law seconds per tick).
+    let end_slope = |t: f64| -> Result<[f64; A], Error> {
+        let (u, du) = param(t)?;
+        let d = coords(curve.deriv(u, 1))?;
+        Ok(d.map(|v| v * du * per_tick))
+    };
+    let start_slope = end_slope(0.0)?;
+    let final_slope = end_slope(duration)?;
+
+    let mut fit: SplineFit<A, P> = SplineFit::new(
+        ticks,
+        options.max_piece_ticks(),
+        start_slope,
+        final_slope,
+        &mut exact,
+    )?;
+    let tolerance = match options.tolerance() {
+        Tolerance::Absolute(t) => t,
+        Tolerance::Relative(r) => {
+            let mut lo = fit.value(0);
+            let mut hi = lo;
+            let mut big = 0.0_f64;
+            for j in 1..=fit.pieces() {
+                for (a, v) in fit.value(j).into_iter().enumerate() {
+                    lo[a] = lo[a].min(v);
+                    hi[a] = hi[a].max(v);
+                    big = big.max(v.abs());
+                }
+            }
+            let extent = lo.iter().zip(hi).fold(0.0_f64, |m, (l, h)| m.max(h - l));
+            // A path that stands still: a tolerance at the level of f64 rounding.
+            (r * extent).max(1e-12 * (1.0 + big))
+        }
+    };
+    fit.refine(tolerance * CHECK_FRACTION, &mut exact)?;
+
+    // The pieces, their states in N, and the kinematic peaks (from the f64 polynomials).
+    let mut pieces: Vec<Piece<N, A>, P> = Vec::new();
+    let (mut v_peak, mut a_peak, mut j_peak) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut last_acc = [0.0; A];
+    for j in 0..fit.pieces() {
+        let (coeffs, n) = fit.piece(j);
+        let nf = f64::from(n);
+        let mut axes = [AxisState::<N>::default(); A];
+        for (axis, [a, b, c, d]) in axes.iter_mut().zip(coeffs) {
+            let tt = period * period;
+            let state = AxisState {
+                position: a,
+                delta1: b + c + d,
+                delta2: 2.0 * c + 6.0 * d,
+                delta3: 6.0 * d,
+                velocity: b / period,
+                velocity_delta1: (2.0 * c + 3.0 * d) / period,
+                velocity_delta2: 6.0 * d / period,
+                acceleration: 2.0 * c / tt,
+                acceleration_delta: 6.0 * d / tt,
+            };
+            *axis = round_state(&state)?;
+        }
+        if j + 1 == fit.pieces() {
+            for (la, [_, _, c, d]) in last_acc.iter_mut().zip(coeffs) {
+                *la = (2.0 * c + 6.0 * d * nf) / (period * period);
+            }
+        }
+        let (v_max, a_max, j_max) = piece_peaks(&coeffs, nf, period);
+        v_peak = v_peak.max(v_max);
+        a_peak = a_peak.max(a_max);
+        j_peak = j_peak.max(j_max);
+        let piece = Piece {
+            start: fit.knot(j),
+            ticks: n,
+            axes,
+        };
+        pieces.push(piece).map_err(|_| Error::CapacityExceeded {
+            capacity: P,
+            required: fit.pieces(),
+        })?;
+    }
+
+    let share = options.feed_share();
+    let (acceleration_limit, jerk_limit) = options.limits().unwrap_or_else(|| {
+        let a = if a_peak > 0.0 {
+            a_peak / (1.0 - share)
+        } else if v_peak > 0.0 {
+            v_peak / 0.1
+        } else {
+            1.0
+        };
+        let j = if j_peak > 0.0 {
+            j_peak / (1.0 - share)
+        } else {
+            a / 0.1
+        };
+        (a, j)
+    });
+
+    // The end: the curve's own end point, converted once.
+    let end_point = curve.eval(param(duration)?.0);
+    let out = |v: f64| N::out_from_f64(v).ok_or(Error::OutOfRange);
+    let end = PathEnd {
+        position: array_try(|i| out(end_point.coord(i).to_f64()))?,
+        velocity: array_try(|i| out(final_slope.get(i).copied().unwrap_or(0.0) / period))?,
+        acceleration: array_try(|i| out(last_acc.get(i).copied().unwrap_or(0.0)))?,
+    };
+    let meta = PathMeta {
+        rate: rate_hz,
+        plan_duration: duration,
+        tolerance,
+        peak_velocity: v_peak,
+        peak_acceleration: a_peak,
+        peak_jerk: j_peak,
+        acceleration_limit,
+        jerk_limit,
+        feed_share: share,
+    };
+    Path::from_parts(pieces, meta, end)
+}
+
+/// Peaks of one piece `p(i) = a + b i + c i² + d i³` (per axis, `i` in ticks, `0 ≤ i ≤ n`):
+/// an upper bound of the speed `|ẋ|`, the largest `|ẍ|` and the jerk `|x⃛|` (norms over the
+/// axes).
+///
+/// `ẍ` is affine in `i`, so its norm (convex) is largest at an end. `ẋ(s + δ) = ẋ(s) + δ·ẍ(s) +
+/// ½δ²·x⃛` exactly; around the samples `s ∈ {0, n/2, n}` with `|δ| ≤ Δ = (n/4)·T`,
+/// `|ẋ| ≤ max(|ẋ(s) + Δẍ(s)|, |ẋ(s) − Δẍ(s)|) + ½Δ²|x⃛|` (the norm of an affine function of
+/// `δ` is largest at an end of the interval), which is tight to second order in `Δ`.
+fn piece_peaks<const A: usize>(coeffs: &[[f64; 4]; A], n: f64, period: f64) -> (f64, f64, f64) {
+    let vel = |i: f64, a: usize| {
+        coeffs.get(a).map_or(0.0, |[_, b, c, d]| {
+            (b + i * (2.0 * c + 3.0 * d * i)) / period
+        })
+    };
+    let acc = |i: f64, a: usize| {
+        coeffs.get(a).map_or(0.0, |[_, _, c, d]| {
+            (2.0 * c + 6.0 * d * i) / (period * period)
+        })
+    };
+    let norm = |f: &dyn Fn(usize) -> f64| libm::sqrt((0..A).map(|a| f(a) * f(a)).sum());
+    let jerk = norm(&|a| coeffs.get(a).map_or(0.0, |c| 6.0 * c[3]) / (period * period * period));
+    let a_max = norm(&|a| acc(0.0, a)).max(norm(&|a| acc(n, a)));
+    let delta = 0.25 * n * period;
+    let mut v_max = 0.0_f64;
+    for s in [0.0, 0.5 * n, n] {
+        let plus = norm(&|a| vel(s, a) + delta * acc(s, a));
+        let minus = norm(&|a| vel(s, a) - delta * acc(s, a));
+        v_max = v_max.max(plus.max(minus) + 0.5 * delta * delta * jerk);
+    }
+    (v_max, a_max, jerk)
+}
+
+/// `[f(0), …, f(A−1)]`, or the first error.
+fn array_try<T: Copy + Default, const A: usize>(
+    mut f: impl FnMut(usize) -> Result<T, Error>,
+) -> Result<[T; A], Error> {
+    let mut out = [T::default(); A];
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = f(i)?;
+    }
+    Ok(out)
+}
+
+/// The state rounded into `N` ([`Error::OutOfRange`] if a value does not fit).
+fn round_state<N: Number>(s: &AxisState<f64>) -> Result<AxisState<N>, Error> {
+    let r = |v: f64| N::from_f64(v).ok_or(Error::OutOfRange);
+    Ok(AxisState {
+        position: r(s.position)?,
+        delta1: r(s.delta1)?,
+        delta2: r(s.delta2)?,
+        delta3: r(s.delta3)?,
+        velocity: r(s.velocity)?,
+        velocity_delta1: r(s.velocity_delta1)?,
+        velocity_delta2: r(s.velocity_delta2)?,
+        acceleration: r(s.acceleration)?,
+        acceleration_delta: r(s.acceleration_delta)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::testing::{Linear, Quintic, Smoothstep, TestTiming, Trapezoid, exact, helix};
+    use super::*;
+    use crate::number::Q40;
+    use strak_curves::{Bezier, I32F32, ParamCurve};
+
+    fn line() -> Bezier<[f64; 2], 2> {
+        Bezier::new([[0.0, 0.0], [3.0, 4.0]]).unwrap()
+    }
+
+    #[test]
+    fn axis_mismatch() {
+        let r: Result<Path<f64, 3, 8>, _> =
+            compile(&line(), &Linear(1.0), 1000.0, &CompileOptions::new());
+        assert_eq!(r, Err(Error::AxisMismatch { curve: 2, path: 3 }));
+    }
+
+    #[test]
+    fn invalid_rate() {
+        for rate in [99.9, 100_001.0, f64::NAN, f64::INFINITY, -1000.0] {
+            let r: Result<Path<f64, 2, 8>, _> =
+                compile(&line(), &Linear(1.0), rate, &CompileOptions::new());
+            assert_eq!(r, Err(Error::InvalidRate), "{rate}");
+        }
+        for rate in [100.0, 100_000.0] {
+            let r: Result<Path<f64, 2, 1024>, _> =
+                compile(&line(), &Linear(1.0), rate, &CompileOptions::new());
+            assert!(r.is_ok());
+        }
+    }
+
+    #[test]
+    fn empty_path() {
+        for d in [0.0, -1.0, f64::NAN] {
+            let r: Result<Path<f64, 2, 8>, _> =
+                compile(&line(), &Linear(d), 1000.0, &CompileOptions::new());
+            assert_eq!(r, Err(Error::EmptyPath), "{d}");
+        }
+    }
+
+    #[test]
+    fn too_long() {
+        // 10⁵ s at 100 kHz = 10¹⁰ ticks > u32::MAX
+        let r: Result<Path<f64, 2, 8>, _> =
+            compile(&line(), &Linear(1.0e5), 100_000.0, &CompileOptions::new());
+        assert_eq!(r, Err(Error::TooLong));
+        let r: Result<Path<f64, 2, 8>, _> = compile(
+            &line(),
+            &Linear(f64::INFINITY),
+            1000.0,
+            &CompileOptions::new(),
+        );
+        assert_eq!(r, Err(Error::TooLong));
+    }
+
+    #[test]
+    fn capacity_exceeded() {
+        // 1000 ticks in pieces of at most 256: 4 pieces needed
+        let r: Result<Path<f64, 2, 3>, _> =
+            compile(&line(), &Linear(1.0), 1000.0, &CompileOptions::new());
+        assert_eq!(
+            r,
+            Err(Error::CapacityExceeded {
+                capacity: 3,
+                required: 4
+            })
+        );
+        // refinement needs more than the grid
+        let r: Result<Path<f64, 3, 8>, _> = compile(
+            &helix(1.0, 3.0, 1.0),
+            &Smoothstep::new(0.2),
+            1000.0,
+            &CompileOptions::new().with_tolerance(1e-9),
+        );
+        assert!(matches!(
+            r,
+            Err(Error::CapacityExceeded { capacity: 8, required }) if required > 8
+        ));
+    }
+
+    #[test]
+    fn out_of_range_for_fixed_point() {
+        // 10⁷ units exceed Q40's checked range ±2²²; f32 and f64 take them.
+        let far = Bezier::new([[0.0_f64], [1.0e7]]).unwrap();
+        let o = CompileOptions::new();
+        let r: Result<Path<Q40, 1, 8>, _> = compile(&far, &Linear(1.0), 1000.0, &o);
+        assert_eq!(r, Err(Error::OutOfRange));
+        let r: Result<Path<f32, 1, 8>, _> = compile(&far, &Linear(1.0), 1000.0, &o);
+        assert!(r.is_ok());
+        // within range: 4·10⁶ units
+        let near = Bezier::new([[0.0_f64], [4.0e6]]).unwrap();
+        let r: Result<Path<Q40, 1, 8>, _> = compile(&near, &Linear(1.0), 1000.0, &o);
+        assert!(r.is_ok());
+        // a large velocity at a large position: the sums of the range check exceed 2²²
+        let fast = Bezier::new([[4.0e6_f64], [4.19e6]]).unwrap();
+        let r: Result<Path<Q40, 1, 8>, _> = compile(&fast, &Linear(0.01), 1000.0, &o);
+        assert_eq!(r, Err(Error::OutOfRange));
+    }
+
+    #[test]
+    fn invalid_options() {
+        let r: Result<Path<f64, 2, 8>, _> = compile(
+            &line(),
+            &Linear(1.0),
+            1000.0,
+            &CompileOptions::new().with_tolerance(-1.0),
+        );
+        assert_eq!(r, Err(Error::InvalidLimit));
+    }
+
+    struct Broken;
+    impl Timing for Broken {
+        fn duration(&self) -> f64 {
+            1.0
+        }
+        fn param(&self, t: f64) -> (f64, f64) {
+            (if t > 0.5 { f64::NAN } else { t }, 1.0)
+        }
+    }
+
+    #[test]
+    fn non_finite_time_law() {
+        let r: Result<Path<f64, 2, 8>, _> =
+            compile(&line(), &Broken, 1000.0, &CompileOptions::new());
+        assert_eq!(r, Err(Error::Curve(strak_curves::Error::NonFinite)));
+    }
+
+    #[test]
+    fn ticks_and_time_stretch() {
+        let o = CompileOptions::new();
+        // 0.3 s at 1 kHz is 300 ticks although 0.3·1000 = 300.00000000000006
+        let p: Path<f64, 2, 8> = compile(&line(), &Linear(0.3), 1000.0, &o).unwrap();
+        assert_eq!(p.ticks(), 300);
+        assert!((p.time_scale() - 1.0).abs() < 1e-12);
+        // 0.3004 s: 301 ticks, stretched by 0.3004/0.301
+        let p: Path<f64, 2, 8> = compile(&line(), &Linear(0.3004), 1000.0, &o).unwrap();
+        assert_eq!(p.ticks(), 301);
+        assert!((p.time_scale() - 0.3004 / 0.301).abs() < 1e-15);
+        // velocities decrease by the stretch: 5 units in 0.301 s
+        let v = p.eval(100.0).velocity;
+        assert!((v[0] - 3.0 / 0.301).abs() < 1e-9 && (v[1] - 4.0 / 0.301).abs() < 1e-9);
+        // a very short law still has one tick
+        let p: Path<f64, 2, 8> = compile(&line(), &Linear(1e-6), 1000.0, &o).unwrap();
+        assert_eq!(p.ticks(), 1);
+        assert_eq!(p.eval(1.0).position, [3.0, 4.0]);
+    }
+
+    #[test]
+    fn end_point_is_the_curves_own() {
+        // a fixed-point curve: its end point as it computes it, bit for bit
+        let p = |x: f64| [I32F32::from_num(x)];
+        let c = Bezier::new([p(0.1), p(-0.7), p(1.3), p(2.0 / 3.0)]).unwrap();
+        let path: Path<Q40, 1, 64> =
+            compile(&c, &Smoothstep::new(0.5), 1000.0, &CompileOptions::new()).unwrap();
+        assert_eq!(path.end_position(), c.eval(I32F32::ONE));
+        assert_eq!(path.end_velocity(), [I32F32::ZERO]);
+        // f32 from an f64 curve: rounded once
+        let c = Bezier::new([[0.0_f64], [0.1]]).unwrap();
+        let path: Path<f32, 1, 8> =
+            compile(&c, &Smoothstep::new(0.5), 1000.0, &CompileOptions::new()).unwrap();
+        assert_eq!(path.end_position(), [0.1_f32]);
+    }
+
+    /// Checks the compiled polynomial at every tick against the exact composition.
+    /// The largest errors of position, velocity, acceleration against the exact composition
+    /// at every tick, and the path's peak velocity and acceleration.
+    struct Errors {
+        position: f64,
+        velocity: f64,
+        acceleration: f64,
+        peak_velocity: f64,
+        peak_acceleration: f64,
+    }
+
+    fn check_every_tick<T: TestTiming + Send + Sync + 'static>(
+        timing: T,
+        rate: f64,
+        tol: f64,
+    ) -> Errors {
+        super::testing::big_stack(move || check_every_tick_on(&timing, rate, tol))
+    }
+
+    fn check_every_tick_on<T: TestTiming>(timing: &T, rate: f64, tol: f64) -> Errors {
+        let curve = helix(2.0, 2.0, 1.0);
+        let path: Path<f64, 3, 4096> = compile(
+            &curve,
+            timing,
+            rate,
+            &CompileOptions::new().with_tolerance(tol),
+        )
+        .unwrap();
+        assert_eq!(path.tolerance(), tol);
+        let (mut ep, mut ev, mut ea) = (0.0_f64, 0.0_f64, 0.0_f64);
+        for k in 0..=path.ticks() {
+            let s = path.eval(f64::from(k));
+            let (p, v, a) = exact(&curve, timing, &path, f64::from(k));
+            for i in 0..3 {
+                ep = ep.max((s.position[i] - p[i]).abs());
+                ev = ev.max((s.velocity[i] - v[i]).abs());
+                ea = ea.max((s.acceleration[i] - a[i]).abs());
+            }
+        }
+        std::println!(
+            "tol {tol:e}: pieces {} pos {ep:.3e} vel {ev:.3e} (peak {:.3e}) acc {ea:.3e} (peak {:.3e})",
+            path.pieces().len(),
+            path.peak_velocity(),
+            path.peak_acceleration()
+        );
+        // The documented bound: every tick within the tolerance.
+        assert!(ep <= tol, "position error {ep} > {tol}");
+        Errors {
+            position: ep,
+            velocity: ev,
+            acceleration: ea,
+            peak_velocity: path.peak_velocity(),
+            peak_acceleration: path.peak_acceleration(),
+        }
+    }
+
+    #[test]
+    fn every_tick_within_tolerance() {
+        // Smooth time laws: the spline's derivatives follow closely, too (measured: velocity
+        // ≈ 6·10⁻⁶·v_peak, acceleration ≈ 4·10⁻⁴·a_peak at tol = 10⁻⁶ of an extent of 4).
+        for e in [
+            check_every_tick(Smoothstep::new(0.5), 10_000.0, 1e-6),
+            check_every_tick(Quintic(0.5), 10_000.0, 1e-6),
+            check_every_tick(Linear(1.0), 1_000.0, 1e-6),
+        ] {
+            assert!(e.velocity < 1e-5 * e.peak_velocity, "{}", e.velocity);
+            assert!(
+                e.acceleration < 1e-3 * e.peak_acceleration,
+                "{}",
+                e.acceleration
+            );
+        }
+        for tol in [1e-3, 1e-5, 1e-7] {
+            let e = check_every_tick(Quintic(0.3), 20_000.0, tol);
+            // the quarter-point check against tol/2 finds the largest error well
+            assert!(e.position > 0.3 * tol, "{}", e.position);
+        }
+    }
+
+    #[test]
+    fn every_tick_within_tolerance_with_acceleration_jumps() {
+        // The trapezoid's acceleration jumps by Δa; a C² spline cannot follow that, but the
+        // positions stay within the tolerance at every tick (knots are inserted at the jumps)
+        // and the velocity error is of the order √(Δa·tol).
+        for tol in [1e-4, 1e-6] {
+            let e = check_every_tick(
+                Trapezoid {
+                    duration: 0.8,
+                    ramp: 0.25,
+                },
+                10_000.0,
+                tol,
+            );
+            let jump = e.peak_acceleration;
+            assert!(e.velocity < libm::sqrt(jump * tol), "{}", e.velocity);
+            assert!(e.acceleration < 0.5 * jump, "{}", e.acceleration);
+        }
+    }
+
+    #[test]
+    fn relative_tolerance_uses_the_extent() {
+        let curve = helix(2.0, 2.0, 1.0);
+        let path: Path<f64, 3, 256> =
+            compile(&curve, &Quintic(0.5), 10_000.0, &CompileOptions::new()).unwrap();
+        // extent: x and y span ≈ 4 units (at the knots: slightly less)
+        assert!(path.tolerance() > 3.9e-4 && path.tolerance() <= 4e-4);
+    }
+
+    #[test]
+    fn peaks_bound_the_path() {
+        super::testing::big_stack(peaks_bound_the_path_on);
+    }
+
+    fn peaks_bound_the_path_on() {
+        let curve = helix(2.0, 2.0, 1.0);
+        let timing = Quintic(0.5);
+        let path: Path<f64, 3, 4096> = compile(
+            &curve,
+            &timing,
+            10_000.0,
+            &CompileOptions::new().with_tolerance(1e-7),
+        )
+        .unwrap();
+        let (mut v, mut a) = (0.0_f64, 0.0_f64);
+        for k in 0..=path.ticks() {
+            let (_, ve, ae) = exact(&curve, &timing, &path, f64::from(k));
+            v = v.max(libm::sqrt(ve.iter().map(|x| x * x).sum()));
+            a = a.max(libm::sqrt(ae.iter().map(|x| x * x).sum()));
+        }
+        assert!(
+            path.peak_velocity() >= v && path.peak_velocity() < v * 1.001,
+            "{} {v}",
+            path.peak_velocity()
+        );
+        assert!((path.peak_acceleration() - a).abs() < a * 1e-3);
+        // default limits: the plan is assumed to have used 3/4
+        assert!((path.acceleration_limit() - path.peak_acceleration() / 0.75).abs() < 1e-9);
+        assert!((path.jerk_limit() - path.peak_jerk() / 0.75).abs() < 1e-6);
+        let with: Path<f64, 3, 4096> = compile(
+            &curve,
+            &timing,
+            10_000.0,
+            &CompileOptions::new()
+                .with_tolerance(1e-7)
+                .with_limits(1e4, 1e6),
+        )
+        .unwrap();
+        assert_eq!((with.acceleration_limit(), with.jerk_limit()), (1e4, 1e6));
+    }
+
+    #[test]
+    fn piece_lengths_respect_the_maximum() {
+        let path: Path<f64, 2, 64> = compile(
+            &line(),
+            &Linear(1.0),
+            1000.0,
+            &CompileOptions::new().with_max_piece_ticks(100),
+        )
+        .unwrap();
+        assert_eq!(path.pieces().len(), 10);
+        assert!(path.pieces().iter().all(|p| p.ticks() == 100));
+        let starts: std::vec::Vec<u32> = path.pieces().iter().map(|p| p.start()).collect();
+        assert_eq!(starts, [0, 100, 200, 300, 400, 500, 600, 700, 800, 900]);
+        let _ = line().domain();
+    }
+}

@@ -1,0 +1,187 @@
+//! The settings of [`compile`](crate::compile): tolerance, piece length, limits of feed changes.
+
+use crate::error::Error;
+use crate::limits::Limits;
+
+/// How far the compiled positions may be from the exact `x(t) = c(u(t))` at every tick.
+///
+/// ```
+/// use strak_trajectory::{CompileOptions, Tolerance};
+/// let o = CompileOptions::new().with_tolerance(1e-3);
+/// assert_eq!(o.tolerance(), Tolerance::Absolute(1e-3));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Tolerance {
+    /// In path units (per axis).
+    Absolute(f64),
+    /// A fraction of the path's extent: the largest width, over the axes, of the bounding box
+    /// of the positions at the initial knots.
+    Relative(f64),
+}
+
+/// Settings of [`compile`](crate::compile).
+///
+/// * tolerance: default [`Tolerance::Relative`]`(1e-4)`;
+/// * maximal piece length: default 256 ticks (bounds the forward-differencing error, see
+///   [`Number`](crate::Number));
+/// * the acceleration and jerk limits of the machine (norms along the path, as in
+///   [`Limits`]) and the share of them reserved for feed changes (default ¼): feed override,
+///   hold and resume ramp the feed factor `φ` with `|φ̇|·v_peak ≤ a_ramp` and
+///   `|φ̈|·v_peak ≤ j_ramp`, where `a_ramp = max(a_max − a_peak, share·a_max)` (likewise for
+///   jerk) and `a_peak`, `v_peak` are the compiled path's own peaks. If the plan used at
+///   most `(1 − share)·a_max`, the acceleration `φ²·a + φ̇·v` stays within `a_max` during
+///   feed changes. Without limits, the compiler assumes the plan used exactly
+///   `(1 − share)` of them: `a_max = a_peak/(1 − share)`, `j_max = j_peak/(1 − share)`
+///   (for a path without acceleration or jerk: `a_max = v_peak / 0.1 s`,
+///   `j_max = a_max / 0.1 s`).
+///
+/// ```
+/// use strak_trajectory::{CompileOptions, Limits, Tolerance};
+/// let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0)?;
+/// let o = CompileOptions::new()
+///     .with_tolerance(1e-4)
+///     .with_max_piece_ticks(128)
+///     .with_path_limits(&limits);
+/// assert_eq!(o.max_piece_ticks(), 128);
+/// assert_eq!(o.limits(), Some((2_000.0, 50_000.0)));
+/// assert_eq!(CompileOptions::default().tolerance(), Tolerance::Relative(1e-4));
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CompileOptions {
+    tolerance: Tolerance,
+    max_piece_ticks: u32,
+    limits: Option<(f64, f64)>,
+    feed_share: f64,
+}
+
+impl Default for CompileOptions {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CompileOptions {
+    /// The default relative tolerance: 10⁻⁴ of the path's extent.
+    pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-4;
+    /// The default maximal piece length in ticks.
+    pub const DEFAULT_MAX_PIECE_TICKS: u32 = 256;
+    /// The default share of the acceleration and jerk limits reserved for feed changes.
+    pub const DEFAULT_FEED_SHARE: f64 = 0.25;
+
+    /// The defaults (see the type docs).
+    pub const fn new() -> Self {
+        CompileOptions {
+            tolerance: Tolerance::Relative(Self::DEFAULT_RELATIVE_TOLERANCE),
+            max_piece_ticks: Self::DEFAULT_MAX_PIECE_TICKS,
+            limits: None,
+            feed_share: Self::DEFAULT_FEED_SHARE,
+        }
+    }
+
+    /// An absolute position tolerance in path units (finite, > 0; checked by `compile`).
+    pub const fn with_tolerance(mut self, units: f64) -> Self {
+        self.tolerance = Tolerance::Absolute(units);
+        self
+    }
+
+    /// A tolerance relative to the path's extent (finite, > 0; checked by `compile`).
+    pub const fn with_relative_tolerance(mut self, fraction: f64) -> Self {
+        self.tolerance = Tolerance::Relative(fraction);
+        self
+    }
+
+    /// The maximal piece length in ticks (≥ 1; checked by `compile`).
+    pub const fn with_max_piece_ticks(mut self, ticks: u32) -> Self {
+        self.max_piece_ticks = ticks;
+        self
+    }
+
+    /// The machine's path acceleration (units/s²) and jerk (units/s³) limits for feed changes
+    /// (finite, > 0; checked by `compile`).
+    pub const fn with_limits(mut self, acceleration: f64, jerk: f64) -> Self {
+        self.limits = Some((acceleration, jerk));
+        self
+    }
+
+    /// The path acceleration and jerk limits of a [`Limits`].
+    pub fn with_path_limits<const A: usize>(self, limits: &Limits<A>) -> Self {
+        self.with_limits(limits.acceleration(), limits.jerk())
+    }
+
+    /// The share of the limits reserved for feed changes (in `(0, 1)`; checked by `compile`).
+    pub const fn with_feed_share(mut self, share: f64) -> Self {
+        self.feed_share = share;
+        self
+    }
+
+    /// The tolerance.
+    pub const fn tolerance(&self) -> Tolerance {
+        self.tolerance
+    }
+
+    /// The maximal piece length in ticks.
+    pub const fn max_piece_ticks(&self) -> u32 {
+        self.max_piece_ticks
+    }
+
+    /// The acceleration and jerk limits, if given.
+    pub const fn limits(&self) -> Option<(f64, f64)> {
+        self.limits
+    }
+
+    /// The share of the limits reserved for feed changes.
+    pub const fn feed_share(&self) -> f64 {
+        self.feed_share
+    }
+
+    /// Checks the settings.
+    ///
+    /// # Errors
+    /// [`Error::InvalidLimit`] for a tolerance, limit or share that is not finite and
+    /// positive (share: in `(0, 1)`), or a maximal piece length of 0.
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        let tol = match self.tolerance {
+            Tolerance::Absolute(t) | Tolerance::Relative(t) => t,
+        };
+        let limits_ok = match self.limits {
+            None => true,
+            Some((a, j)) => positive(a) && positive(j),
+        };
+        if positive(tol)
+            && limits_ok
+            && self.max_piece_ticks >= 1
+            && positive(self.feed_share)
+            && self.feed_share < 1.0
+        {
+            Ok(())
+        } else {
+            Err(Error::InvalidLimit)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn validation() {
+        assert_eq!(CompileOptions::new().validate(), Ok(()));
+        let bad = [
+            CompileOptions::new().with_tolerance(0.0),
+            CompileOptions::new().with_relative_tolerance(f64::NAN),
+            CompileOptions::new().with_max_piece_ticks(0),
+            CompileOptions::new().with_limits(-1.0, 1.0),
+            CompileOptions::new().with_limits(1.0, f64::INFINITY),
+            CompileOptions::new().with_feed_share(1.0),
+            CompileOptions::new().with_feed_share(0.0),
+        ];
+        for o in bad {
+            assert_eq!(o.validate(), Err(Error::InvalidLimit), "{o:?}");
+        }
+    }
+}

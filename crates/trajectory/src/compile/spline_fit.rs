@@ -1,0 +1,409 @@
+//! The C² cubic spline in time with knots on the tick grid, clamped at both ends, refined by
+//! adaptive knot insertion (seeds/003, "Splines": the interpolating cubic spline, here in the
+//! Hermite form with the knot slopes as unknowns).
+//!
+//! The spline interpolates the exact positions `y_j = x(k_j)` at the knot ticks `k_j`; its
+//! slopes `s_j` (units per tick) solve the tridiagonal system of C² continuity at the inner
+//! knots,
+//!
+//! `h_j·s_{j−1} + 2(h_{j−1} + h_j)·s_j + h_{j−1}·s_{j+1} = 3(h_j·δ_{j−1} + h_{j−1}·δ_j)`,
+//!
+//! with `h_j = k_{j+1} − k_j` and `δ_j = (y_{j+1} − y_j)/h_j`, and the end slopes given
+//! (clamped spline). The system is strictly diagonally dominant, so the Thomas algorithm
+//! (elimination without pivoting, `O(m)`) is stable; its pivots are at least
+//! `h_{j−1} + h_j ≥ 2`.
+
+use crate::error::Error;
+
+/// A clamped cubic spline on the tick grid with up to `P` pieces and `A` axes, in `f64`.
+///
+/// Knot `j` (`0 ..= m`) is at tick `knot(j)`; knot 0 is tick 0. Storage is for the knots
+/// `1 ..= m` (`P` entries each), so nothing is sized `P + 1`.
+pub(crate) struct SplineFit<const A: usize, const P: usize> {
+    /// Number of pieces `m` (1 ..= P).
+    m: usize,
+    /// `ends[j]` = tick of knot `j + 1`.
+    ends: [u32; P],
+    /// `values[j]` = position at knot `j + 1`.
+    values: [[f64; A]; P],
+    /// `slopes[j]` = slope (units/tick) at knot `j + 1`; `slopes[m − 1]` is the clamped end.
+    slopes: [[f64; A]; P],
+    start_value: [f64; A],
+    start_slope: [f64; A],
+    end_slope: [f64; A],
+    /// Thomas algorithm: the modified super-diagonal.
+    scratch: [f64; P],
+    /// Pieces that failed the tolerance check in the current round.
+    split: [bool; P],
+}
+
+/// The local tick offsets at which a piece of `n` ticks is checked: the quarter points
+/// `n/4, n/2, 3n/4` rounded, without duplicates and without the (exact) end points.
+pub(crate) fn check_points(n: u32) -> impl Iterator<Item = u32> {
+    let at = move |q: u32| ((u64::from(n) * u64::from(q) + 2) / 4) as u32;
+    let (a, b, c) = (at(1), at(2), at(3));
+    [
+        Some(a),
+        (b != a).then_some(b),
+        (c != b && c != a).then_some(c),
+    ]
+    .into_iter()
+    .flatten()
+    .filter(move |&i| i > 0 && i < n)
+}
+
+/// The polynomial coefficients `(a, b, c, d)` of `p(i) = a + b i + c i² + d i³` on `[0, n]`
+/// from Hermite data: end values `y0, y1`, end slopes `s0, s1` (per tick).
+pub(crate) fn hermite_coefficients(y0: f64, y1: f64, s0: f64, s1: f64, n: f64) -> [f64; 4] {
+    let delta = (y1 - y0) / n;
+    let c = (3.0 * delta - 2.0 * s0 - s1) / n;
+    let d = (s0 + s1 - 2.0 * delta) / (n * n);
+    [y0, s0, c, d]
+}
+
+impl<const A: usize, const P: usize> SplineFit<A, P> {
+    /// The spline on a uniform initial grid: `⌈ticks / max_len⌉` pieces of at most `max_len`
+    /// ticks, with the positions from `exact`.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the grid needs more than `P` pieces; errors of `exact`.
+    pub(crate) fn new(
+        ticks: u32,
+        max_len: u32,
+        start_slope: [f64; A],
+        end_slope: [f64; A],
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<Self, Error> {
+        let m = ticks.div_ceil(max_len.max(1)).max(1) as usize;
+        if m > P {
+            return Err(Error::CapacityExceeded {
+                capacity: P,
+                required: m,
+            });
+        }
+        let mut fit = SplineFit {
+            m,
+            ends: [0; P],
+            values: [[0.0; A]; P],
+            slopes: [[0.0; A]; P],
+            start_value: exact(0)?,
+            start_slope,
+            end_slope,
+            scratch: [0.0; P],
+            split: [false; P],
+        };
+        for j in 0..m {
+            // ⌊(j+1)·N/m⌋: strictly increasing (N ≥ m), steps of at most ⌈N/m⌉ ≤ max_len.
+            #[allow(clippy::cast_possible_truncation)]
+            let k = ((j as u64 + 1) * u64::from(ticks) / m as u64) as u32;
+            fit.ends[j] = k;
+            fit.values[j] = exact(k)?;
+        }
+        Ok(fit)
+    }
+
+    /// The number of pieces.
+    pub(crate) fn pieces(&self) -> usize {
+        self.m
+    }
+
+    /// The tick of knot `j` (`0 ..= m`).
+    pub(crate) fn knot(&self, j: usize) -> u32 {
+        match j.checked_sub(1) {
+            None => 0,
+            Some(i) => self.ends.get(i).copied().unwrap_or(0),
+        }
+    }
+
+    /// The position at knot `j`.
+    pub(crate) fn value(&self, j: usize) -> [f64; A] {
+        match j.checked_sub(1) {
+            None => self.start_value,
+            Some(i) => self.values.get(i).copied().unwrap_or([0.0; A]),
+        }
+    }
+
+    /// The slope (units/tick) at knot `j`.
+    pub(crate) fn slope(&self, j: usize) -> [f64; A] {
+        match j.checked_sub(1) {
+            None => self.start_slope,
+            Some(i) if i + 1 == self.m => self.end_slope,
+            Some(i) => self.slopes.get(i).copied().unwrap_or([0.0; A]),
+        }
+    }
+
+    /// Solves for the inner knot slopes (Thomas algorithm, `O(m)`).
+    pub(crate) fn solve(&mut self) {
+        let m = self.m;
+        if let Some(last) = self.slopes.get_mut(m - 1) {
+            *last = self.end_slope;
+        }
+        if m < 2 {
+            return;
+        }
+        // Rows r = 0 ..= m−2 for the inner knots j = r + 1.
+        let mut prev_c = 0.0;
+        let mut prev_d = [0.0; A];
+        for r in 0..m - 1 {
+            let j = r + 1;
+            let h_prev = f64::from(self.knot(j) - self.knot(j - 1));
+            let h_next = f64::from(self.knot(j + 1) - self.knot(j));
+            let (y_prev, y, y_next) = (self.value(j - 1), self.value(j), self.value(j + 1));
+            let (sub, diag, sup) = (h_next, 2.0 * (h_prev + h_next), h_prev);
+            let mut rhs = [0.0; A];
+            for a in 0..A {
+                let d_prev = (y[a] - y_prev[a]) / h_prev;
+                let d_next = (y_next[a] - y[a]) / h_next;
+                rhs[a] = 3.0 * (h_next * d_prev + h_prev * d_next);
+                if r == 0 {
+                    rhs[a] -= sub * self.start_slope[a];
+                }
+                if r == m - 2 {
+                    rhs[a] -= sup * self.end_slope[a];
+                }
+            }
+            let (sub_eff, c_prev) = if r == 0 { (0.0, 0.0) } else { (sub, prev_c) };
+            let pivot = diag - sub_eff * c_prev;
+            let c = sup / pivot;
+            let mut d = [0.0; A];
+            for a in 0..A {
+                d[a] = (rhs[a] - sub_eff * prev_d[a]) / pivot;
+            }
+            self.scratch[r] = c;
+            self.slopes[r] = d;
+            prev_c = c;
+            prev_d = d;
+        }
+        // Back substitution; the row m−2 is complete.
+        for r in (0..m - 2).rev() {
+            let c = self.scratch[r];
+            let next = self.slopes[r + 1];
+            for (x, n) in self.slopes[r].iter_mut().zip(next) {
+                *x -= c * n;
+            }
+        }
+    }
+
+    /// The coefficients `(a, b, c, d)` per axis of piece `j` and its length in ticks.
+    pub(crate) fn piece(&self, j: usize) -> ([[f64; 4]; A], u32) {
+        let n = self.knot(j + 1) - self.knot(j);
+        let (y0, y1, s0, s1) = (
+            self.value(j),
+            self.value(j + 1),
+            self.slope(j),
+            self.slope(j + 1),
+        );
+        let nf = f64::from(n);
+        let coeffs = core::array::from_fn(|a| hermite_coefficients(y0[a], y1[a], s0[a], s1[a], nf));
+        (coeffs, n)
+    }
+
+    /// Checks every piece at its quarter points against `exact`; marks the pieces whose error
+    /// exceeds `tol` on some axis and returns how many.
+    pub(crate) fn mark(
+        &mut self,
+        tol: f64,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<usize, Error> {
+        let mut count = 0;
+        for j in 0..self.m {
+            let (coeffs, n) = self.piece(j);
+            let k0 = self.knot(j);
+            let mut bad = false;
+            for i in check_points(n) {
+                let want = exact(k0 + i)?;
+                let x = f64::from(i);
+                for (c, w) in coeffs.iter().zip(want) {
+                    let p = c[0] + x * (c[1] + x * (c[2] + x * c[3]));
+                    // NaN (a bad time law) counts as a failure, too.
+                    let err = (p - w).abs();
+                    if err > tol || err.is_nan() {
+                        bad = true;
+                    }
+                }
+                if bad {
+                    break;
+                }
+            }
+            self.split[j] = bad;
+            count += usize::from(bad);
+        }
+        Ok(count)
+    }
+
+    /// Splits every marked piece at its middle tick (`count` pieces are marked).
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the result would exceed `P` pieces; errors of `exact`.
+    pub(crate) fn split_marked(
+        &mut self,
+        count: usize,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        let m = self.m + count;
+        if m > P {
+            return Err(Error::CapacityExceeded {
+                capacity: P,
+                required: m,
+            });
+        }
+        // Backwards, so that every entry is read before its slot is overwritten: piece j is
+        // written at slot ≥ j, its start knot (slot j − 1) is still unread.
+        let mut w = m;
+        for j in (0..self.m).rev() {
+            w -= 1;
+            self.ends[w] = self.ends[j];
+            self.values[w] = self.values[j];
+            if self.split[j] {
+                let k0 = self.knot(j);
+                let mid = k0 + (self.ends[j] - k0) / 2;
+                w -= 1;
+                self.ends[w] = mid;
+                self.values[w] = exact(mid)?;
+                self.split[j] = false;
+            }
+        }
+        self.m = m;
+        Ok(())
+    }
+
+    /// Fits: solve, check, split, until every piece passes (each round adds at least one
+    /// piece, so this ends after at most `P` rounds).
+    pub(crate) fn refine(
+        &mut self,
+        tol: f64,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        loop {
+            self.solve();
+            let count = self.mark(tol, exact)?;
+            if count == 0 {
+                return Ok(());
+            }
+            self.split_marked(count, exact)?;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec::Vec;
+
+    #[test]
+    fn quarter_points() {
+        let pts = |n| check_points(n).collect::<Vec<_>>();
+        assert!(pts(1).is_empty());
+        assert_eq!(pts(2), [1]);
+        assert_eq!(pts(3), [1, 2]);
+        assert_eq!(pts(4), [1, 2, 3]);
+        assert_eq!(pts(256), [64, 128, 192]);
+        assert_eq!(pts(7), [2, 4, 5]);
+    }
+
+    #[test]
+    fn hermite_coefficients_match_the_data() {
+        let [a, b, c, d] = hermite_coefficients(1.0, 3.0, 0.5, -0.25, 4.0);
+        let p = |x: f64| a + b * x + c * x * x + d * x * x * x;
+        let dp = |x: f64| b + 2.0 * c * x + 3.0 * d * x * x;
+        assert_eq!(p(0.0), 1.0);
+        assert!((p(4.0) - 3.0).abs() < 1e-14);
+        assert_eq!(dp(0.0), 0.5);
+        assert!((dp(4.0) + 0.25).abs() < 1e-14);
+    }
+
+    /// A cubic in t is reproduced exactly by the clamped spline, whatever the knots.
+    #[test]
+    fn clamped_spline_reproduces_a_cubic() {
+        let x = |k: f64| 2.0 - 0.3 * k + 0.01 * k * k - 2e-5 * k * k * k;
+        let dx = |k: f64| -0.3 + 0.02 * k - 6e-5 * k * k;
+        let mut exact = |k: u32| Ok([x(f64::from(k)), -x(f64::from(k))]);
+        let mut fit: SplineFit<2, 16> = SplineFit::new(
+            1000,
+            90,
+            [dx(0.0), -dx(0.0)],
+            [dx(1000.0), -dx(1000.0)],
+            &mut exact,
+        )
+        .unwrap();
+        assert_eq!(fit.pieces(), 12);
+        fit.solve();
+        for j in 0..=fit.pieces() {
+            let k = f64::from(fit.knot(j));
+            let s = fit.slope(j);
+            assert!((s[0] - dx(k)).abs() < 1e-12, "knot {j}");
+            assert!((s[1] + dx(k)).abs() < 1e-12);
+        }
+        // pieces are at most 90 ticks, the grid is uniform within one tick
+        for j in 0..fit.pieces() {
+            let n = fit.knot(j + 1) - fit.knot(j);
+            assert!(n == 83 || n == 84, "{n}");
+        }
+        assert_eq!(fit.mark(1e-9, &mut exact).unwrap(), 0);
+    }
+
+    /// The natural-spline system's known answer: for y = k² on knots 0, 1, 2 with clamped
+    /// slopes 0 and 4 the inner slope is 2.
+    #[test]
+    fn three_knot_system() {
+        let mut exact = |k: u32| Ok([f64::from(k * k)]);
+        let mut fit: SplineFit<1, 4> = SplineFit::new(2, 1, [0.0], [4.0], &mut exact).unwrap();
+        fit.solve();
+        assert_eq!(fit.slope(1), [2.0]);
+    }
+
+    #[test]
+    fn refinement_splits_where_needed_and_meets_the_tolerance() {
+        // A step-like function: only the pieces near k = 500 need refining.
+        let f = |k: f64| libm::tanh((k - 500.0) / 20.0);
+        let mut exact = |k: u32| Ok([f(f64::from(k))]);
+        let mut fit: SplineFit<1, 256> =
+            SplineFit::new(1000, 256, [0.0], [0.0], &mut exact).unwrap();
+        fit.refine(1e-6, &mut exact).unwrap();
+        let mut short = 0;
+        assert!(fit.pieces() > 50);
+        for j in 0..fit.pieces() {
+            let (c, n) = fit.piece(j);
+            let k0 = fit.knot(j);
+            for i in 0..=n {
+                let x = f64::from(i);
+                let p = c[0][0] + x * (c[0][1] + x * (c[0][2] + x * c[0][3]));
+                // checked at the quarter points against tol; every tick within 2·tol
+                assert!(
+                    (p - f(f64::from(k0 + i))).abs() <= 2e-6,
+                    "piece {j} tick {i}"
+                );
+            }
+            short += usize::from(n < 64);
+        }
+        assert!(short > 4, "refined near the step");
+        // short pieces at the step (≈ 2 ticks), long ones where the function is flat
+        let len = |j: usize| fit.knot(j + 1) - fit.knot(j);
+        let at_step = (0..fit.pieces()).find(|&j| fit.knot(j + 1) > 500).unwrap();
+        assert!(len(at_step) <= 2);
+        assert!(len(0) >= 16 && len(fit.pieces() - 1) >= 16);
+        assert!(fit.pieces() < 160, "{}", fit.pieces());
+    }
+
+    #[test]
+    fn capacity_is_reported() {
+        let mut exact = |k: u32| Ok([f64::from(k)]);
+        let fit = SplineFit::<1, 3>::new(1000, 256, [1.0], [1.0], &mut exact);
+        assert_eq!(
+            fit.err(),
+            Some(Error::CapacityExceeded {
+                capacity: 3,
+                required: 4
+            })
+        );
+        let f = |k: f64| libm::sin(k / 10.0);
+        let mut exact = |k: u32| Ok([f(f64::from(k))]);
+        let mut fit =
+            SplineFit::<1, 8>::new(1000, 256, [0.1], [0.1 * libm::cos(100.0)], &mut exact).unwrap();
+        assert!(matches!(
+            fit.refine(1e-9, &mut exact),
+            Err(Error::CapacityExceeded { capacity: 8, .. })
+        ));
+    }
+}
