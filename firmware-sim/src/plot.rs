@@ -344,12 +344,12 @@ fn bounds(points: &[Vec<f64>], axis: usize) -> (f64, f64) {
 }
 
 /// Writes `path.svg`: the path in the x–y plane (one axis: x over t; three or more axes: the
-/// x–y, x–z and y–z projections and a 3-D view of x, y, z), start marked by a circle and end
-/// by a cross, equal scales on both axes of each projection.
+/// x–y, x–z and y–z projections side by side), start marked by a circle and end by a cross,
+/// equal scales on both axes of each projection.
 pub fn write_path(file: &FsPath, rec: &Recorder, unit: &str, title: &str) -> PlotResult {
     let points = rec.path_points();
     let size = if rec.axes >= 3 {
-        (1200, 1200)
+        (1800, 680)
     } else {
         (900, 800)
     };
@@ -384,13 +384,10 @@ pub fn write_path(file: &FsPath, rec: &Recorder, unit: &str, title: &str) -> Plo
         }
         2 => projection(&root, &points, (0, 1), unit, size)?,
         _ => {
-            let panels = root.split_evenly((2, 2));
-            let half = (size.0 / 2, size.1 / 2);
+            let panels = root.split_evenly((1, 3));
+            let third = (size.0 / 3, size.1);
             for (panel, pair) in panels.iter().zip([(0, 1), (0, 2), (1, 2)]) {
-                projection(panel, &points, pair, unit, half)?;
-            }
-            if let Some(panel) = panels.get(3) {
-                view_3d(panel, &points)?;
+                projection(panel, &points, pair, unit, third)?;
             }
         }
     }
@@ -454,44 +451,6 @@ fn projection(
             )))
             .map_err(err)?;
     }
-    Ok(())
-}
-
-fn view_3d(area: &DrawingArea<SVGBackend<'_>, Shift>, points: &[Vec<f64>]) -> PlotResult {
-    let r = |a: usize| {
-        let (lo, hi) = bounds(points, a);
-        padded(lo, hi)
-    };
-    let (x, y, z) = (r(0), r(1), r(2));
-    let mut chart = ChartBuilder::on(area)
-        .margin(10)
-        .caption("3-D view (x, y, z)", ("sans-serif", 18))
-        .build_cartesian_3d(x.0..x.1, z.0..z.1, y.0..y.1)
-        .map_err(err)?;
-    chart.with_projection(|mut pb| {
-        pb.yaw = 0.6;
-        pb.pitch = 0.35;
-        pb.scale = 0.85;
-        pb.into_matrix()
-    });
-    chart
-        .configure_axes()
-        .label_style(("sans-serif", 11))
-        .draw()
-        .map_err(err)?;
-    let xyz = |p: &Vec<f64>| {
-        (
-            p.first().copied().unwrap_or(0.0),
-            p.get(2).copied().unwrap_or(0.0),
-            p.get(1).copied().unwrap_or(0.0),
-        )
-    };
-    chart
-        .draw_series(LineSeries::new(
-            points.iter().map(xyz),
-            AXIS_COLORS[0].stroke_width(2),
-        ))
-        .map_err(err)?;
     Ok(())
 }
 
