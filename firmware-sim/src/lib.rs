@@ -1,7 +1,13 @@
-//! The library behind the `strak-sim` command line: curve files and sampling.
+//! The library behind the `strak-sim` command line: curve files and sampling
+//! (`strak-sim sample`), job files and playback (`strak-sim run`).
 //!
 //! The binary is a thin clap front end; tests call these functions directly.
 
 pub mod builder;
 pub mod curve_file;
+pub mod dyn_curve;
+pub mod job;
+pub mod plot;
+pub mod run;
 pub mod sample;
+pub mod summary;

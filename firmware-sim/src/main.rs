@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
+//! strak-sim run [JOB.toml] [--out DIR]
 //! ```
 
 use std::fs;
@@ -13,9 +14,11 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 
 use strak_sim::curve_file::CurveFile;
+use strak_sim::job::Job;
+use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, run_job};
 use strak_sim::sample::{Number, SampleOptions, sample_to_csv};
 
-/// Host simulator for strak: sample curves and write CSV.
+/// Host simulator for strak: sample curves, run jobs through the firmware's sampler.
 #[derive(Debug, Parser)]
 #[command(name = "strak-sim", version, about)]
 struct Cli {
@@ -40,6 +43,16 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Number::F64)]
         number: Number,
         /// Output file; standard output when omitted.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Plan, compile and play a job through the sampler firmware uses; write samples.csv,
+    /// summary.json, path.svg and motion.svg, and print the summary. Without JOB it runs the
+    /// bundled example (a 3-axis pick-and-place move at 1 kHz with an S-curve profile).
+    Run {
+        /// The job file (TOML); the bundled example when omitted.
+        job: Option<PathBuf>,
+        /// Output folder (created if missing); default `out/<job name>`.
         #[arg(long)]
         out: Option<PathBuf>,
     },
@@ -80,6 +93,35 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 Some(path) => fs::write(&path, csv)
                     .with_context(|| format!("cannot write {}", path.display()))?,
                 None => io::stdout().lock().write_all(csv.as_bytes())?,
+            }
+            Ok(())
+        }
+        Command::Run { job, out } => {
+            let (name, text, label) = match &job {
+                Some(path) => {
+                    let text = fs::read_to_string(path)
+                        .with_context(|| format!("cannot read {}", path.display()))?;
+                    let name = path
+                        .file_stem()
+                        .map_or_else(|| "job".to_owned(), |s| s.to_string_lossy().into_owned());
+                    (name, text, path.display().to_string())
+                }
+                None => (
+                    BUNDLED_NAME.to_owned(),
+                    BUNDLED_JOB.to_owned(),
+                    format!("bundled {BUNDLED_NAME}.toml"),
+                ),
+            };
+            let job = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+            let options = RunOptions {
+                out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
+                name,
+                progress: true,
+            };
+            let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+            println!("{summary}");
+            if !summary.finished {
+                eprintln!("strak-sim: warning: {}", summary.stop);
             }
             Ok(())
         }

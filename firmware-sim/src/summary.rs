@@ -1,0 +1,394 @@
+//! The summary of a `strak-sim run`: written as `summary.json` and printed.
+
+use std::fmt::{self, Write as _};
+
+use serde::Serialize;
+
+/// A maximum over the run, where it happened, and the limit it is checked against.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Checked {
+    /// The largest value.
+    pub max: f64,
+    /// The time of the largest value in seconds.
+    pub at_s: f64,
+    /// The job's limit, if there is one.
+    pub limit: Option<f64>,
+    /// `max ≤ limit` (up to a relative 1e-9 for rounding); `None` without a limit.
+    pub within: Option<bool>,
+}
+
+impl Checked {
+    /// A maximum checked against `limit` (`None` or `inf`: no limit).
+    pub fn new(max: f64, at_s: f64, limit: Option<f64>) -> Self {
+        let limit = limit.filter(|l| l.is_finite());
+        Checked {
+            max,
+            at_s,
+            limit,
+            within: limit.map(|l| max <= l * (1.0 + 1e-9)),
+        }
+    }
+}
+
+/// The maxima of one axis (or of the path: the Euclidean norms over the axes).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Maxima {
+    /// `x`, `y`, `z`, `w`, or `path`.
+    pub name: String,
+    /// Velocity (from the samples).
+    pub velocity: Checked,
+    /// Acceleration (from the samples).
+    pub acceleration: Checked,
+    /// Jerk (finite differences of consecutive acceleration samples, times the rate).
+    pub jerk: Checked,
+}
+
+/// The components the time law plans along the path: with the unit tangent `T` of the f64
+/// reference curve at the sample's planned parameter, the
+/// tangential acceleration `s̈ = a·T`, the centripetal acceleration `|a − s̈T|` and the
+/// tangential jerk `s⃛` (finite differences of `s̈`). The planner bounds `s̈`, `v²κ` and `s⃛`
+/// by the limits one by one; the Cartesian norms `|a|`, `|j|` add up their vector sums and the
+/// jerk of the turning direction (`2vs̈κ`, `v³·dκ/ds`).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct AlongPath {
+    /// `|s̈|` against the acceleration limit.
+    pub tangential_acceleration: Checked,
+    /// `v²κ` against the acceleration limit.
+    pub centripetal_acceleration: Checked,
+    /// `|s⃛|` against the jerk limit.
+    pub tangential_jerk: Checked,
+}
+
+/// Distance of the samples from the f64 reference curve.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct ReferenceDistance {
+    /// How the reference point of a sample is chosen.
+    pub method: String,
+    /// The largest Euclidean distance.
+    pub max: f64,
+    /// The time of the largest distance in seconds.
+    pub at_s: f64,
+}
+
+/// The last sample against the end points.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct EndPoint {
+    /// The last sample's position.
+    pub last_sample: Vec<f64>,
+    /// The path's end point (the curve's end point in the job's number format).
+    pub path_end: Vec<f64>,
+    /// The end point of the f64 reference curve.
+    pub reference_end: Vec<f64>,
+    /// `|last sample − path end|` (0: the end is exact).
+    pub error_to_path_end: f64,
+    /// `|last sample − f64 reference end|` (the rounding of the end point into the format).
+    pub error_to_reference_end: f64,
+}
+
+/// Wall-clock times of the run's steps in seconds.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct WallTime {
+    /// Building the curves and planning the time law.
+    pub plan_s: f64,
+    /// Compiling the path.
+    pub compile_s: f64,
+    /// Playing the path (sampler, CSV, statistics).
+    pub play_s: f64,
+    /// Writing the plots.
+    pub plots_s: f64,
+    /// Everything.
+    pub total_s: f64,
+}
+
+/// The planning limits: the job's limits with acceleration and jerk reduced by the feed share.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct PlannedLimits {
+    /// Path velocity.
+    pub velocity: f64,
+    /// Path acceleration `(1 − feed_share)·a`.
+    pub acceleration: f64,
+    /// Path jerk `(1 − feed_share)·j`.
+    pub jerk: f64,
+    /// Per-axis acceleration `(1 − feed_share)·aᵢ` (`None`: no axis limit).
+    pub axis_acceleration: Vec<Option<f64>>,
+}
+
+/// Everything `strak-sim run` reports.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Summary {
+    /// The job's name (file stem).
+    pub job: String,
+    /// The job's number format: `f64`, `f32` or `fixed`.
+    pub number: String,
+    /// The playback format and sample type.
+    pub playback: String,
+    /// Number of axes.
+    pub axes: usize,
+    /// Length unit.
+    pub unit: String,
+    /// Control rate in Hz.
+    pub rate_hz: f64,
+    /// The time law.
+    pub profile: String,
+    /// Share of acceleration and jerk reserved for feed changes.
+    pub feed_share: f64,
+    /// The limits the time law was planned with.
+    pub planned_with: PlannedLimits,
+    /// Duration of the compiled motion (`ticks / rate`).
+    pub duration_s: f64,
+    /// Duration of the time law before stretching onto the tick grid.
+    pub plan_duration_s: f64,
+    /// Ticks of the path (samples at feed 1 are `ticks + 1`).
+    pub ticks: u32,
+    /// Samples written (one per control tick, holds included).
+    pub samples: u64,
+    /// Time of the last sample in seconds.
+    pub run_time_s: f64,
+    /// Why the run stopped.
+    pub stop: String,
+    /// The sampler finished (end of path, or stopped after an abort).
+    pub finished: bool,
+    /// Events applied.
+    pub events_applied: usize,
+    /// Events whose tick came after the run had ended.
+    pub events_ignored: usize,
+    /// Arc length of the f64 reference curve.
+    pub path_length: f64,
+    /// Polynomial pieces of the compiled path.
+    pub pieces: usize,
+    /// The simulator's piece capacity.
+    pub piece_capacity: usize,
+    /// Position tolerance of the compiled spline.
+    pub tolerance: f64,
+    /// Bound of the error playback adds in the number format (at feed 1).
+    pub playback_bound: f64,
+    /// The maxima along the path (norms over the axes).
+    pub path: Maxima,
+    /// The maxima of the planned components along the path.
+    pub along_path: AlongPath,
+    /// The maxima of each axis.
+    pub per_axis: Vec<Maxima>,
+    /// Every maximum with a limit is within it.
+    pub limits_respected: bool,
+    /// Distance from the f64 reference curve.
+    pub reference_distance: ReferenceDistance,
+    /// The end point.
+    pub end_point: EndPoint,
+    /// Wall-clock times.
+    pub wall_time: WallTime,
+    /// The files written.
+    pub files: Vec<String>,
+}
+
+/// Six significant digits, without trailing zeros; scientific for very small or large values.
+pub fn num(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_owned();
+    }
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    let a = x.abs();
+    if !(1e-3..1e7).contains(&a) {
+        return format!("{x:.3e}");
+    }
+    let digits = (5 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    }
+}
+
+fn check_mark(c: &Checked) -> &'static str {
+    match c.within {
+        Some(true) => "ok",
+        Some(false) => "EXCEEDED",
+        None => "",
+    }
+}
+
+impl Summary {
+    /// All maxima: the path first, then each axis.
+    pub fn all_maxima(&self) -> impl Iterator<Item = &Maxima> {
+        std::iter::once(&self.path).chain(self.per_axis.iter())
+    }
+
+    /// Every checked figure: path norms, components along the path, each axis.
+    pub fn all_checked(&self) -> Vec<&Checked> {
+        let mut all: Vec<&Checked> = self
+            .all_maxima()
+            .flat_map(|m| [&m.velocity, &m.acceleration, &m.jerk])
+            .collect();
+        all.extend([
+            &self.along_path.tangential_acceleration,
+            &self.along_path.centripetal_acceleration,
+            &self.along_path.tangential_jerk,
+        ]);
+        all
+    }
+}
+
+impl fmt::Display for Summary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let u = &self.unit;
+        writeln!(
+            f,
+            "strak-sim run: {} — {} axes, {} Hz, {} profile, {} playback",
+            self.job,
+            self.axes,
+            num(self.rate_hz),
+            self.profile,
+            self.playback
+        )?;
+        writeln!(
+            f,
+            "  motion     {} s = {} ticks (time law {} s), path length {} {u}",
+            num(self.duration_s),
+            self.ticks,
+            num(self.plan_duration_s),
+            num(self.path_length)
+        )?;
+        writeln!(
+            f,
+            "  run        {} samples, last at {} s, {} event(s) applied{}; stop: {}",
+            self.samples,
+            num(self.run_time_s),
+            self.events_applied,
+            if self.events_ignored > 0 {
+                format!(", {} after the end ignored", self.events_ignored)
+            } else {
+                String::new()
+            },
+            self.stop
+        )?;
+        writeln!(
+            f,
+            "  compiled   {} pieces (capacity {}), tolerance {} {u}, playback bound {} {u}",
+            self.pieces,
+            self.piece_capacity,
+            num(self.tolerance),
+            num(self.playback_bound)
+        )?;
+        writeln!(
+            f,
+            "  planned    with a = {}, j = {} ({} of the limits; the rest is kept for feed changes)",
+            num(self.planned_with.acceleration),
+            num(self.planned_with.jerk),
+            num(1.0 - self.feed_share)
+        )?;
+        writeln!(
+            f,
+            "  {:<22}{:>14}{:>12}{:>14}",
+            "maximum", "value", "at t [s]", "limit"
+        )?;
+        let units = [format!("{u}/s"), format!("{u}/s²"), format!("{u}/s³")];
+        let along = [
+            (
+                "a_t tangential",
+                &self.along_path.tangential_acceleration,
+                &units[1],
+            ),
+            (
+                "a_n centripetal",
+                &self.along_path.centripetal_acceleration,
+                &units[1],
+            ),
+            (
+                "j_t tangential",
+                &self.along_path.tangential_jerk,
+                &units[2],
+            ),
+        ];
+        for (q, c, unit) in along {
+            let line = format!(
+                "  {:<22}{:>14}{:>12}{:>14}  {}",
+                format!("{q} [{unit}]"),
+                num(c.max),
+                num(c.at_s),
+                c.limit.map_or("-".to_owned(), num),
+                check_mark(c)
+            );
+            writeln!(f, "{}", line.trim_end())?;
+        }
+        for m in self.all_maxima() {
+            let name = if m.name == "path" {
+                "|·|".to_owned()
+            } else {
+                m.name.clone()
+            };
+            for ((q, c), unit) in [("v", &m.velocity), ("a", &m.acceleration), ("j", &m.jerk)]
+                .into_iter()
+                .zip(&units)
+            {
+                let mut line = String::new();
+                let _ = write!(
+                    line,
+                    "  {:<22}{:>14}{:>12}{:>14}  {}",
+                    format!("{q} {name} [{unit}]"),
+                    num(c.max),
+                    num(c.at_s),
+                    c.limit.map_or("-".to_owned(), num),
+                    check_mark(c)
+                );
+                writeln!(f, "{}", line.trim_end())?;
+            }
+        }
+        writeln!(
+            f,
+            "  limits     {}",
+            if self.limits_respected {
+                "all respected"
+            } else {
+                "EXCEEDED (see above)"
+            }
+        )?;
+        writeln!(
+            f,
+            "  reference  max distance {} {u} at t = {} s ({})",
+            num(self.reference_distance.max),
+            num(self.reference_distance.at_s),
+            self.reference_distance.method
+        )?;
+        writeln!(
+            f,
+            "  end point  error {} {u} to the path's end point, {} {u} to the f64 curve's end point",
+            num(self.end_point.error_to_path_end),
+            num(self.end_point.error_to_reference_end)
+        )?;
+        let w = &self.wall_time;
+        writeln!(
+            f,
+            "  wall time  plan {} s, compile {} s, play {} s, plots {} s, total {} s",
+            num(w.plan_s),
+            num(w.compile_s),
+            num(w.play_s),
+            num(w.plots_s),
+            num(w.total_s)
+        )?;
+        write!(f, "  wrote      {}", self.files.join(", "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_six_significant_digits() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(499.99871234), "499.999");
+        assert_eq!(num(1.5), "1.5");
+        assert_eq!(num(100000.0), "100000");
+        assert_eq!(num(2.5e-7), "2.500e-7");
+    }
+
+    #[test]
+    fn checked_compares_with_the_limit() {
+        assert_eq!(Checked::new(1.0, 0.0, Some(2.0)).within, Some(true));
+        assert_eq!(Checked::new(3.0, 0.0, Some(2.0)).within, Some(false));
+        assert_eq!(Checked::new(3.0, 0.0, Some(f64::INFINITY)).within, None);
+        assert_eq!(Checked::new(3.0, 0.0, None).limit, None);
+    }
+}

@@ -1,0 +1,340 @@
+//! `strak-sim run` (the binary) against a direct library call: the curve built with
+//! strak-curves' own constructors, planned with `PathTiming::plan` under the job's limits
+//! reduced by the feed share, compiled with `compile` and played with `Sampler` — every sample
+//! bit for bit (the CSV holds the shortest text that reads back to the same bits). Also: the
+//! last sample is the path's end point exactly, and every output file exists and is not empty.
+
+use std::path::{Path as FsPath, PathBuf};
+use std::process::Command;
+
+use strak_curves::{
+    BSpline, CubicSpline, I32F32, Nurbs, ParamCurveDeriv, Parameterization, Point, Scalar,
+    SplineBoundary,
+};
+use strak_trajectory::{
+    CompileOptions, Limits, Number, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
+};
+
+use strak_sim::run::{PIECES, TABLE, ZONES};
+
+fn jobs_dir() -> PathBuf {
+    FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs")
+}
+
+/// Runs the binary; `job` `None` runs the bundled example. Returns the output folder.
+fn run_binary(job: Option<&str>, out: &FsPath) -> String {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_strak-sim"));
+    cmd.arg("run");
+    if let Some(job) = job {
+        cmd.arg(jobs_dir().join(job));
+    }
+    let output = cmd.arg("--out").arg(out).output().unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    assert!(
+        output.status.success(),
+        "strak-sim run failed: {}\n{stdout}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for file in ["samples.csv", "summary.json", "path.svg", "motion.svg"] {
+        let meta = std::fs::metadata(out.join(file)).unwrap();
+        assert!(meta.len() > 100, "{file} is (nearly) empty");
+    }
+    let svg = std::fs::read_to_string(out.join("motion.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("<text") && svg.contains("velocity"));
+    stdout
+}
+
+/// The CSV rows as text cells (header checked).
+fn csv_rows(out: &FsPath, axes: usize) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(out.join("samples.csv")).unwrap();
+    let mut lines = text.lines();
+    let names = &["x", "y", "z", "w"][..axes];
+    let mut header = vec!["tick".to_owned(), "t".to_owned()];
+    for prefix in ["", "v", "a"] {
+        header.extend(names.iter().map(|n| format!("{prefix}{n}")));
+    }
+    assert_eq!(lines.next().unwrap(), header.join(","));
+    lines
+        .map(|l| l.split(',').map(str::to_owned).collect())
+        .collect()
+}
+
+/// A sample type read back from its CSV text, compared bit for bit.
+trait Cell: Scalar {
+    fn parse_cell(s: &str) -> Self;
+    fn same_bits(self, other: Self) -> bool;
+}
+
+impl Cell for f64 {
+    fn parse_cell(s: &str) -> Self {
+        s.parse().unwrap()
+    }
+    fn same_bits(self, other: Self) -> bool {
+        self.to_bits() == other.to_bits()
+    }
+}
+
+impl Cell for f32 {
+    fn parse_cell(s: &str) -> Self {
+        s.parse().unwrap()
+    }
+    fn same_bits(self, other: Self) -> bool {
+        self.to_bits() == other.to_bits()
+    }
+}
+
+impl Cell for I32F32 {
+    fn parse_cell(s: &str) -> Self {
+        s.parse().unwrap()
+    }
+    fn same_bits(self, other: Self) -> bool {
+        self.to_bits() == other.to_bits()
+    }
+}
+
+/// An event of the direct run.
+#[derive(Clone, Copy)]
+enum Event {
+    Feed(f32),
+    Hold,
+    Resume,
+}
+
+/// What the job file says: path limits (v, a, j), axis limits, feed share, rate.
+#[derive(Clone, Copy)]
+struct Spec<const A: usize> {
+    limits: [f64; 3],
+    axis_v: [f64; A],
+    axis_a: [f64; A],
+    feed_share: f64,
+    rate: f64,
+}
+
+/// Plans, compiles and plays `curve` directly with the library, as the job describes it, and
+/// compares every sample with the CSV rows; returns the number of samples.
+fn direct_run<N, C, const A: usize>(
+    curve: &C,
+    spec: &Spec<A>,
+    events: &[(u64, Event)],
+    rows: &[Vec<String>],
+) -> usize
+where
+    N: Number,
+    N::Out: Cell,
+    C: ParamCurveDeriv,
+    C::Point: Point,
+{
+    let Spec {
+        limits,
+        axis_v,
+        axis_a,
+        feed_share,
+        rate,
+    } = *spec;
+    let keep = 1.0 - feed_share;
+    let plan_limits = Limits::<A>::new(limits[0], limits[1] * keep, limits[2] * keep)
+        .unwrap()
+        .with_axis_velocity(axis_v)
+        .unwrap()
+        .with_axis_acceleration(axis_a.map(|a| a * keep))
+        .unwrap();
+    let timing =
+        PathTiming::<_, TABLE, ZONES>::plan(curve, &plan_limits, &PlanOptions::new()).unwrap();
+    let a_feed = axis_a.iter().fold(limits[1], |m, a| m.min(*a));
+    let options = CompileOptions::new()
+        .with_feed_share(feed_share)
+        .with_limits(a_feed, limits[2]);
+    let path: Box<Path<N, A, PIECES>> = Box::new(compile(curve, &timing, rate, &options).unwrap());
+    let mut sampler = Sampler::new(&*path);
+    let mut k = 0_u64;
+    let mut next = 0;
+    let mut last = None;
+    while !sampler.is_finished() {
+        while let Some(&(tick, e)) = events.get(next) {
+            if tick > k {
+                break;
+            }
+            match e {
+                Event::Feed(f) => sampler.set_feed(f),
+                Event::Hold => sampler.hold(),
+                Event::Resume => sampler.resume(),
+            }
+            next += 1;
+        }
+        let s = sampler.next();
+        let row = &rows[usize::try_from(k).unwrap()];
+        assert_eq!(row[0], k.to_string());
+        assert_eq!(
+            row[1].parse::<f64>().unwrap().to_bits(),
+            (k as f64 / rate).to_bits()
+        );
+        let values = s.position.iter().chain(&s.velocity).chain(&s.acceleration);
+        for (i, v) in values.enumerate() {
+            let csv = N::Out::parse_cell(&row[2 + i]);
+            assert!(
+                csv.same_bits(*v),
+                "tick {k}, column {}: CSV {} vs library {v:?}",
+                2 + i,
+                row[2 + i]
+            );
+        }
+        last = Some(s.position);
+        k += 1;
+    }
+    assert_eq!(rows.len() as u64, k, "the CSV has extra rows");
+    // The end point is exact, bit for bit, in the path's number format.
+    let last = last.unwrap();
+    for (a, b) in last.iter().zip(path.end_position().iter()) {
+        assert!(a.same_bits(*b), "last sample {a:?} vs path end {b:?}");
+    }
+    k as usize
+}
+
+fn big_stack(f: impl FnOnce() + Send + 'static) {
+    std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(f)
+        .unwrap()
+        .join()
+        .unwrap();
+}
+
+const PICK_POINTS: [[f64; 3]; 8] = [
+    [0.0, 0.0, 0.0],
+    [0.0, 0.0, 40.0],
+    [0.0, 0.0, 80.0],
+    [60.0, 30.0, 80.0],
+    [240.0, 120.0, 80.0],
+    [300.0, 150.0, 80.0],
+    [300.0, 150.0, 40.0],
+    [300.0, 150.0, 0.0],
+];
+
+fn pick_and_place(job: Option<&'static str>, events: &'static [(u64, Event)]) {
+    let dir = tempfile::tempdir().unwrap();
+    let stdout = run_binary(job, dir.path());
+    assert!(stdout.contains("limits     all respected"), "{stdout}");
+    let rows = csv_rows(dir.path(), 3);
+    big_stack(move || {
+        let curve =
+            BSpline::<[f64; 3], 16, 24>::clamped_uniform(3, &PICK_POINTS, 0.0, 1.0).unwrap();
+        let n = direct_run::<f64, _, 3>(
+            &curve,
+            &Spec {
+                limits: [500.0, 5000.0, 100_000.0],
+                axis_v: [500.0, 500.0, 400.0],
+                axis_a: [5000.0, 5000.0, 3000.0],
+                feed_share: 0.25,
+                rate: 1000.0,
+            },
+            events,
+            &rows,
+        );
+        assert!(n > 1000);
+    });
+}
+
+#[test]
+fn bundled_example_matches_the_library_bit_for_bit() {
+    pick_and_place(None, &[]);
+}
+
+#[test]
+fn feed_hold_resume_match_the_library_bit_for_bit() {
+    const EVENTS: [(u64, Event); 4] = [
+        (100, Event::Feed(0.5)),
+        (900, Event::Hold),
+        (1400, Event::Resume),
+        (1700, Event::Feed(1.0)),
+    ];
+    pick_and_place(Some("feed-hold.toml"), &EVENTS);
+}
+
+#[test]
+fn f32_circle_matches_the_library_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    run_binary(Some("circle-f32.toml"), dir.path());
+    let rows = csv_rows(dir.path(), 2);
+    big_stack(move || {
+        let w = std::f64::consts::FRAC_1_SQRT_2 as f32; // the file's 0.7071067811865476
+        let points: [[f32; 2]; 9] = [
+            [50.0, 0.0],
+            [50.0, 50.0],
+            [0.0, 50.0],
+            [-50.0, 50.0],
+            [-50.0, 0.0],
+            [-50.0, -50.0],
+            [0.0, -50.0],
+            [50.0, -50.0],
+            [50.0, 0.0],
+        ];
+        let weights = [1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
+        let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 4.0];
+        let curve = Nurbs::<[f32; 2], 16, 24>::new(2, &points, &weights, &knots).unwrap();
+        let inf = f64::INFINITY;
+        direct_run::<f32, _, 2>(
+            &curve,
+            &Spec {
+                limits: [500.0, 5000.0, 100_000.0],
+                axis_v: [inf, inf],
+                axis_a: [inf, inf],
+                feed_share: 0.4,
+                rate: 2000.0,
+            },
+            &[],
+            &rows,
+        );
+    });
+}
+
+#[test]
+fn fixed_point_contour_matches_the_library_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    run_binary(Some("contour-fixed.toml"), dir.path());
+    let rows = csv_rows(dir.path(), 2);
+    big_stack(move || {
+        let p = |x: f64, y: f64| [I32F32::from_num(x), I32F32::from_num(y)];
+        let points = [
+            p(0.0, 0.0),
+            p(120.0, -10.0),
+            p(160.0, 60.0),
+            p(100.0, 110.0),
+            p(20.0, 90.0),
+            p(-20.0, 40.0),
+            p(0.0, 0.0),
+        ];
+        let curve = CubicSpline::<_, 16>::new(
+            &points,
+            Parameterization::ChordLength,
+            SplineBoundary::Periodic,
+        )
+        .unwrap();
+        direct_run::<Q40, _, 2>(
+            &curve,
+            &Spec {
+                limits: [300.0, 3000.0, 60_000.0],
+                axis_v: [250.0, 250.0],
+                axis_a: [2500.0, 2500.0],
+                feed_share: 0.35,
+                rate: 10_000.0,
+            },
+            &[],
+            &rows,
+        );
+    });
+}
+
+#[test]
+fn summary_reports_an_exact_end() {
+    let dir = tempfile::tempdir().unwrap();
+    for job in ["circle-f32.toml", "contour-fixed.toml"] {
+        let out = dir.path().join(job);
+        run_binary(Some(job), &out);
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["end_point"]["error_to_path_end"], 0.0, "{job}");
+        assert_eq!(json["finished"], true);
+        assert_eq!(json["stop"], "end of path");
+    }
+}

@@ -1,0 +1,332 @@
+//! Bad jobs: each error case gives exactly one error line on standard error naming the field,
+//! and a non-zero exit — never a panic.
+
+use std::process::Command;
+
+/// A good job to break: a 2-axis quarter turn.
+const GOOD: &str = r#"rate_hz = 1000
+number = "f64"
+
+[path]
+kind = "bezier"
+points = [[0, 0], [10, 0], [10, 10]]
+
+[limits]
+velocity = 100
+acceleration = 1000
+jerk = 10000
+
+[profile]
+kind = "s-curve"
+"#;
+
+/// Runs `strak-sim run` on `text`; asserts a failure with one line naming `field`.
+fn fails_naming(text: &str, field: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let job = dir.path().join("bad.toml");
+    std::fs::write(&job, text).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
+        .arg("run")
+        .arg(&job)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(!output.status.success(), "succeeded on a bad job:\n{text}");
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "exit code (a panic gives 101): {stderr}"
+    );
+    assert_eq!(
+        stderr.lines().count(),
+        1,
+        "expected one error line, got:\n{stderr}"
+    );
+    assert!(
+        stderr.starts_with("strak-sim: error: ") && stderr.contains("bad.toml"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(&format!("field `{field}`")),
+        "expected field `{field}` in: {stderr}"
+    );
+    stderr
+}
+
+fn with(from: &str, to: &str) -> String {
+    assert!(GOOD.contains(from), "{from}");
+    GOOD.replace(from, to)
+}
+
+#[test]
+fn the_good_job_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = dir.path().join("good.toml");
+    std::fs::write(&job, GOOD).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
+        .args([
+            "run".as_ref(),
+            job.as_os_str(),
+            "--out".as_ref(),
+            dir.path().as_os_str(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+#[test]
+fn missing_top_level_field() {
+    fails_naming(&with("rate_hz = 1000\n", ""), "rate_hz");
+}
+
+#[test]
+fn missing_limit() {
+    fails_naming(&with("velocity = 100\n", ""), "limits.velocity");
+}
+
+#[test]
+fn missing_table() {
+    let text = with("[profile]\nkind = \"s-curve\"\n", "");
+    fails_naming(&text, "profile");
+}
+
+#[test]
+fn unknown_field() {
+    fails_naming(
+        &with("jerk = 10000\n", "jerk = 10000\ncolour = 3\n"),
+        "limits.colour",
+    );
+}
+
+#[test]
+fn rate_zero() {
+    fails_naming(&with("rate_hz = 1000", "rate_hz = 0"), "rate_hz");
+}
+
+#[test]
+fn rate_negative() {
+    fails_naming(&with("rate_hz = 1000", "rate_hz = -5"), "rate_hz");
+}
+
+#[test]
+fn rate_out_of_range() {
+    let e = fails_naming(&with("rate_hz = 1000", "rate_hz = 200000"), "rate_hz");
+    assert!(e.contains("100 kHz"), "{e}");
+}
+
+#[test]
+fn velocity_limit_zero() {
+    fails_naming(&with("velocity = 100", "velocity = 0"), "limits.velocity");
+}
+
+#[test]
+fn acceleration_limit_negative() {
+    fails_naming(
+        &with("acceleration = 1000", "acceleration = -1000"),
+        "limits.acceleration",
+    );
+}
+
+#[test]
+fn jerk_limit_not_finite() {
+    fails_naming(&with("jerk = 10000", "jerk = inf"), "limits.jerk");
+}
+
+#[test]
+fn axis_limits_of_the_wrong_length() {
+    fails_naming(
+        &with(
+            "jerk = 10000\n",
+            "jerk = 10000\naxis_velocity = [10, 10, 10]\n",
+        ),
+        "limits.axis_velocity",
+    );
+}
+
+#[test]
+fn axis_limit_zero() {
+    fails_naming(
+        &with(
+            "jerk = 10000\n",
+            "jerk = 10000\naxis_acceleration = [10, 0]\n",
+        ),
+        "limits.axis_acceleration",
+    );
+}
+
+#[test]
+fn empty_path() {
+    let e = fails_naming(
+        &with("points = [[0, 0], [10, 0], [10, 10]]", "points = []"),
+        "path.points",
+    );
+    assert!(e.contains("empty"), "{e}");
+}
+
+#[test]
+fn path_of_zero_length() {
+    let e = fails_naming(
+        &with(
+            "points = [[0, 0], [10, 0], [10, 10]]",
+            "points = [[5, 5], [5, 5], [5, 5]]",
+        ),
+        "path",
+    );
+    assert!(e.contains("zero length"), "{e}");
+}
+
+#[test]
+fn bad_curve_field() {
+    fails_naming(
+        &with("kind = \"bezier\"", "kind = \"bspline\""),
+        "path.degree",
+    );
+}
+
+#[test]
+fn unknown_number_format() {
+    fails_naming(&with("number = \"f64\"", "number = \"f16\""), "number");
+}
+
+#[test]
+fn capacity_too_small_for_the_motion() {
+    // 200 s at 100 kHz: at least 78 125 pieces of 256 ticks, the simulator holds 16 384.
+    let text = with("rate_hz = 1000", "rate_hz = 100000").replace(
+        "kind = \"s-curve\"",
+        "kind = \"parameter\"\nduration = 200.0",
+    );
+    let e = fails_naming(&text, "rate_hz");
+    assert!(e.contains("16384"), "{e}");
+}
+
+#[test]
+fn capacity_too_small_for_the_tolerance() {
+    // A circle at constant speed (positions not polynomial in t anywhere) at 100 kHz, to a
+    // tolerance below the rounding of f64: only pieces of one tick meet it, 62 832 of them.
+    let text = r#"rate_hz = 100000
+number = "f64"
+
+[path]
+kind = "nurbs"
+degree = 2
+points = [[10, 0], [10, 10], [0, 10], [-10, 10], [-10, 0], [-10, -10], [0, -10], [10, -10], [10, 0]]
+weights = [1, 0.7071067811865476, 1, 0.7071067811865476, 1, 0.7071067811865476, 1, 0.7071067811865476, 1]
+knots = [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4]
+
+[limits]
+velocity = 100
+acceleration = 1000
+jerk = 10000
+
+[profile]
+kind = "constant-speed"
+
+[compile]
+tolerance = 1e-15
+"#;
+    let e = fails_naming(text, "compile.tolerance");
+    assert!(e.contains("16384"), "{e}");
+}
+
+#[test]
+fn zone_capacity_too_small() {
+    // A wavy path sampled finely with no zone merging needs more than 1024 zones.
+    let text = with(
+        "points = [[0, 0], [10, 0], [10, 10]]",
+        "points = [[0, 0], [10, 8], [20, -8], [30, 8], [40, -8], [50, 8], [60, -8], [70, 8], [80, 0]]",
+    )
+    .replace("kind = \"bezier\"", "kind = \"cubic-spline\"")
+    .replace(
+        "kind = \"s-curve\"",
+        "kind = \"s-curve\"\nsamples = 8192\nzone_tolerance = 0.0",
+    );
+    let e = fails_naming(&text, "profile.zone_tolerance");
+    assert!(e.contains("1024"), "{e}");
+}
+
+#[test]
+fn range_too_large_for_fixed_point() {
+    // Q40 holds ±4 194 304 units; these points fit I32F32 (the curve) but not the path.
+    let text = with("number = \"f64\"", "number = \"fixed\"").replace(
+        "points = [[0, 0], [10, 0], [10, 10]]",
+        "points = [[5000000, 0], [5000010, 0], [5000010, 10]]",
+    );
+    let e = fails_naming(&text, "number");
+    assert!(e.contains("4194304"), "{e}");
+}
+
+#[test]
+fn range_too_large_for_the_fixed_point_curve() {
+    let text = with("number = \"f64\"", "number = \"fixed\"").replace(
+        "points = [[0, 0], [10, 0], [10, 10]]",
+        "points = [[0, 0], [1e10, 0], [10, 10]]",
+    );
+    fails_naming(&text, "path.points");
+}
+
+#[test]
+fn parameter_profile_without_duration() {
+    fails_naming(
+        &with("kind = \"s-curve\"", "kind = \"parameter\""),
+        "profile.duration",
+    );
+}
+
+#[test]
+fn profile_field_of_another_kind() {
+    fails_naming(
+        &with("kind = \"s-curve\"", "kind = \"s-curve\"\nspeed = 3"),
+        "profile.speed",
+    );
+}
+
+#[test]
+fn feed_out_of_range() {
+    fails_naming(
+        &format!("{GOOD}\n[[events]]\ntick = 10\nfeed = 1.5\n"),
+        "events[0].feed",
+    );
+}
+
+#[test]
+fn event_without_action() {
+    fails_naming(
+        &format!("{GOOD}\n[[events]]\ntick = 10\nhold = true\n\n[[events]]\ntick = 20\n"),
+        "events[1]",
+    );
+}
+
+#[test]
+fn event_with_a_negative_tick() {
+    fails_naming(
+        &format!("{GOOD}\n[[events]]\ntick = -3\nhold = true\n"),
+        "events[0].tick",
+    );
+}
+
+#[test]
+fn feed_share_out_of_range() {
+    fails_naming(
+        &format!("{GOOD}\n[compile]\nfeed_share = 1.0\n"),
+        "compile.feed_share",
+    );
+}
+
+#[test]
+fn missing_job_file() {
+    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
+        .args(["run", "/nonexistent/job.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("cannot read"), "{stderr}");
+}

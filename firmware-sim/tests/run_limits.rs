@@ -1,0 +1,160 @@
+//! Every bundled job (`examples/jobs/*.toml`) respects every limit of its job file, checked
+//! from `samples.csv` alone: the velocity by finite differences of the positions, the
+//! acceleration by finite differences of the velocity samples, the jerk by finite differences
+//! of the acceleration samples, and the velocity and acceleration samples themselves — along
+//! the path (Euclidean norms) and per axis. The summary agrees.
+
+use std::path::{Path as FsPath, PathBuf};
+
+use strak_sim::job::{Job, JobNumber};
+use strak_sim::run::{RunOptions, run_job};
+
+fn jobs() -> Vec<PathBuf> {
+    let dir = FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The relative resolution of a sample value in the job's format (for finite-difference noise).
+fn resolution(number: JobNumber, magnitude: f64) -> f64 {
+    match number {
+        JobNumber::F64 => 2.0 * f64::EPSILON * magnitude,
+        JobNumber::F32 => 2.0 * f64::from(f32::EPSILON) * magnitude,
+        JobNumber::Fixed => 2.0_f64.powi(-32),
+    }
+}
+
+/// Checks `value ≤ limit + slack`, remembering the worst ratio.
+struct Check<'a> {
+    job: &'a str,
+    worst: Vec<(String, f64)>,
+}
+
+impl Check<'_> {
+    fn le(&mut self, what: &str, value: f64, limit: f64, slack: f64) {
+        if !limit.is_finite() {
+            return;
+        }
+        assert!(
+            value <= limit * (1.0 + 1e-9) + slack,
+            "{}: {what} = {value} exceeds the limit {limit}",
+            self.job
+        );
+        match self.worst.iter_mut().find(|(w, _)| w == what) {
+            Some((_, r)) => *r = r.max(value / limit),
+            None => self.worst.push((what.to_owned(), value / limit)),
+        }
+    }
+}
+
+#[test]
+fn bundled_jobs_respect_every_limit() {
+    let files = jobs();
+    assert!(
+        files.len() >= 4,
+        "expected the bundled jobs, found {files:?}"
+    );
+    for file in files {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let job = Job::parse(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let summary = run_job(
+            &job,
+            &RunOptions {
+                out_dir: dir.path().to_owned(),
+                name: name.clone(),
+                progress: false,
+            },
+        )
+        .unwrap();
+        assert!(summary.finished, "{name}: {}", summary.stop);
+        assert!(summary.limits_respected, "{name}: {summary}");
+        assert_eq!(summary.end_point.error_to_path_end, 0.0, "{name}");
+
+        let axes = job.axes();
+        let rate = job.rate_hz;
+        let l = &job.limits;
+        let axis = |v: &Option<Vec<f64>>, i: usize| v.as_ref().map_or(f64::INFINITY, |v| v[i]);
+        let text = std::fs::read_to_string(dir.path().join("samples.csv")).unwrap();
+        let rows: Vec<Vec<f64>> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len() as u64, summary.samples);
+        let pos = |r: &Vec<f64>| r[2..2 + axes].to_vec();
+        let vel = |r: &Vec<f64>| r[2 + axes..2 + 2 * axes].to_vec();
+        let acc = |r: &Vec<f64>| r[2 + 2 * axes..2 + 3 * axes].to_vec();
+        let max_of = |f: &dyn Fn(&Vec<f64>) -> Vec<f64>| {
+            rows.iter().flat_map(f).fold(0.0_f64, |m, x| m.max(x.abs()))
+        };
+        // Finite-difference noise of each quantity in the job's number format.
+        let slack_v = 2.0 * resolution(job.number, max_of(&pos)) * rate;
+        let slack_a = 2.0 * resolution(job.number, max_of(&vel)) * rate;
+        let slack_j = 2.0 * resolution(job.number, max_of(&acc)) * rate;
+        let mut check = Check {
+            job: &name,
+            worst: Vec::new(),
+        };
+        for r in &rows {
+            check.le("|v| samples", norm(&vel(r)), l.velocity, 0.0);
+            check.le("|a| samples", norm(&acc(r)), l.acceleration, 0.0);
+            for i in 0..axes {
+                check.le(
+                    "v_i samples",
+                    vel(r)[i].abs(),
+                    axis(&l.axis_velocity, i),
+                    0.0,
+                );
+                check.le(
+                    "a_i samples",
+                    acc(r)[i].abs(),
+                    axis(&l.axis_acceleration, i),
+                    0.0,
+                );
+            }
+        }
+        for w in rows.windows(2) {
+            let d = |f: &dyn Fn(&Vec<f64>) -> Vec<f64>| -> Vec<f64> {
+                f(&w[1])
+                    .iter()
+                    .zip(f(&w[0]))
+                    .map(|(b, a)| (b - a) * rate)
+                    .collect()
+            };
+            let (dv, da, dj) = (d(&pos), d(&vel), d(&acc));
+            check.le("|Δx|·f", norm(&dv), l.velocity, slack_v);
+            check.le("|Δv|·f", norm(&da), l.acceleration, slack_a);
+            check.le("|Δa|·f", norm(&dj), l.jerk, slack_j);
+            for i in 0..axes {
+                check.le("|Δx_i|·f", dv[i].abs(), axis(&l.axis_velocity, i), slack_v);
+                check.le(
+                    "|Δv_i|·f",
+                    da[i].abs(),
+                    axis(&l.axis_acceleration, i),
+                    slack_a,
+                );
+            }
+        }
+        println!("{name}: worst ratios to the limits {:?}", check.worst);
+        // The summary's maxima are the samples' maxima.
+        let v_max = rows.iter().map(|r| norm(&vel(r))).fold(0.0, f64::max);
+        let v_sum = summary.path.velocity.max;
+        assert!(
+            (v_sum - v_max).abs() <= 1e-6 * v_max,
+            "{name}: {v_sum} vs {v_max}"
+        );
+        // The bundled example finishes on its last sample's tick, at rest.
+        let last = rows.last().unwrap();
+        assert!(norm(&vel(last)) < 1e-6 * l.velocity, "{name}: not at rest");
+    }
+}
