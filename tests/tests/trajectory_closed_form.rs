@@ -139,7 +139,7 @@ const SCURVE_CASES: [(f64, f64, f64, f64, bool, bool); 6] = [
     // machine-like numbers (mm, s): v and a reached
     (130.0, 200.0, 2_000.0, 50_000.0, true, true),
     // exactly at the boundary of regimes 2 and 3: L = 2a³/j²
-    (2.0 * 8.0 / 16.0, 10.0, 2.0, 4.0, false, true),
+    (1.0, 10.0, 2.0, 4.0, false, true), // 2a³/j² = 2·8/16 = 1
 ];
 
 #[test]
@@ -157,7 +157,8 @@ fn scurve_closed_form_regimes() {
             "S-curve L={l} v={v} a={a} j={j}: T = {:.9} closed form {exact:.9} (rel {r:.1e})",
             m.duration()
         );
-        assert!(r < REQUIRED && r < ACHIEVED, "{r}");
+        assert!(r < REQUIRED, "{r}");
+        assert!(r < ACHIEVED, "{r}");
     }
 }
 
@@ -175,7 +176,7 @@ fn scurve_closed_form_hand_values() {
     // a reached, v not: a = 1, j = 1, L = 6: w² + w − 6 = 0, w = 2, T = 2·(2 + 1) = 6
     assert!((scurve_duration(6.0, 100.0, 1.0, 1.0) - 6.0).abs() < 1e-12);
     // continuity at the regime boundaries
-    for (l, v, a, j) in [(2.0 * 8.0 / 16.0, 10.0, 2.0, 4.0), (1.0, 10.0, 1.0, 1.0)] {
+    for (l, v, a, j) in [(1.0, 10.0, 2.0, 4.0), (1.0, 10.0, 1.0, 1.0)] {
         let (lo, hi) = (
             scurve_duration(l * (1.0 - 1e-9), v, a, j),
             scurve_duration(l * (1.0 + 1e-9), v, a, j),
@@ -208,7 +209,8 @@ fn scurve_straight_line_through_planner_and_compiler() {
                 "line S-curve v={v:.3} a={a:.3} j={j:.3}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
                 timing.duration()
             );
-            assert!(r < REQUIRED && r < ACHIEVED, "{r}");
+            assert!(r < REQUIRED, "{r}");
+            assert!(r < ACHIEVED, "{r}");
             for rate in RATES {
                 let compiled = check_ticks(&curve, &timing, rate);
                 assert!(compiled >= exact * (1.0 - ACHIEVED));
@@ -239,7 +241,8 @@ fn scurve_line_with_axis_limits() {
             "line with axis limits: v {v}, a {a}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
             timing.duration()
         );
-        assert!(r < REQUIRED && r < 1e-6, "{r}");
+        assert!(r < REQUIRED, "{r}");
+        assert!(r < 1e-6, "{r}");
         for rate in RATES {
             check_ticks(&curve, &timing, rate);
         }
@@ -319,7 +322,8 @@ fn trapezoid_closed_form() {
                 "trapezoid v={v} a={a:.4}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
                 timing.duration()
             );
-            assert!(r < REQUIRED && r < ACHIEVED, "{r}");
+            assert!(r < REQUIRED, "{r}");
+            assert!(r < ACHIEVED, "{r}");
             // the planner with a trapezoid shape and global limits only: the same
             let limits = Limits::<3>::new(v, a, 1.0).expect("limits");
             let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
@@ -341,11 +345,8 @@ fn constant_speed_duration_is_length_over_speed() {
             let timing = PathTiming::<_, 64, 1>::constant_speed(&curve, v).expect("plan");
             let exact = 130.0 / v;
             let r = rel(timing.duration(), exact);
-            assert!(
-                r < REQUIRED && r < ACHIEVED,
-                "v {v}: {} vs {exact}",
-                timing.duration()
-            );
+            assert!(r < REQUIRED, "v {v}: {} vs {exact}", timing.duration());
+            assert!(r < ACHIEVED, "v {v}: {} vs {exact}", timing.duration());
             assert_eq!(
                 MotionProfile::<1>::constant_speed(130.0, v)
                     .expect("profile")
@@ -363,7 +364,7 @@ fn constant_speed_duration_is_length_over_speed() {
 fn parameter_law_duration_and_ticks() {
     big_stack(|| {
         let curve = line([0.0; 3], [30.0, 40.0, 120.0]);
-        for d in [0.01, 0.3, 1.0, 2.71828] {
+        for d in [0.01, 0.3, 1.0, 2.5e-3] {
             let timing = ParameterTiming::over(&curve, d).expect("law");
             assert_eq!(timing.duration(), d);
             for rate in RATES {
