@@ -22,8 +22,8 @@
 //!   motion at its knots; the classic error of cubic spline interpolation of a function whose
 //!   third derivative is bounded by `J` scales as `‖e^(r)‖ ≤ C_r·J·h^(3−r)` on a piece of `h`
 //!   seconds. With `J` = the compiled path's peak jerk and `h` the piece containing the
-//!   tick, we allow `|Δv| ≤ J·h²/4` and `|Δa| ≤ J·h/2` (measured: 0.03·J·h² and
-//!   0.17·J·h), plus the number format's error of the velocity and acceleration channels:
+//!   tick, we allow `|Δv| ≤ J·h²/4` and `|Δa| ≤ J·h/2` (measured: 0.027·J·h² and
+//!   0.15·J·h), plus the number format's error of the velocity and acceleration channels:
 //!   `2(n + 1)·r(v_peak) + n²·r(a_peak·T)` and `2(n + 1)·r(a_peak)` (`r(m)` the rounding of a
 //!   value of magnitude `m`: `½ε·m` for floats, 2⁻⁴¹ for `Q40`; `n` the piece length in
 //!   ticks), plus the output rounding.
