@@ -747,9 +747,6 @@ fn circle_follows_planned_acceleration_table_257() {
 /// `|c'(u)|` has a kink at its double knots, which the C¹ Hermite inverse `u(s)` cannot follow
 /// inside an interval: the composed time law's tangential acceleration jumps there.
 #[test]
-#[ignore = "bug: the arc-length table's nodes are not placed on the curve's knots; at the \
-            NURBS circle's double knot u = 2 the composed motion's tangential acceleration \
-            deviates from the plan by 339 mm/s² = 0.226 × a' (N = 256; 0.014 with N = 257)"]
 fn circle_follows_planned_acceleration_table_256() {
     assert!(tangential_deviation::<256>() < 0.05);
 }

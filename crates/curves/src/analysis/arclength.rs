@@ -387,16 +387,32 @@ fn solve_in_piece<C: ParamCurveDeriv>(
     Ok(param(u, lo, hi))
 }
 
-/// A table of arc length against parameter for a time law: `N` samples `(u_i, s_i)`, uniform
-/// in the parameter over the domain, with `u(s)` and `s(u)` interpolated by C¹ piecewise
-/// cubic Hermite (never linearly: linear interpolation of `u(s)` makes the speed jump at every
-/// sample and the jerk chatter, see DESIGN.md).
+/// A table of arc length against parameter for a time law: `N` samples `(u_i, s_i)` with
+/// `u(s)` and `s(u)` interpolated by C¹ piecewise cubic Hermite (never linearly: linear
+/// interpolation of `u(s)` makes the speed jump at every sample and the jerk chatter, see
+/// DESIGN.md).
+///
+/// # Samples
+///
+/// Every inner piece boundary (knot) of the curve ([`ParamCurve::piece_count`],
+/// [`ParamCurve::piece_domain`]) is a sample, so that no table interval straddles a knot; the
+/// `N − 1` intervals are shared among the pieces in proportion to their parameter length
+/// (rounded, at least one interval per piece), and each piece is sampled uniformly in the
+/// parameter. A single-piece curve is sampled uniformly over the domain. **Fallback:** when
+/// the curve has more pieces than `N − 1` intervals, the samples are uniform in the
+/// parameter over the whole domain and the limits below apply at the knots between samples.
 ///
 /// # Interpolation
 ///
 /// On interval `i`, with `t = (s − s_i)/Δs_i`, `u(s) = u_i + h₀₁(t)·Δu_i + h₁₀(t)·Δs_i·m_i +
 /// h₁₁(t)·Δs_i·m_{i+1}` (cubic Hermite basis `h₀₁ = t²(3 − 2t)`, `h₁₀ = t(1 − t)²`,
-/// `h₁₁ = −t²(1 − t)`), where the tangents `m_i = du/ds = 1/|c'(u_i)|` are exact derivatives,
+/// `h₁₁ = −t²(1 − t)`), where the tangents `m_i = du/ds = 1/|c'(u_i)|` are exact derivatives;
+/// at a knot they are one-sided: the end tangent of the interval left of the knot uses the
+/// speed of the piece ending there, the start tangent of the interval right of it the speed
+/// of the piece starting there. The left speed is evaluated with [`ParamCurveDeriv::deriv`]
+/// two units of the scalar's resolution below the knot (an `O(ε·|c''|)` error; where `S` is
+/// finer than the curve's own scalar, as for an `f64` table of an `f32` curve, that point may
+/// round back onto the knot and the right speed is used). The tangents are
 /// limited as by Fritsch–Carlson to `m_i ≤ 3·min(Δu/Δs)` of the two adjacent intervals: this
 /// keeps `u(s)` monotone and finite at zero speed (cusps), and leaves smooth curves with
 /// sampled speed ratios below 3 untouched. `s(u)` is interpolated the same way with slopes
@@ -410,8 +426,17 @@ fn solve_in_piece<C: ParamCurveDeriv>(
 /// interval (fourth order; linear interpolation is second order, `Δs²/8 · max|u''|`). The
 /// constructor measures the interpolation error at every interval midpoint (where the Hermite
 /// error kernel `t²(1 − t)²` peaks) in length units and reports the largest value plus the
-/// accuracy as [`ArcLengthTable::error_estimate`]. At a piece boundary where the speed jumps
-/// (a `C⁰` or `G¹` join) `u(s)` has a kink and the error is first order there.
+/// accuracy as [`ArcLengthTable::error_estimate`].
+///
+/// # Known limits
+///
+/// With the knots among the samples, a kink or jump of the speed at a `C¹`, `G¹` or `C⁰`
+/// join lies on a sample, where the interpolant is only C⁰ in its slope by construction (the
+/// one-sided slopes), so the time law follows the curve's own jump there and each interval
+/// keeps the fourth-order error of a smooth piece. In the fallback (more pieces than
+/// intervals) a knot inside an interval is smoothed over: the error is first order there
+/// (second order for a C¹ join) and the time law's acceleration jumps inside the interval;
+/// use `N > piece_count()` for time laws.
 ///
 /// Evaluation clamps its argument to the table, returns the domain ends exactly at the
 /// table's ends, and has no panic path.
@@ -480,9 +505,114 @@ fn interval<S: Scalar>(xs: &[S], x: S) -> usize {
         .min(xs.len().saturating_sub(2))
 }
 
+/// The table's sample parameters and which of them are inner piece boundaries.
+///
+/// Every inner piece boundary (of positive-width pieces inside the domain) is a sample; the
+/// `N − 1` intervals are shared among the pieces in proportion to their parameter length
+/// (largest-remainder rounding of the cumulative share), at least one interval per piece, and
+/// each piece is sampled uniformly in the parameter. When the curve has more pieces than
+/// `N − 1`, the samples fall back to uniform in the parameter over the whole domain (no
+/// sample is flagged as a piece boundary).
+fn nodes<C, const N: usize>(curve: &C) -> ([ScalarOf<C>; N], [bool; N])
+where
+    C: ParamCurve,
+{
+    let (start, end) = curve.domain();
+    let (a, b) = (start.to_f64(), end.to_f64());
+    let width = b - a;
+    let last = N.saturating_sub(1);
+    #[allow(clippy::cast_precision_loss)]
+    let last_f = last as f64;
+    let mut u = [start; N];
+    let mut knot = [false; N];
+    let pieces = curve.piece_count();
+    let bounds = |i: usize| piece_bounds(curve, i, pieces, start, end);
+    let count = (0..pieces)
+        .filter(|&i| {
+            let (lo, hi) = bounds(i);
+            greater(hi, lo)
+        })
+        .count();
+    if count < 2 || count > last || !greater(width, 0.0) {
+        for (i, ui) in u.iter_mut().enumerate() {
+            #[allow(clippy::cast_precision_loss)]
+            let t = i as f64 / last_f;
+            *ui = if i + 1 == N {
+                end
+            } else {
+                param(a + width * t, start, end)
+            };
+        }
+        if let Some(first) = u.first_mut() {
+            *first = start;
+        }
+        return (u, knot);
+    }
+    let (mut j0, mut k) = (0_usize, 0_usize);
+    for i in 0..pieces {
+        let (lo, hi) = bounds(i);
+        if !greater(hi, lo) {
+            continue;
+        }
+        k += 1;
+        let j1 = if k == count {
+            last
+        } else {
+            let share = last_f * ((hi.to_f64() - a) / width) + 0.5;
+            #[allow(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "a finite value in [0.5, N − 0.5]; `as` saturates anyway"
+            )]
+            let ideal = share as usize;
+            ideal.max(j0 + 1).min(last - (count - k))
+        };
+        #[allow(clippy::cast_precision_loss)]
+        let m = (j1 - j0) as f64;
+        let (x0, x1) = (lo.to_f64(), hi.to_f64());
+        for j in j0..j1 {
+            #[allow(clippy::cast_precision_loss)]
+            let t = (j - j0) as f64 / m;
+            if let Some(slot) = u.get_mut(j) {
+                *slot = if j == j0 {
+                    lo
+                } else {
+                    param(x0 + (x1 - x0) * t, lo, hi)
+                };
+            }
+        }
+        if j0 > 0
+            && let Some(flag) = knot.get_mut(j0)
+        {
+            *flag = true;
+        }
+        j0 = j1;
+    }
+    if let Some(first) = u.first_mut() {
+        *first = start;
+    }
+    if let Some(final_) = u.last_mut() {
+        *final_ = end;
+    }
+    (u, knot)
+}
+
+/// A parameter just below the piece boundary `x` (about two units of the scalar's
+/// resolution, not below `floor`), where [`ParamCurveDeriv::deriv`] uses the piece ending
+/// at `x`: its speed is the left-sided speed at `x` up to `O(ε·|c''|)`. `x` itself when the
+/// scalar cannot represent a smaller value above `floor`.
+fn below<S: Scalar>(x: S, floor: S) -> S {
+    let xf = x.to_f64();
+    let step = 2.0 * S::EPSILON * xf.abs().max(1.0);
+    let v = param(xf - step, floor, x);
+    if v < x { v } else { x }
+}
+
 impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
-    /// Builds the table for `curve` with `N` samples uniform in the parameter, the arc lengths
-    /// computed within `accuracy / 2` (see the [type documentation](Self)).
+    /// Builds the table for `curve` with `N` samples on the curve's knots and uniform in the
+    /// parameter inside each piece (uniform over the domain when the curve has more than
+    /// `N − 1` pieces), the arc lengths computed within `accuracy / 2` (see the
+    /// [type documentation](Self)).
     ///
     /// # Errors
     /// - [`Error::InvalidArgument`]: `N < 2`, or `accuracy` not finite and positive.
@@ -522,22 +652,9 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
             return Err(Error::InvalidArgument);
         }
         check_positive(accuracy)?;
-        let (start, end) = curve.domain();
-        let (a, b) = (start.to_f64(), end.to_f64());
         #[allow(clippy::cast_precision_loss)]
         let last = (N - 1) as f64;
-        let mut u = [S::ZERO; N];
-        for (i, ui) in u.iter_mut().enumerate() {
-            #[allow(clippy::cast_precision_loss)]
-            let t = i as f64 / last;
-            *ui = if i == 0 {
-                start
-            } else if i + 1 == N {
-                end
-            } else {
-                param(a + (b - a) * t, start, end)
-            };
-        }
+        let (u, knot) = nodes::<C, N>(curve);
         for i in 1..N {
             if !greater(at(&u, i), at(&u, i - 1)) {
                 return Err(Error::ZeroLengthInterval { index: i - 1 });
@@ -559,33 +676,57 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
             }
         }
 
-        // Hermite slopes at the samples, limited to three times the adjacent secants.
+        // Hermite slopes at the samples, limited to three times the adjacent secants: at a
+        // piece boundary one-sided (the left slope from the left piece limited by the left
+        // interval, the right slope from the right piece by the right interval), elsewhere
+        // one slope limited by both intervals.
         let du = |i: usize| at(&u, i + 1).to_f64() - at(&u, i).to_f64();
         let ds = |i: usize| at(&s, i + 1).to_f64() - at(&s, i).to_f64();
         let mut u_tan = [[S::ZERO; 2]; N];
         let mut s_tan = [[S::ZERO; 2]; N];
-        let slopes = |i: usize| -> Result<(f64, f64), Error> {
-            let v = norm64(&curve.deriv(at(&u, i), 1));
-            if !v.is_finite() {
+        // (du/ds, ds/du) from the left and from the right of sample i.
+        let slopes = |i: usize| -> Result<[(f64, f64); 2], Error> {
+            let ui = at(&u, i);
+            let right = norm64(&curve.deriv(ui, 1));
+            let is_knot = at(&knot, i);
+            let left = if is_knot {
+                norm64(&curve.deriv(below(ui, at(&u, i.saturating_sub(1))), 1))
+            } else {
+                right
+            };
+            if !(left.is_finite() && right.is_finite()) {
                 return Err(Error::NonFinite);
             }
-            let (mut du_ds, mut ds_du) = (1.0 / v, v);
-            // The intervals i − 1 and i, where they exist.
-            for j in i.saturating_sub(1)..(i + 1).min(N - 1) {
-                du_ds = du_ds.min(3.0 * du(j) / ds(j));
-                ds_du = ds_du.min(3.0 * ds(j) / du(j));
+            let mut out = [(1.0 / left, left), (1.0 / right, right)];
+            // The intervals i − 1 (left side) and i (right side), where they exist; away
+            // from a piece boundary both sides are limited by both intervals.
+            for (side, slot) in out.iter_mut().enumerate() {
+                let mut lo = i.saturating_sub(1);
+                let mut hi = (i + 1).min(N - 1);
+                if is_knot {
+                    if side == 0 {
+                        hi = i;
+                    } else {
+                        lo = i;
+                    }
+                }
+                for j in lo..hi {
+                    slot.0 = slot.0.min(3.0 * du(j) / ds(j));
+                    slot.1 = slot.1.min(3.0 * ds(j) / du(j));
+                }
             }
-            Ok((du_ds, ds_du))
+            Ok(out)
         };
         let mut here = slopes(0)?;
         for i in 0..N - 1 {
             let next = slopes(i + 1)?;
             let scaled = |x: f64| S::from_f64(x).ok_or(Error::OutOfRange);
+            let (start_side, end_side) = (here[1], next[0]);
             if let Some(slot) = u_tan.get_mut(i) {
-                *slot = [scaled(here.0 * ds(i))?, scaled(next.0 * ds(i))?];
+                *slot = [scaled(start_side.0 * ds(i))?, scaled(end_side.0 * ds(i))?];
             }
             if let Some(slot) = s_tan.get_mut(i) {
-                *slot = [scaled(here.1 * du(i))?, scaled(next.1 * du(i))?];
+                *slot = [scaled(start_side.1 * du(i))?, scaled(end_side.1 * du(i))?];
             }
             here = next;
         }
@@ -640,8 +781,10 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
     /// at the interval midpoints when the table was built (for `u(s)` as `|c'|·|Δu|`, for
     /// `s(u)` directly), plus the arc-length accuracy. An estimate, not a bound: the midpoint
     /// is where the Hermite error kernel `t²(1 − t)²` peaks. On smooth pieces the true maximum
-    /// is within 1.5 times this value; near a knot where the curve is only C¹ (or C⁰) the
-    /// tests find up to about 5 times, so budget 8 times the estimate there.
+    /// is within 1.5 times this value; knots are samples, so this holds next to them too,
+    /// except in the fallback with more pieces than intervals, where near a knot at which
+    /// the curve is only C¹ (or C⁰) the tests find up to about 5 times, so budget 8 times
+    /// the estimate there.
     #[inline]
     pub fn error_estimate(&self) -> f64 {
         self.error
@@ -1043,5 +1186,153 @@ mod tests {
             ArcLengthTable::<I16F16, 8>::new(&long, 1e-3),
             Err(Error::OutOfRange)
         );
+    }
+
+    /// (u, 0) on [0, 1], then (1 + x + x²/2, 0) with x = u − 1 on [1, 2.2]: C¹ at the knot
+    /// u = 1 (c' = (1, 0) on both sides) with a kink in the speed (slope 0, then 1).
+    fn c1_kink() -> PolyCurve<f64> {
+        PolyCurve::new(
+            &[0.0, 1.0, 2.2],
+            &[
+                &[[0.0, 0.0], [1.0, 0.0]],
+                &[[1.0, 0.0], [1.0, 0.0], [0.5, 0.0]],
+            ],
+        )
+    }
+
+    /// The exact inverse of [`c1_kink`]: `u = s` up to 1, then `1 + √(2s − 1) − 1`.
+    fn c1_kink_u(s: f64) -> f64 {
+        if s <= 1.0 {
+            s
+        } else {
+            libm::sqrt(2.0 * s - 1.0)
+        }
+    }
+
+    #[test]
+    fn table_nodes_include_the_knots() {
+        // 7 intervals over widths 1 and 1.2: round(7/2.2) = 3 on the first piece.
+        let table = ArcLengthTable::<f64, 8>::new(&c1_kink(), 1e-12).unwrap();
+        assert_eq!(table.sample(3).unwrap().0, 1.0);
+        assert!((table.sample(3).unwrap().1 - 1.0).abs() < 1e-12);
+        assert_eq!(table.sample(0), Some((0.0, 0.0)));
+        assert_eq!(table.sample(7).unwrap().0, 2.2);
+        // Uniform inside each piece.
+        assert!((table.sample(1).unwrap().0 - 1.0 / 3.0).abs() < 1e-15);
+        assert!((table.sample(5).unwrap().0 - 1.6).abs() < 1e-15);
+        // Three pieces of widths 0.1, 5, 0.1 and 8 samples: every piece gets an interval.
+        let c = PolyCurve::<f64>::new(
+            &[0.0, 0.1, 5.1, 5.2],
+            &[
+                &[[0.0, 0.0], [1.0, 0.0]],
+                &[[0.1, 0.0], [1.0, 0.0]],
+                &[[5.1, 0.0], [1.0, 0.0]],
+            ],
+        );
+        let table = ArcLengthTable::<f64, 8>::new(&c, 1e-12).unwrap();
+        let u: Vec<f64> = (0..8).map(|i| table.sample(i).unwrap().0).collect();
+        assert_eq!(u[0], 0.0);
+        assert_eq!(u[1], 0.1);
+        assert_eq!(u[6], 5.1);
+        assert_eq!(u[7], 5.2);
+        assert!((u[2] - 1.1).abs() < 1e-12, "{u:?}");
+        // In fixed point the knot is a sample too.
+        let c = PolyCurve::<I16F16>::new(
+            &[0.0, 1.0, 2.25],
+            &[
+                &[[0.0, 0.0], [1.0, 0.0]],
+                &[[1.0, 0.0], [1.0, 0.0], [0.5, 0.0]],
+            ],
+        );
+        let table = ArcLengthTable::<I16F16, 10>::new(&c, 1e-4).unwrap();
+        assert!((0..10).any(|i| table.sample(i).unwrap().0 == I16F16::ONE));
+    }
+
+    #[test]
+    fn table_inverse_is_accurate_at_a_c1_knot() {
+        let table = ArcLengthTable::<f64, 8>::new(&c1_kink(), 1e-12).unwrap();
+        let len = table.length();
+        assert!((len - c1_kink_u_inv(2.2)).abs() < 1e-12);
+        let mut worst = 0.0_f64;
+        for k in 0..=4000 {
+            let s = len * f64::from(k) / 4000.0;
+            worst = worst.max((table.param_at(s) - c1_kink_u(s)).abs());
+        }
+        // The first piece is linear (exact); the second is a smooth inverse with exact
+        // one-sided slopes at the knot.
+        assert!(worst < 5e-4, "{worst}");
+        for s in [0.999_999, 1.0, 1.000_001] {
+            assert!((table.param_at(s) - c1_kink_u(s)).abs() < 1e-9, "{s}");
+        }
+        // The time law's acceleration: the second difference of u(s) just left of the knot
+        // is that of the linear piece (zero), not smoothed across the knot.
+        let h = 1e-4;
+        let d2 =
+            table.param_at(1.0 - 2.0 * h) - 2.0 * table.param_at(1.0 - h) + table.param_at(1.0);
+        assert!(d2.abs() < 1e-12, "{d2}");
+        assert!(table.error_estimate() < 1e-3);
+    }
+
+    /// Arc length of [`c1_kink`] from 0 to `u`.
+    fn c1_kink_u_inv(u: f64) -> f64 {
+        if u <= 1.0 {
+            u
+        } else {
+            let x = u - 1.0;
+            1.0 + x + 0.5 * x * x
+        }
+    }
+
+    #[test]
+    fn table_uses_one_sided_speeds_at_a_speed_jump() {
+        // (u, 0) on [0, 1], then (1 + 2x, 0): the speed jumps from 1 to 2 at the knot (C⁰).
+        // With a sample on the knot and one-sided slopes both pieces are reproduced exactly.
+        let c = PolyCurve::<f64>::new(
+            &[0.0, 1.0, 2.0],
+            &[&[[0.0, 0.0], [1.0, 0.0]], &[[1.0, 0.0], [2.0, 0.0]]],
+        );
+        let table = ArcLengthTable::<f64, 7>::new(&c, 1e-12).unwrap();
+        assert!((table.length() - 3.0).abs() < 1e-12);
+        for k in 0..=300 {
+            let s = 3.0 * f64::from(k) / 300.0;
+            let u = if s <= 1.0 { s } else { 1.0 + 0.5 * (s - 1.0) };
+            assert!((table.param_at(s) - u).abs() < 1e-12, "{s}");
+            assert!((table.length_at(u) - s).abs() < 1e-12, "{u}");
+        }
+        assert!(table.error_estimate() < 1e-10);
+    }
+
+    #[test]
+    fn table_with_more_pieces_than_intervals_samples_uniformly() {
+        // 5 pieces, 4 intervals: documented fallback to uniform samples over the domain.
+        let c = PolyCurve::<f64>::new(
+            &[0.0, 0.5, 1.0, 1.5, 2.0, 3.0],
+            &[
+                &[[0.0, 0.0], [1.0, 0.0]],
+                &[[0.5, 0.0], [1.0, 0.0]],
+                &[[1.0, 0.0], [1.0, 0.0]],
+                &[[1.5, 0.0], [1.0, 0.0]],
+                &[[2.0, 0.0], [1.0, 0.0]],
+            ],
+        );
+        let table = ArcLengthTable::<f64, 5>::new(&c, 1e-12).unwrap();
+        for i in 0..5 {
+            assert!((table.sample(i).unwrap().0 - 0.75 * i as f64).abs() < 1e-15);
+        }
+        assert!((table.param_at(1.2) - 1.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn below_a_knot() {
+        assert!(below(2.0_f64, 1.0) < 2.0);
+        assert!(below(3.0_f64, 1.0) < 3.0);
+        assert!(below(3.0_f64, 1.0) > 2.0);
+        assert!(3.0 - below(3.0_f64, 1.0) < 1e-14);
+        assert_eq!(below(1.0_f32, 0.0), 1.0 - 2.0 * f32::EPSILON);
+        let one = I16F16::ONE;
+        assert_eq!(below(one, I16F16::ZERO), one - I16F16::from_bits(2));
+        // Never below the floor, and the floor equal to x gives x.
+        assert_eq!(below(1.0_f64, 1.0), 1.0);
+        assert_eq!(below(1.0_f64, 1.0 - 1e-17), 1.0 - 1e-17);
     }
 }
