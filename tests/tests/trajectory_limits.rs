@@ -57,13 +57,9 @@
 //!   position error): 1.44 × the planned jerk on the circle at the default tolerance, 1.48 ×
 //!   on the pick-and-place path at 10⁻⁵: 1.08 × and 1.11 × the machine's jerk, beyond the
 //!   feed share that was meant to cover it.
-//! * `circle_follows_planned_acceleration_table_256` (while `…_table_257` passes): the
-//!   arc-length table's samples are uniform in `u` and not placed on the curve's knots. Where
-//!   the parametric speed `|c'(u)|` has a kink (the NURBS circle's double knots) the C¹
-//!   Hermite inverse `u(s)` cannot follow it inside a table interval, and the composed
-//!   motion's tangential acceleration departs from the plan by up to 0.23 × a' (a jump in the
-//!   time law: its jerk is unbounded there; at tolerance 10⁻⁶ the compiled jerk reaches 42 ×
-//!   the planned jerk).
+//! * (fixed) `circle_follows_planned_acceleration_table_256`: the arc-length table's samples
+//!   were uniform in `u`, not on the curve's knots, so at the NURBS circle's double knots the
+//!   time law had an acceleration jump; the table now samples every knot with one-sided slopes.
 
 use std::thread;
 
