@@ -639,8 +639,6 @@ fn pick_and_place_parameter() {
 /// At a tighter compile tolerance the spline follows the plan more closely in position,
 /// but its jerk overshoots the plan's jerk steps even more.
 #[test]
-#[ignore = "bug: the compiled spline's jerk overshoots the S-curve's jerk steps by ~48 % \
-            (1.477 × planned = 1.108 × machine jerk at relative tolerance 1e-5)"]
 fn pick_and_place_scurve_jerk_tight_tolerance() {
     let m = pick_and_place_machine();
     let curve = pick_and_place();
@@ -673,8 +671,6 @@ fn circle_scurve_without_jerk() {
 }
 
 #[test]
-#[ignore = "bug: the compiled spline's jerk overshoots the S-curve's jerk steps \
-            (1.442 × planned = 1.081 × machine jerk at the default tolerance)"]
 fn circle_scurve_jerk() {
     check_law("nurbs circle", &circle(), Law::SCurve, &circle_machine());
 }

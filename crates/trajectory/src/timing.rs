@@ -22,4 +22,38 @@ pub trait Timing {
 
     /// `(u, du/dt)` at time `t` (clamped to `[0, duration]`).
     fn param(&self, t: f64) -> (f64, f64);
+
+    /// Reports the break times: the times in `(0, duration)` where the motion's jerk (the
+    /// third derivative of the path position) jumps while the acceleration is continuous,
+    /// e.g. the phase boundaries of an S-curve, by calling `out` once per break in
+    /// increasing order (duplicates allowed).
+    ///
+    /// The compiler puts a spline knot on the tick nearest each break (see
+    /// [`compile`](crate::compile)), so that the fitted cubic pieces need not follow a jump in
+    /// jerk inside a piece. The default reports none (a smooth time law).
+    ///
+    /// ```
+    /// use strak_trajectory::Timing;
+    /// /// Constant jerk for 1 s, then constant acceleration for 1 s: u(t) in [0, 7/6].
+    /// struct Ramp;
+    /// impl Timing for Ramp {
+    ///     fn duration(&self) -> f64 { 2.0 }
+    ///     fn param(&self, t: f64) -> (f64, f64) {
+    ///         let t = t.clamp(0.0, 2.0);
+    ///         if t < 1.0 {
+    ///             (t * t * t / 6.0, 0.5 * t * t)
+    ///         } else {
+    ///             let r = t - 1.0;
+    ///             (1.0 / 6.0 + 0.5 * r + 0.5 * r * r, 0.5 + r)
+    ///         }
+    ///     }
+    ///     fn breaks(&self, out: &mut dyn FnMut(f64)) { out(1.0) }
+    /// }
+    /// let mut seen = [0.0; 1];
+    /// Ramp.breaks(&mut |t| seen[0] = t);
+    /// assert_eq!(seen, [1.0]);
+    /// ```
+    fn breaks(&self, out: &mut dyn FnMut(f64)) {
+        let _ = out;
+    }
 }

@@ -102,6 +102,83 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
         Ok(fit)
     }
 
+    /// Inserts a knot at tick `k` with the position from `exact`, unless `k` is already a
+    /// knot or not strictly inside `(0, ticks)` (then nothing changes). Keeps the knots
+    /// sorted (`O(m)` shifting); the slopes are solved later.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the spline already has `P` pieces; errors of `exact`.
+    pub(crate) fn insert_knot(
+        &mut self,
+        k: u32,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        let m = self.m;
+        let ends = self.ends.get(..m).unwrap_or(&[]);
+        let last = ends.last().copied().unwrap_or(0);
+        let at = ends.partition_point(|&e| e < k);
+        if k == 0 || k >= last || ends.get(at) == Some(&k) {
+            return Ok(());
+        }
+        if m >= P {
+            return Err(Error::CapacityExceeded {
+                capacity: P,
+                required: m + 1,
+            });
+        }
+        let value = exact(k)?;
+        for i in (at..m).rev() {
+            self.ends[i + 1] = self.ends[i];
+            self.values[i + 1] = self.values[i];
+        }
+        self.ends[at] = k;
+        self.values[at] = value;
+        self.m = m + 1;
+        Ok(())
+    }
+
+    /// Splits every piece longer than `max_len` ticks into `⌈n / max_len⌉` pieces of equal
+    /// length (within a tick), keeping the existing knots.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the result would exceed `P` pieces; errors of `exact`.
+    pub(crate) fn subdivide(
+        &mut self,
+        max_len: u32,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        let max_len = max_len.max(1);
+        let parts = |n: u32| n.div_ceil(max_len).max(1) as usize;
+        let m: usize = (0..self.m)
+            .map(|j| parts(self.knot(j + 1) - self.knot(j)))
+            .sum();
+        if m > P {
+            return Err(Error::CapacityExceeded {
+                capacity: P,
+                required: m,
+            });
+        }
+        // Backwards, so that every entry is read before its slot is overwritten.
+        let mut w = m;
+        for j in (0..self.m).rev() {
+            let (k0, k1) = (self.knot(j), self.knot(j + 1));
+            let value = self.values[j];
+            let q = parts(k1 - k0);
+            w -= 1;
+            self.ends[w] = k1;
+            self.values[w] = value;
+            for i in (1..q).rev() {
+                #[allow(clippy::cast_possible_truncation)]
+                let k = k0 + (u64::from(k1 - k0) * i as u64 / q as u64) as u32;
+                w -= 1;
+                self.ends[w] = k;
+                self.values[w] = exact(k)?;
+            }
+        }
+        self.m = m;
+        Ok(())
+    }
+
     /// The number of pieces.
     pub(crate) fn pieces(&self) -> usize {
         self.m
@@ -384,6 +461,56 @@ mod tests {
         assert!(len(at_step) <= 2);
         assert!(len(0) >= 16 && len(fit.pieces() - 1) >= 16);
         assert!(fit.pieces() < 160, "{}", fit.pieces());
+    }
+
+    #[test]
+    fn knots_are_inserted_in_order() {
+        let mut exact = |k: u32| Ok([f64::from(k) * 0.5]);
+        let mut fit: SplineFit<1, 6> = SplineFit::new(1000, 256, [0.5], [0.5], &mut exact).unwrap();
+        assert_eq!(fit.pieces(), 4); // knots 0, 250, 500, 750, 1000
+        for k in [0, 1000, 2000, 250, 600, 10, 600] {
+            fit.insert_knot(k, &mut exact).unwrap();
+        }
+        let knots: Vec<u32> = (0..=fit.pieces()).map(|j| fit.knot(j)).collect();
+        assert_eq!(knots, [0, 10, 250, 500, 600, 750, 1000]);
+        assert_eq!(fit.value(4), [300.0]);
+        assert_eq!(fit.value(6), [500.0]);
+        assert_eq!(
+            fit.insert_knot(900, &mut exact),
+            Err(Error::CapacityExceeded {
+                capacity: 6,
+                required: 7
+            })
+        );
+        // an existing knot needs no room
+        assert_eq!(fit.insert_knot(750, &mut exact), Ok(()));
+        // a straight line stays exact
+        fit.solve();
+        assert_eq!(fit.mark(1e-12, &mut exact).unwrap(), 0);
+    }
+
+    #[test]
+    fn subdivision_keeps_the_knots() {
+        let mut exact = |k: u32| Ok([f64::from(k)]);
+        let mut fit: SplineFit<1, 16> =
+            SplineFit::new(1000, 1000, [1.0], [1.0], &mut exact).unwrap();
+        fit.insert_knot(150, &mut exact).unwrap();
+        fit.subdivide(100, &mut exact).unwrap();
+        let knots: Vec<u32> = (0..=fit.pieces()).map(|j| fit.knot(j)).collect();
+        assert_eq!(
+            knots,
+            [0, 75, 150, 244, 338, 433, 527, 622, 716, 811, 905, 1000]
+        );
+        assert!((0..=fit.pieces()).all(|j| fit.value(j) == [f64::from(fit.knot(j))]));
+        let mut small: SplineFit<1, 3> =
+            SplineFit::new(1000, 1000, [1.0], [1.0], &mut exact).unwrap();
+        assert_eq!(
+            small.subdivide(256, &mut exact),
+            Err(Error::CapacityExceeded {
+                capacity: 3,
+                required: 4
+            })
+        );
     }
 
     #[test]
