@@ -96,3 +96,73 @@ pub fn linspace(a: f64, b: f64, count: usize) -> Vec<f64> {
         })
         .collect()
 }
+
+// ---------------------------------------------------------------------------------------------
+// Property harness with measured errors (printed with `--nocapture`)
+
+use std::cell::Cell;
+use std::fmt::Debug;
+
+use proptest::test_runner::{Config, TestCaseError, TestCaseResult, TestRunner};
+
+/// The largest error and the largest error/tolerance ratio seen by one property.
+#[derive(Debug, Default)]
+pub struct Stats {
+    /// The largest error seen.
+    pub err: Cell<f64>,
+    /// The largest error/tolerance ratio seen.
+    pub ratio: Cell<f64>,
+}
+
+impl Stats {
+    /// Checks `err <= tol` and records both.
+    pub fn check(&self, err: f64, tol: f64, what: impl FnOnce() -> String) -> TestCaseResult {
+        self.err.set(self.err.get().max(err));
+        if tol > 0.0 {
+            self.ratio.set(self.ratio.get().max(err / tol));
+        }
+        if err <= tol {
+            Ok(())
+        } else {
+            Err(TestCaseError::fail(format!(
+                "{}: error {err:e} > tolerance {tol:e}",
+                what()
+            )))
+        }
+    }
+}
+
+/// Runs a property over `cases` random inputs and prints the measured errors.
+pub fn run<T>(
+    name: &str,
+    cases: u32,
+    strategy: T,
+    body: impl Fn(T::Value, &Stats) -> TestCaseResult,
+) where
+    T: Strategy,
+    T::Value: Debug,
+{
+    let stats = Stats::default();
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    if let Err(e) = runner.run(&strategy, |v| body(v, &stats)) {
+        panic!("{name}: {e}");
+    }
+    eprintln!(
+        "{name}: max error {:.3e}, max error/tolerance {:.3}",
+        stats.err.get(),
+        stats.ratio.get()
+    );
+}
+
+/// `Err` unless `cond`.
+pub fn ensure(cond: bool, what: impl FnOnce() -> String) -> TestCaseResult {
+    if cond {
+        Ok(())
+    } else {
+        Err(TestCaseError::fail(what()))
+    }
+}

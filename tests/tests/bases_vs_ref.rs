@@ -11,77 +11,18 @@
 //! Each property prints its largest measured error and error/tolerance ratio
 //! (`cargo test -p strak-tests --test bases_vs_ref -- --nocapture`).
 
-use std::cell::Cell;
-use std::fmt::Debug;
-
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseError, TestCaseResult, TestRunner};
+use proptest::test_runner::{TestCaseError, TestCaseResult};
 use strak_curves::basis::{self, LagrangeBasis, MonomialCurve};
 use strak_curves::{Error, I16F16, I32F32, ParamCurve, ParamCurveDeriv, Point, Scalar};
-use strak_tests::{max_diff, pt, to_vec};
+use strak_tests::{Stats, ensure, max_diff, pt, run, to_vec};
 
 /// Cases per property (each case covers all degrees).
 const CASES: u32 = 64;
 
 // ---------------------------------------------------------------------------------------------
-// Infrastructure (as in bezier_vs_ref.rs)
-
-/// The largest error and the largest error/tolerance ratio seen by one property.
-#[derive(Default)]
-struct Stats {
-    err: Cell<f64>,
-    ratio: Cell<f64>,
-}
-
-impl Stats {
-    /// Checks `err <= tol` and records both.
-    fn check(&self, err: f64, tol: f64, what: impl FnOnce() -> String) -> TestCaseResult {
-        self.err.set(self.err.get().max(err));
-        if tol > 0.0 {
-            self.ratio.set(self.ratio.get().max(err / tol));
-        }
-        if err <= tol {
-            Ok(())
-        } else {
-            Err(TestCaseError::fail(format!(
-                "{}: error {err:e} > tolerance {tol:e}",
-                what()
-            )))
-        }
-    }
-}
-
-/// Runs a property over `cases` random inputs and prints the measured errors.
-fn run<T>(name: &str, cases: u32, strategy: T, body: impl Fn(T::Value, &Stats) -> TestCaseResult)
-where
-    T: Strategy,
-    T::Value: Debug,
-{
-    let stats = Stats::default();
-    let mut runner = TestRunner::new(Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    });
-    if let Err(e) = runner.run(&strategy, |v| body(v, &stats)) {
-        panic!("{name}: {e}");
-    }
-    eprintln!(
-        "{name}: max error {:.3e}, max error/tolerance {:.3}",
-        stats.err.get(),
-        stats.ratio.get()
-    );
-}
-
-/// `Err` unless `cond`.
-fn ensure(cond: bool, what: impl FnOnce() -> String) -> TestCaseResult {
-    if cond {
-        Ok(())
-    } else {
-        Err(TestCaseError::fail(what()))
-    }
-}
+// Infrastructure (the harness `run`/`Stats`/`ensure` is shared in strak_tests)
 
 /// One rounding unit of a value of magnitude `m` in `S`, plus the reference's own `f64` unit.
 fn unit<S: Scalar>(m: f64) -> f64 {
