@@ -23,7 +23,7 @@
 //! # parameter:      duration = 2.0 (seconds, required)
 //! # constant-speed: speed = 100.0 (optional, default limits.velocity)
 //! # trapezoid, s-curve: samples = 1024, zone_tolerance = 0.05,
-//! #                     axis_centripetal_share = 0.5 (optional planner settings)
+//! #                     centripetal_share = 0.5 (optional planner settings)
 //!
 //! [compile]                   # optional
 //! tolerance = 0.001           # position tolerance in units (default 1e-4 of the extent)
@@ -141,7 +141,7 @@ pub struct JobProfile {
     pub zone_tolerance: Option<f64>,
     /// Trapezoid, S-curve: share of each axis acceleration for the centripetal part
     /// (default 0.5).
-    pub axis_centripetal_share: Option<f64>,
+    pub centripetal_share: Option<f64>,
 }
 
 /// The optional `[compile]` table.
@@ -502,8 +502,8 @@ impl Job {
             &[Trapezoid, SCurve],
         )?;
         uses(
-            "axis_centripetal_share",
-            p.axis_centripetal_share.is_some(),
+            "centripetal_share",
+            p.centripetal_share.is_some(),
             &[Trapezoid, SCurve],
         )?;
         match (k, p.duration) {
@@ -545,11 +545,11 @@ impl Job {
                 format!("must be finite and ≥ 0, not {t}"),
             ));
         }
-        if let Some(s) = p.axis_centripetal_share
+        if let Some(s) = p.centripetal_share
             && !(s > 0.0 && s < 1.0)
         {
             return Err(JobError::new(
-                "profile.axis_centripetal_share",
+                "profile.centripetal_share",
                 format!("must be between 0 and 1 (exclusive), not {s}"),
             ));
         }

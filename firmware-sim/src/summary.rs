@@ -273,7 +273,8 @@ impl fmt::Display for Summary {
         )?;
         writeln!(
             f,
-            "  planned    with a = {}, j = {} ({} of the limits; the rest is kept for feed changes)",
+            "  planned    with v = {}, a = {}, j = {} (a and j: {} of the limits; the rest is kept for feed changes)",
+            num(self.planned_with.velocity),
             num(self.planned_with.acceleration),
             num(self.planned_with.jerk),
             num(1.0 - self.feed_share)

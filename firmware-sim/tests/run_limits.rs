@@ -66,9 +66,58 @@ fn bundled_jobs_respect_every_limit() {
     for file in files {
         let name = file.file_stem().unwrap().to_string_lossy().into_owned();
         let job = Job::parse(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        check_job(&name, &job);
+    }
+}
+
+/// A straight line cruising at an axis velocity limit (x moves twice as fast as y), and a
+/// wavy spline whose y axis limits the speed: the compiled spline's fit error must not push
+/// the samples over the velocity limits the plan cruises at.
+#[test]
+fn cruising_at_axis_velocity_limits() {
+    let line = r#"
+        rate_hz = 1000
+        number = "f64"
+        [path]
+        kind = "bspline"
+        degree = 3
+        points = [[0, 0], [10, 5], [100, 50], [200, 100], [290, 145], [300, 150]]
+        [limits]
+        velocity = 400
+        acceleration = 5000
+        jerk = 100000
+        axis_velocity = [300, 300]
+        [profile]
+        kind = "s-curve"
+    "#;
+    let wave = r#"
+        rate_hz = 500
+        number = "f32"
+        [path]
+        kind = "cubic-spline"
+        boundary = "natural"
+        points = [[0, 0], [50, 30], [100, 0], [150, 40], [200, 0]]
+        [limits]
+        velocity = 300
+        acceleration = 3000
+        jerk = 50000
+        axis_velocity = [250, 120]
+        axis_acceleration = [2500, 2000]
+        [profile]
+        kind = "s-curve"
+    "#;
+    for (name, text) in [("line", line), ("wave", wave)] {
+        check_job(name, &Job::parse(text).unwrap());
+    }
+}
+
+/// Runs `job` and checks every limit from its samples.
+fn check_job(name: &str, job: &Job) {
+    {
+        let name = name.to_owned();
         let dir = tempfile::tempdir().unwrap();
         let summary = run_job(
-            &job,
+            job,
             &RunOptions {
                 out_dir: dir.path().to_owned(),
                 name: name.clone(),

@@ -187,10 +187,10 @@ fn invalid_limit_plan_options() {
         PlanOptions::new().with_zone_tolerance(-0.1),
         PlanOptions::new().with_zone_tolerance(NAN),
         PlanOptions::new().with_zone_tolerance(INF),
-        PlanOptions::new().with_axis_centripetal_share(0.0),
-        PlanOptions::new().with_axis_centripetal_share(1.0),
-        PlanOptions::new().with_axis_centripetal_share(NAN),
-        PlanOptions::new().with_axis_centripetal_share(-0.5),
+        PlanOptions::new().with_centripetal_share(0.0),
+        PlanOptions::new().with_centripetal_share(1.0),
+        PlanOptions::new().with_centripetal_share(NAN),
+        PlanOptions::new().with_centripetal_share(-0.5),
     ];
     for o in bad_options {
         assert!(
@@ -205,7 +205,7 @@ fn invalid_limit_plan_options() {
     for o in [
         PlanOptions::new().with_samples(1),
         PlanOptions::new().with_zone_tolerance(0.0),
-        PlanOptions::new().with_axis_centripetal_share(0.999),
+        PlanOptions::new().with_centripetal_share(0.999),
         PlanOptions::new().with_shape(ProfileShape::Trapezoid),
     ] {
         assert!(PathTiming::<_, 16, 4>::plan(&c, &l, &o).is_ok(), "{o:?}");
@@ -384,7 +384,7 @@ fn capacity_exceeded_zones() {
     // the circle with an x-axis velocity limit: the speed limit varies, many zones
     let circle = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).expect("circle");
     let l = Limits::new(200.0, 2_000.0, 50_000.0)
-        .and_then(|l| l.with_axis_velocity([120.0, INF]))
+        .and_then(|l| l.with_axis_velocity([60.0, INF]))
         .expect("limits");
     let r = PathTiming::<_, 64, 2>::scurve(&circle, &l);
     assert!(

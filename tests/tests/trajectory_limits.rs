@@ -18,11 +18,12 @@
 //! * velocity from position differences `(x_{k+1} − x_k)/T`: path speed and per axis;
 //! * acceleration from velocity samples `(v_{k+1} − v_k)/T`: its tangential part (along the
 //!   sampled velocity), its normal (centripetal) part, and per axis;
-//! * path jerk `s⃛` from differences of the tangential acceleration `s̈_k = a_k·v_k/|v_k|`
-//!   (on the straight line also the whole jerk vector `(a_{k+1} − a_k)/T`).
+//! * path jerk `s⃛` from differences of the tangential acceleration `s̈_k = a_k·v_k/|v_k|`,
+//!   and the whole jerk vector `(a_{k+1} − a_k)/T`.
 //!
-//! The limits are those of [`Limits`]: `|ẋ| ≤ v`, tangential `|s̈| ≤ a`, centripetal
-//! `ṡ²κ ≤ a` (the planner bounds each separately, not their vector sum), `|s⃛| ≤ j`,
+//! The limits are those of [`Limits`]: `|ẋ| ≤ v`, the acceleration vector `|ẍ| ≤ a` (so
+//! tangential `|s̈| ≤ a` and centripetal `ṡ²κ ≤ a`), `|s⃛| ≤ j` and, for the S-curve, the
+//! jerk vector `|x⃛| ≤ j` (the planner bounds the motion in space, see `PathTiming::plan`),
 //! `|ẋᵢ| ≤ vᵢ`, `|ẍᵢ| ≤ aᵢ`. The sampled velocity and acceleration channels are also checked
 //! to be the derivatives of the sampled positions and velocities (exact identities of a cubic
 //! between two ticks, up to `f64` rounding).
@@ -245,9 +246,11 @@ struct Ratios {
     axis_velocity: f64,
     tangential: f64,
     centripetal: f64,
+    /// The acceleration vector `|Δv|/T`.
+    acceleration: f64,
     axis_acceleration: f64,
     path_jerk: f64,
-    /// The jerk vector `|Δa|/T` (the path jerk only on straight lines).
+    /// The jerk vector `|Δa|/T`.
     jerk_vector: f64,
 }
 
@@ -276,6 +279,7 @@ fn measure<const A: usize>(run: &Run<A>, limits: &Limits<A>) -> Ratios {
         }
         // acceleration from velocity samples
         let afd = diff(&run.v[k], &run.v[k + 1], t);
+        r.acceleration = r.acceleration.max(norm(&afd) / limits.acceleration());
         for (x, lim) in afd.iter().zip(limits.axis_acceleration()) {
             r.axis_acceleration = r.axis_acceleration.max(x.abs() / lim);
         }
@@ -348,7 +352,9 @@ struct Checks {
     /// `r³·d²|c'|/du²` follows the parameterization (the NURBS circle's `|c'|` has kinks at
     /// its double knots).
     jerk: bool,
-    /// The whole jerk vector (straight lines).
+    /// The acceleration vector (the planned laws: trapezoid and S-curve).
+    acceleration_vector: bool,
+    /// The whole jerk vector (the S-curve; straight lines also at constant speed).
     jerk_vector: bool,
 }
 
@@ -367,12 +373,13 @@ fn assert_ratios(name: &str, law: Law, o: &Outcome, checks: Checks) {
     let k = 1.0 - SHARE;
     println!(
         "{name:>14} {law:?}: speed {:.4} axis-v {:.4} | tangential {:.4} centripetal {:.4} \
-         axis-a {:.4} | path jerk {:.4} jerk vector {:.4}  (× planned limits; × {k} for \
-         the machine's)",
+         |a| {:.4} axis-a {:.4} | path jerk {:.4} jerk vector {:.4}  (× planned limits; \
+         × {k} for the machine's)",
         r.speed,
         r.axis_velocity,
         r.tangential,
         r.centripetal,
+        r.acceleration,
         r.axis_acceleration,
         r.path_jerk,
         r.jerk_vector,
@@ -400,6 +407,17 @@ fn assert_ratios(name: &str, law: Law, o: &Outcome, checks: Checks) {
         assert!(v * k <= 1.0 + ROUNDING, "{} {v} × {k} > machine", what(x));
         if checks.planned_acceleration {
             assert!(v <= 1.0 + FIT_A, "{} {v} > planned + {FIT_A}", what(x));
+        }
+    }
+    if checks.acceleration_vector {
+        let v = r.acceleration;
+        assert!(
+            v * k <= 1.0 + ROUNDING,
+            "{} {v} × {k} > machine",
+            what("|a|")
+        );
+        if checks.planned_acceleration {
+            assert!(v <= 1.0 + FIT_A, "{} {v} > planned + {FIT_A}", what("|a|"));
         }
     }
     if checks.jerk {
@@ -556,7 +574,8 @@ where
     let checks = Checks {
         planned_acceleration: law != Law::Trapezoid,
         jerk,
-        jerk_vector: straight && jerk,
+        acceleration_vector: matches!(law, Law::SCurve | Law::Trapezoid),
+        jerk_vector: law == Law::SCurve || (straight && jerk),
     };
     assert_ratios(name, law, &o, checks);
     if law == Law::ConstantSpeed {
@@ -645,7 +664,8 @@ fn pick_and_place_scurve_jerk_tight_tolerance() {
     let checks = Checks {
         planned_acceleration: true,
         jerk: true,
-        jerk_vector: false,
+        acceleration_vector: true,
+        jerk_vector: true,
     };
     assert_ratios("pick-and-place tol 1e-5", Law::SCurve, &o, checks);
 }
@@ -659,11 +679,13 @@ fn circle_scurve_without_jerk() {
     let checks = Checks {
         planned_acceleration: true,
         jerk: false,
+        acceleration_vector: true,
         jerk_vector: false,
     };
     assert_ratios("nurbs circle", Law::SCurve, &o, checks);
+    // the centripetal share ½ of the planned limit binds
     assert!(
-        o.ratios.centripetal > 0.65 && o.ratios.axis_velocity > 0.6,
+        o.ratios.centripetal > 0.45 && o.ratios.axis_velocity > 0.6,
         "{:?}",
         o.ratios
     );
@@ -778,13 +800,14 @@ fn line_parameter() {
 #[test]
 fn corner_scurve() {
     let r = check_law("corner", &corner(), Law::SCurve, &corner_machine());
-    assert!(r.centripetal > 0.95, "the corner limits the speed: {r:?}");
+    // the centripetal share ½ of the planned limit binds
+    assert!(r.centripetal > 0.45, "the corner limits the speed: {r:?}");
 }
 
 #[test]
 fn corner_trapezoid() {
     let r = check_law("corner", &corner(), Law::Trapezoid, &corner_machine());
-    assert!(r.centripetal > 0.95, "{r:?}");
+    assert!(r.centripetal > 0.45, "{r:?}");
 }
 
 #[test]

@@ -27,7 +27,7 @@ impl<const Z: usize> MotionProfile<Z> {
     pub fn constant_speed(length: f64, speed: f64) -> Result<Self, Error> {
         let length = check_length(length)?;
         let speed = check_limit(speed)?;
-        let mut zone = ProfileZone::new(0.0, length, speed, 0.0);
+        let mut zone = ProfileZone::new(0.0, length, speed, 0.0, 0.0);
         zone.v_start = speed;
         zone.v_end = speed;
         zone.push((0.0, 0.0, speed), length / speed, 0.0, 0.0);

@@ -91,7 +91,7 @@ impl Phase {
 }
 
 /// One zone of a [`MotionProfile`]: a stretch `[start, end]` of arc length with a constant
-/// speed limit and acceleration limit, entered at speed `v_start` and left at `v_end` with
+/// speed, acceleration and jerk limit, entered at speed `v_start` and left at `v_end` with
 /// zero acceleration, and its phases (at most seven).
 ///
 /// ```
@@ -99,6 +99,7 @@ impl Phase {
 /// let m = MotionProfile::<1>::scurve(10.0, 2.0, 4.0, 16.0)?;
 /// let z = &m.zones()[0];
 /// assert_eq!((z.start(), z.end(), z.v_limit(), z.a_limit()), (0.0, 10.0, 2.0, 4.0));
+/// assert_eq!(z.j_limit(), 16.0);
 /// assert_eq!((z.v_start(), z.v_end()), (0.0, 0.0));
 /// assert_eq!(z.phases().len(), 7); // reaches a_max and v_max: all seven phases
 /// # Ok::<(), strak_trajectory::Error>(())
@@ -110,6 +111,7 @@ pub struct ProfileZone {
     pub(super) end: f64,
     pub(super) v_limit: f64,
     pub(super) a_limit: f64,
+    pub(super) j_limit: f64,
     pub(super) v_start: f64,
     pub(super) v_end: f64,
     pub(super) t_start: f64,
@@ -118,13 +120,14 @@ pub struct ProfileZone {
 }
 
 impl ProfileZone {
-    /// A zone without phases yet.
-    pub(super) fn new(start: f64, end: f64, v_limit: f64, a_limit: f64) -> Self {
+    /// A zone without phases yet (`j_limit = ∞`: trapezoidal speed changes).
+    pub(super) fn new(start: f64, end: f64, v_limit: f64, a_limit: f64, j_limit: f64) -> Self {
         ProfileZone {
             start,
             end,
             v_limit,
             a_limit,
+            j_limit,
             v_start: 0.0,
             v_end: 0.0,
             t_start: 0.0,
@@ -152,6 +155,11 @@ impl ProfileZone {
     /// The zone's limit of the path acceleration `|s̈|`.
     pub fn a_limit(&self) -> f64 {
         self.a_limit
+    }
+
+    /// The zone's limit of the path jerk `|s⃛|` (`∞` for trapezoidal profiles).
+    pub fn j_limit(&self) -> f64 {
+        self.j_limit
     }
 
     /// Speed on entering the zone.
@@ -342,7 +350,7 @@ mod tests {
 
     #[test]
     fn zone_push_continues_and_skips_empty() {
-        let mut z = ProfileZone::new(0.0, 10.0, 2.0, 1.0);
+        let mut z = ProfileZone::new(0.0, 10.0, 2.0, 1.0, 1.0);
         z.push((1.0, 0.0, 0.0), 2.0, 1.0, 0.0);
         z.push((9.0, 9.0, 9.0), 0.0, 5.0, 5.0); // empty: left out
         z.push((9.0, 9.0, 9.0), 1.0, 0.0, 0.0);
@@ -363,7 +371,7 @@ mod tests {
         let zones: Vec<ProfileZone, 2> = Vec::new();
         assert_eq!(MotionProfile::from_zones(zones, 1.0), Err(Error::EmptyPath));
         let mut zones: Vec<ProfileZone, 2> = Vec::new();
-        let mut z = ProfileZone::new(0.0, 1.0, 1.0, 1.0);
+        let mut z = ProfileZone::new(0.0, 1.0, 1.0, 1.0, 1.0);
         z.push((0.0, 0.0, 1e-300), f64::INFINITY, 0.0, 0.0);
         assert!(zones.push(z).is_ok());
         assert_eq!(

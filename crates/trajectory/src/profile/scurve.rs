@@ -138,10 +138,10 @@ pub(super) fn peak_speed(v0: f64, v1: f64, v_lim: f64, length: f64, a: f64, j: f
 }
 
 /// Fills the phases of `zone` (whose `v_start`, `v_end`, limits and `t_start` are set) with
-/// the double S from `v_start` to `v_end` over the zone's length under jerk limit `j`; the
+/// the double S from `v_start` to `v_end` over the zone's length under its limits; the
 /// zone is entered at arc length `s_entry` (the end of the previous zone's motion).
-pub(super) fn fill_zone(zone: &mut ProfileZone, s_entry: f64, j: f64) {
-    let (v0, v1, a) = (zone.v_start, zone.v_end, zone.a_limit);
+pub(super) fn fill_zone(zone: &mut ProfileZone, s_entry: f64) {
+    let (v0, v1, a, j) = (zone.v_start, zone.v_end, zone.a_limit, zone.j_limit);
     let length = zone.end - zone.start;
     let vp = peak_speed(v0, v1, zone.v_limit, length, a, j);
     let up = Change::new(vp - v0, a, j);
@@ -189,8 +189,8 @@ pub(super) fn rest_to_rest<const Z: usize>(
     a: f64,
     j: f64,
 ) -> Result<MotionProfile<Z>, Error> {
-    let mut zone = ProfileZone::new(0.0, length, v, a);
-    fill_zone(&mut zone, 0.0, j);
+    let mut zone = ProfileZone::new(0.0, length, v, a, j);
+    fill_zone(&mut zone, 0.0);
     let mut zones = Vec::new();
     zones.push(zone).map_err(|_| Error::CapacityExceeded {
         capacity: Z,
@@ -330,11 +330,11 @@ mod tests {
 
     #[test]
     fn zone_between_speeds_is_continuous() {
-        let mut z = ProfileZone::new(5.0, 25.0, 4.0, 3.0);
+        let mut z = ProfileZone::new(5.0, 25.0, 4.0, 3.0, 10.0);
         z.v_start = 1.0;
         z.v_end = 2.0;
         z.t_start = 7.0;
-        fill_zone(&mut z, 5.0, 10.0);
+        fill_zone(&mut z, 5.0);
         let p = z.phases();
         assert_eq!(p.len(), 7);
         for w in p.windows(2) {

@@ -1,17 +1,47 @@
 //! The speed limit `v_lim(s)` along a curve, sampled and grouped into zones of nearly
 //! constant limit.
 //!
-//! At a parameter `u` with `c' = c'(u)`, `c'' = c''(u)` (in `f64`):
+//! At a parameter `u` with the derivatives `c', c'', c'''` (in `f64`), `σ = |c'|`, and `x(s)`
+//! the curve by arc length:
 //!
 //! ```text
-//! T = c'/|c'|                                 unit tangent
-//! κN = (c'' − (c''·T)·T) / |c'|²              curvature vector (κ = |κN|)
-//! v_lim = min( v_max, √(a_max/κ), v_i/|T_i|, √(share·a_i/|κN_i|) )   over the axes i
+//! T = x_s = c'/σ                                    unit tangent
+//! κN = x_ss = (c'' − σ'·T)/σ²                       curvature vector (κ = |κN|), σ' = c'·c''/σ
+//! x_sss = (c''' − σ''·T − 3σσ'·κN)/σ³               σ'' = (c''·c'' + c'·c''' − σ'²)/σ
 //! ```
 //!
-//! The axis acceleration is `ẍ_i = s̈·T_i + ṡ²·κN_i`: the last term reserves the share
-//! `share` of `a_i` for the centripetal part, and the zone's tangential limit
-//! `(a_i − v_zone²·max|κN_i|)/max|T_i|` (at least `(1 − share)·a_i/max|T_i|`) the rest.
+//! A motion `s(t)` with `v = ṡ`, `a = s̈`, `j = s⃛` moves the point with
+//!
+//! ```text
+//! ẍ = a·T + v²·κN
+//! x⃛ = j·T + 3·v·a·κN + v³·x_sss
+//! ```
+//!
+//! With `q` the centripetal share of [`PlanOptions`], the speed limit is
+//!
+//! ```text
+//! v_lim = min( v_max, √(q·a_max/κ), ∛(q·j_max/|x_sss|), v_i/|T_i|, √(q·a_i/|κN_i|) )
+//! ```
+//!
+//! and a zone whose speed limit is `v_z` and whose worst sampled values are `κ`, `|x_sss|`,
+//! `|T_i|`, `|κN_i|` plans with the path acceleration and jerk limits
+//!
+//! ```text
+//! a_z = min( √(a_max² − (v_z²κ)²),  (a_i − v_z²|κN_i|)/|T_i|,  √v_z·R/(√R + c·√v_z) )
+//! j_z = R − c·a_z,        R = j_max − v_z³·|x_sss|,   c = 3·v_z·κ
+//! ```
+//!
+//! The third term splits the jerk left, `R`, between speed changes (`j_z`) and the turning
+//! while they run (`c·a_z`) so that a speed change from rest to `v_z`, which takes about
+//! `v_z/a + a/j`, is fastest (on a straight line it is `√(v_z·j_max)`, the acceleration a
+//! jerk-limited change to `v_z` reaches anyway).
+//!
+//! (the first two terms at least `√(1 − q²)·a_max` and `(1 − q)·a_i/|T_i|`, `j_rest` at
+//! least `(1 − q)·j_max`, against rounding). Inside the zone `v ≤ v_z`, `|a| ≤ a_z` and
+//! `|j| ≤ j_z`, so `|ẍ| ≤ a_max`, `|ẍ_i| ≤ a_i` and, by the triangle inequality,
+//! `|x⃛| ≤ j_max`: the limits hold for the motion in space, not only along the path. The
+//! price is speed in curved stretches: at most `√q` of the centripetal limit `√(a_max/κ)`,
+//! and gentler speed changes where the path turns while the speed is high.
 
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
@@ -19,7 +49,7 @@ use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
 use super::greater;
 use super::motion::ProfileZone;
 use super::path_timing::to_param;
-use super::planner::PlanOptions;
+use super::planner::{PlanOptions, ProfileShape};
 use crate::error::Error;
 use crate::limits::Limits;
 
@@ -28,6 +58,10 @@ use crate::limits::Limits;
 struct Local<const A: usize> {
     /// The speed limit.
     v: f64,
+    /// The curvature `κ`.
+    kappa: f64,
+    /// `|x_sss|`: the turning part of the jerk is `v³·x_sss`.
+    turn: f64,
     /// Per axis `|T_i|`.
     tangent: [f64; A],
     /// Per axis `|κN_i|`.
@@ -35,18 +69,22 @@ struct Local<const A: usize> {
 }
 
 impl<const A: usize> Local<A> {
-    /// No information: the path velocity limit, no axis load.
+    /// No information: the path velocity limit, no load.
     fn neutral(v_max: f64) -> Self {
         Local {
             v: v_max,
+            kappa: 0.0,
+            turn: 0.0,
             tangent: [0.0; A],
             normal: [0.0; A],
         }
     }
 
-    /// The worst of both: the smaller speed limit, the larger axis loads.
+    /// The worst of both: the smaller speed limit, the larger loads.
     fn merge(&mut self, other: &Self) {
         self.v = self.v.min(other.v);
+        self.kappa = self.kappa.max(other.kappa);
+        self.turn = self.turn.max(other.turn);
         for (a, b) in self.tangent.iter_mut().zip(other.tangent.iter()) {
             *a = a.max(*b);
         }
@@ -56,55 +94,93 @@ impl<const A: usize> Local<A> {
     }
 }
 
+/// The path limits a zone plans with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ZoneLimits {
+    /// `|s̈|` limit.
+    acceleration: f64,
+    /// `|s⃛|` limit (`∞` for trapezoids).
+    jerk: f64,
+}
+
 /// The limits at the parameter `u`; `None` where `c'(u) = 0` (no tangent: the sample is
-/// skipped, its neighbours decide).
+/// skipped, its neighbours decide). `jerk` is the path jerk limit (`∞`: not limited).
 fn local<C, const A: usize>(
     curve: &C,
     u: f64,
     limits: &Limits<A>,
+    jerk: f64,
     share: f64,
 ) -> Result<Option<Local<A>>, Error>
 where
     C: ParamCurveDeriv,
 {
     let us = to_param(curve, u);
-    let d1 = curve.deriv(us, 1);
-    let d2 = curve.deriv(us, 2);
+    let (d1, d2, d3) = (curve.deriv(us, 1), curve.deriv(us, 2), curve.deriv(us, 3));
     let dim = <C::Point as Point>::DIM;
-    let (mut s11, mut s12) = (0.0, 0.0);
+    let coords = |i: usize| {
+        (
+            d1.coord(i).to_f64(),
+            d2.coord(i).to_f64(),
+            d3.coord(i).to_f64(),
+        )
+    };
+    let (mut s11, mut s12, mut s22, mut s13, mut s33) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for i in 0..dim {
-        let (x1, x2) = (d1.coord(i).to_f64(), d2.coord(i).to_f64());
+        let (x1, x2, x3) = coords(i);
         s11 += x1 * x1;
         s12 += x1 * x2;
+        s22 += x2 * x2;
+        s13 += x1 * x3;
+        s33 += x3 * x3;
     }
-    if !(s11.is_finite() && s12.is_finite()) {
+    if ![s11, s12, s22, s13, s33].iter().all(|x| x.is_finite()) {
         return Err(Error::Curve(strak_curves::Error::NonFinite));
     }
     if !greater(s11, 0.0) {
         return Ok(None);
     }
-    let speed = libm::sqrt(s11);
-    let along = s12 / s11;
-    let mut kappa2 = 0.0;
+    let sigma = libm::sqrt(s11);
+    let sigma1 = s12 / sigma;
+    let sigma2 = (s22 + s13 - sigma1 * sigma1) / sigma;
     let mut out = Local::<A>::neutral(limits.velocity());
+    let (mut kappa2, mut turn2) = (0.0, 0.0);
     for i in 0..dim {
-        let (x1, x2) = (d1.coord(i).to_f64(), d2.coord(i).to_f64());
-        let kn = (x2 - along * x1) / s11;
+        let (x1, x2, x3) = coords(i);
+        let t = x1 / sigma;
+        let kn = (x2 - sigma1 * t) / s11;
+        let sss = (x3 - sigma2 * t - 3.0 * sigma * sigma1 * kn) / (s11 * sigma);
         kappa2 += kn * kn;
-        if let Some(t) = out.tangent.get_mut(i) {
-            *t = (x1 / speed).abs();
+        turn2 += sss * sss;
+        if let Some(slot) = out.tangent.get_mut(i) {
+            *slot = t.abs();
         }
-        if let Some(n) = out.normal.get_mut(i) {
-            *n = kn.abs();
+        if let Some(slot) = out.normal.get_mut(i) {
+            *slot = kn.abs();
         }
     }
-    let kappa = libm::sqrt(kappa2);
-    if !kappa.is_finite() {
+    out.kappa = libm::sqrt(kappa2);
+    out.turn = libm::sqrt(turn2);
+    if !(out.kappa.is_finite() && out.turn.is_finite()) {
         return Err(Error::Curve(strak_curves::Error::NonFinite));
     }
+    // Rounding noise of the formulas (a straight line with uneven parametric speed must get
+    // κ = 0 and x_sss = 0, or v³·x_sss at high speeds would eat into the jerk budget).
+    let (n2, n3) = (libm::sqrt(s22), libm::sqrt(s33));
+    let noise = 64.0 * f64::EPSILON;
+    if out.kappa <= noise * n2 / s11 {
+        out.kappa = 0.0;
+        out.normal = [0.0; A];
+    }
+    if out.turn <= noise * (2.0 * n3 / (s11 * sigma) + 8.0 * s22 / (s11 * s11)) {
+        out.turn = 0.0;
+    }
     let mut v = limits.velocity();
-    if kappa > 0.0 {
-        v = v.min(libm::sqrt(limits.acceleration() / kappa));
+    if out.kappa > 0.0 {
+        v = v.min(libm::sqrt(share * limits.acceleration() / out.kappa));
+    }
+    if out.turn > 0.0 {
+        v = v.min(libm::cbrt(share * jerk / out.turn));
     }
     let (av, aa) = (limits.axis_velocity(), limits.axis_acceleration());
     for (((t, n), vi), ai) in out.tangent.iter().zip(&out.normal).zip(&av).zip(&aa) {
@@ -129,18 +205,42 @@ struct Open<const A: usize> {
     worst: Local<A>,
 }
 
-/// The path acceleration limit of a zone with speed limit `worst.v`.
-fn zone_acceleration<const A: usize>(worst: &Local<A>, limits: &Limits<A>, share: f64) -> f64 {
-    let mut a = limits.acceleration();
+/// The path acceleration and jerk limits of a zone with speed limit `worst.v` (see the
+/// module docs; `jerk = ∞` leaves the jerk unlimited).
+fn zone_limits<const A: usize>(
+    worst: &Local<A>,
+    limits: &Limits<A>,
+    jerk: f64,
+    share: f64,
+) -> ZoneLimits {
+    let a_max = limits.acceleration();
+    let v = worst.v;
+    let centripetal = v * v * worst.kappa;
+    let mut a = libm::sqrt((a_max * a_max - centripetal * centripetal).max(0.0))
+        .max(libm::sqrt(1.0 - share * share) * a_max);
     let aa = limits.axis_acceleration();
-    let v2 = worst.v * worst.v;
     for ((t, n), ai) in worst.tangent.iter().zip(&worst.normal).zip(&aa) {
         if *t > 0.0 && ai.is_finite() {
-            let left = (ai - v2 * n).max((1.0 - share) * ai);
+            let left = (ai - v * v * n).max((1.0 - share) * ai);
             a = a.min(left / t);
         }
     }
-    a
+    if !jerk.is_finite() {
+        return ZoneLimits {
+            acceleration: a,
+            jerk,
+        };
+    }
+    let rest = (jerk - v * v * v * worst.turn).max((1.0 - share) * jerk);
+    let turning = 3.0 * v * worst.kappa;
+    if turning > 0.0 {
+        let (sv, sr) = (libm::sqrt(v), libm::sqrt(rest));
+        a = a.min(sv * rest / (sr + turning * sv));
+    }
+    ZoneLimits {
+        acceleration: a,
+        jerk: rest - turning * a,
+    }
 }
 
 /// Samples the speed limit on `options.samples()` intervals uniform in the parameter (each
@@ -160,7 +260,11 @@ pub(super) fn zones<C, const A: usize, const N: usize, const Z: usize>(
 where
     C: ParamCurveDeriv,
 {
-    let share = options.axis_centripetal_share();
+    let share = options.centripetal_share();
+    let jerk = match options.shape() {
+        ProfileShape::SCurve => limits.jerk(),
+        ProfileShape::Trapezoid => f64::INFINITY,
+    };
     let ratio = 1.0 + options.zone_tolerance();
     let m = options.samples();
     let (u0, u1) = table.domain();
@@ -176,18 +280,14 @@ where
         }
     };
     let sample =
-        |k: usize| -> Result<Option<Local<A>>, Error> { local(curve, at(k), limits, share) };
+        |k: usize| -> Result<Option<Local<A>>, Error> { local(curve, at(k), limits, jerk, share) };
 
     let mut out: Vec<ProfileZone, Z> = Vec::new();
     let mut required = 0_usize;
     let mut close = |open: &Open<A>, s_end: f64, out: &mut Vec<ProfileZone, Z>| {
         required += 1;
-        let zone = ProfileZone::new(
-            open.s_start,
-            s_end,
-            open.worst.v,
-            zone_acceleration(&open.worst, limits, share),
-        );
+        let zl = zone_limits(&open.worst, limits, jerk, share);
+        let zone = ProfileZone::new(open.s_start, s_end, open.worst.v, zl.acceleration, zl.jerk);
         // Beyond the capacity only the count goes on.
         let _ = out.push(zone);
     };
@@ -248,23 +348,76 @@ mod tests {
 
     #[test]
     fn circle_limits() {
-        // radius 10: κ = 0.1; √(a/κ) = √(1000·10) = 100
+        // radius 10: κ = 0.1, x_sss = −κ²·T; √(q·a/κ) = √(0.5·1000·10) = √5000
         let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).unwrap();
         let limits = Limits::<2>::new(500.0, 1000.0, 1e4).unwrap();
-        let l = local(&c, 0.5, &limits, 0.5).unwrap().unwrap();
-        assert!((l.v - 100.0).abs() < 1e-9);
+        for k in 0..=40 {
+            let l = local(&c, 0.1 * f64::from(k), &limits, 1e4, 0.5)
+                .unwrap()
+                .unwrap();
+            assert!((l.kappa - 0.1).abs() < 1e-12, "κ = {}", l.kappa);
+            assert!((l.turn - 0.01).abs() < 1e-12, "|x_sss| = {}", l.turn);
+            assert!((l.v - 5000.0_f64.sqrt()).abs() < 1e-9);
+        }
+        // the jerk limit binds below j = q·... : ∛(0.5·100/0.01) = ∛5000
+        let l = local(&c, 0.5, &limits, 100.0, 0.5).unwrap().unwrap();
+        assert!((l.v - libm::cbrt(5000.0)).abs() < 1e-9);
         // at the start (10, 0): tangent (0, 1), κN = (−0.1, 0)
-        let l = local(&c, 0.0, &limits, 0.5).unwrap().unwrap();
+        let l = local(&c, 0.0, &limits, 1e4, 0.5).unwrap().unwrap();
         assert!(l.tangent[0].abs() < 1e-12 && (l.tangent[1] - 1.0).abs() < 1e-12);
         assert!((l.normal[0] - 0.1).abs() < 1e-12 && l.normal[1].abs() < 1e-12);
         // an axis acceleration limit of 100 on x with share 0.5: v ≤ √(50/0.1) ≈ 22.36
         let limits = limits
             .with_axis_acceleration([100.0, f64::INFINITY])
             .unwrap();
-        let l = local(&c, 0.0, &limits, 0.5).unwrap().unwrap();
+        let l = local(&c, 0.0, &limits, f64::INFINITY, 0.5)
+            .unwrap()
+            .unwrap();
         assert!((l.v - 500.0_f64.sqrt()).abs() < 1e-9);
-        // zone acceleration: x is loaded only centripetally there (T_x = 0): a_max stays
-        assert_eq!(zone_acceleration(&l, &limits, 0.5), 1000.0);
+        // x is loaded only centripetally there (T_x = 0): the path's own budget is left,
+        // a_max² − (v²κ)² = 1000² − 50²
+        let zl = zone_limits(&l, &limits, f64::INFINITY, 0.5);
+        assert!((zl.acceleration - (1e6_f64 - 2500.0).sqrt()).abs() < 1e-9);
+        assert_eq!(zl.jerk, f64::INFINITY);
+    }
+
+    #[test]
+    fn third_derivative_by_arc_length_matches_differences() {
+        // a twisted 3-D cubic with uneven parametric speed: x_sss against central
+        // differences of κN(u) divided by σ = |c'|
+        let c = Bezier::new([
+            [0.0, 0.0, 0.0],
+            [1.0, 3.0, -1.0],
+            [4.0, -2.0, 2.0],
+            [5.0, 1.0, 4.0],
+        ])
+        .unwrap();
+        let kn = |u: f64| -> [f64; 3] {
+            let (d1, d2) = (c.deriv(u, 1), c.deriv(u, 2));
+            let s11: f64 = d1.iter().map(|x| x * x).sum();
+            let s12: f64 = d1.iter().zip(&d2).map(|(a, b)| a * b).sum();
+            core::array::from_fn(|i| (d2[i] - s12 / s11 * d1[i]) / s11)
+        };
+        let limits = Limits::<3>::new(1.0, 1.0, 1.0).unwrap();
+        for k in 1..10 {
+            let u = 0.1 * f64::from(k);
+            let l = local(&c, u, &limits, 1.0, 0.5).unwrap().unwrap();
+            let h = 1e-5;
+            let (p, m) = (kn(u + h), kn(u - h));
+            let sigma = c.deriv(u, 1).iter().map(|x| x * x).sum::<f64>().sqrt();
+            let fd = (0..3)
+                .map(|i| ((p[i] - m[i]) / (2.0 * h) / sigma).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let n = kn(u);
+            let kappa = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((l.kappa - kappa).abs() < 1e-12 * (1.0 + kappa));
+            assert!(
+                (l.turn - fd).abs() < 1e-6 * (1.0 + fd),
+                "u = {u}: {} vs {fd}",
+                l.turn
+            );
+        }
     }
 
     #[test]
@@ -272,8 +425,8 @@ mod tests {
         // c'(0) = 0: the first two control points coincide
         let c = Bezier::new([[0.0, 0.0], [0.0, 0.0], [1.0, 1.0]]).unwrap();
         let limits = Limits::<2>::new(1.0, 1.0, 1.0).unwrap();
-        assert!(local(&c, 0.0, &limits, 0.5).unwrap().is_none());
-        assert!(local(&c, 0.5, &limits, 0.5).unwrap().is_some());
+        assert!(local(&c, 0.0, &limits, 1.0, 0.5).unwrap().is_none());
+        assert!(local(&c, 0.5, &limits, 1.0, 0.5).unwrap().is_some());
     }
 
     #[test]
@@ -285,16 +438,51 @@ mod tests {
             .unwrap()
             .with_axis_acceleration([4.0])
             .unwrap();
+        let a = |w: &Local<1>, l: &Limits<1>, q| zone_limits(w, l, f64::INFINITY, q).acceleration;
         // what the centripetal part (25·0.02 = 0.5) leaves: (4 − 0.5)/0.5 = 7
-        assert_eq!(zone_acceleration(&w, &limits, 0.25), 7.0);
+        assert_eq!(a(&w, &limits, 0.25), 7.0);
         // never below (1 − share)·a_i/|T_i| (only reached through rounding)
         w.v = 20.0;
-        assert_eq!(zone_acceleration(&w, &limits, 0.25), 6.0);
+        assert_eq!(a(&w, &limits, 0.25), 6.0);
         // the path limit caps it
         let limits = Limits::<1>::new(10.0, 2.0, 1.0)
             .unwrap()
             .with_axis_acceleration([4.0])
             .unwrap();
-        assert_eq!(zone_acceleration(&w, &limits, 0.25), 2.0);
+        assert_eq!(a(&w, &limits, 0.25), 2.0);
+    }
+
+    #[test]
+    fn jerk_budget_sums_to_the_limit() {
+        let limits = Limits::<1>::new(100.0, 1000.0, 1e4).unwrap();
+        let mut w = Local::<1>::neutral(10.0);
+        w.kappa = 0.1;
+        w.turn = 0.01;
+        // v = 10: R = 9990, c = 3, √10·R/(√R + 3√10) ≈ 300.5 < √(1000² − 10²)
+        // v = 50: R = 8750, c = 15, √50·R/(√R + 15√50) ≈ 301.5
+        let split = |v: f64, r: f64, c: f64| v.sqrt() * r / (r.sqrt() + c * v.sqrt());
+        for (v, a_expected) in [
+            (10.0, split(10.0, 9990.0, 3.0)),
+            (50.0, split(50.0, 8750.0, 15.0)),
+        ] {
+            w.v = v;
+            let zl = zone_limits(&w, &limits, 1e4, 0.5);
+            assert!((zl.acceleration - a_expected).abs() < 1e-9 * a_expected);
+            // tangential + turning-while-accelerating + turning at speed = j_max
+            let total = zl.jerk + 3.0 * v * w.kappa * zl.acceleration + v * v * v * w.turn;
+            assert!((total - 1e4).abs() < 1e-9, "total {total}");
+            // and the acceleration in space is within a_max
+            let centripetal = v * v * w.kappa;
+            assert!(zl.acceleration.hypot(centripetal) <= 1000.0 * (1.0 + 1e-12));
+        }
+        // the split is the fastest change from rest to v: v/a + a/(R − c·a) is least there
+        let (v, r, c) = (50.0, 8750.0, 15.0);
+        let time = |a: f64| v / a + a / (r - c * a);
+        let best = split(v, r, c);
+        assert!(time(best) < time(best * 1.01) && time(best) < time(best * 0.99));
+        // a straight stretch keeps the whole budget
+        let straight = Local::<1>::neutral(100.0);
+        let zl = zone_limits(&straight, &limits, 1e4, 0.5);
+        assert_eq!((zl.acceleration, zl.jerk), (1000.0, 1e4));
     }
 }
