@@ -13,7 +13,7 @@
 //!
 //! [limits]                    # path units and seconds; all > 0
 //! velocity = 500              # |v| along the path
-//! acceleration = 5000         # |a| (tangential, and centripetal in curves)
+//! acceleration = 5000         # |a| in space (tangential and centripetal together)
 //! jerk = 100000               # |j|
 //! axis_velocity = [500, 500, 250]        # optional, one per axis (inf: none)
 //! axis_acceleration = [5000, 5000, 2500] # optional, one per axis (inf: none)
@@ -89,9 +89,9 @@ impl JobNumber {
 pub struct JobLimits {
     /// Path velocity limit (units/s).
     pub velocity: f64,
-    /// Path acceleration limit (units/s²), tangential and centripetal.
+    /// Acceleration limit (units/s²): the norm of the acceleration in space.
     pub acceleration: f64,
-    /// Path jerk limit (units/s³).
+    /// Jerk limit (units/s³): the norm of the jerk in space (S-curve).
     pub jerk: f64,
     /// Per-axis velocity limits, one per axis (`inf`: none).
     pub axis_velocity: Option<Vec<f64>>,
@@ -139,8 +139,8 @@ pub struct JobProfile {
     pub samples: Option<usize>,
     /// Trapezoid, S-curve: relative spread of the speed limit inside one zone (default 0.05).
     pub zone_tolerance: Option<f64>,
-    /// Trapezoid, S-curve: share of each axis acceleration for the centripetal part
-    /// (default 0.5).
+    /// Trapezoid, S-curve: the share of the acceleration and jerk limits (path and per
+    /// axis) the turning of the path may take (default 0.5).
     pub centripetal_share: Option<f64>,
 }
 

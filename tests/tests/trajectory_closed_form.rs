@@ -252,7 +252,7 @@ fn scurve_line_with_axis_limits() {
 #[test]
 fn scurve_random_lines_match_the_closed_form() {
     let mut runner = TestRunner::new(Config {
-        cases: 64,
+        cases: 512,
         failure_persistence: None,
         ..Config::default()
     });

@@ -4,9 +4,9 @@ use crate::error::Error;
 
 /// Limits of a motion with `A` axes, in path units (for example mm) and seconds.
 ///
-/// * `velocity`, `acceleration`, `jerk`: limits of the speed along the path and of its first
-///   and second time derivatives (finite, > 0). `acceleration` also bounds the centripetal
-///   acceleration `v²·κ` in curves.
+/// * `velocity`, `acceleration`, `jerk`: limits of the speed and of the norms of the
+///   acceleration and jerk vectors (finite, > 0); [`PathTiming::plan`](crate::PathTiming::plan)
+///   keeps the motion in space within them, curves included.
 /// * `axis_velocity`, `axis_acceleration`: per-axis limits of `|ẋᵢ|` and `|ẍᵢ|` (> 0;
 ///   `f64::INFINITY` for an axis without a limit of its own).
 ///

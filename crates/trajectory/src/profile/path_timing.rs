@@ -248,22 +248,25 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     }
 
     /// Plans a rest-to-rest motion under `limits` along the curve (see [`PlanOptions`] for
-    /// the algorithm and its settings): the speed limit `v_lim(s)` is the smallest of
+    /// the algorithm and its settings, `q` its centripetal share): the speed limit
+    /// `v_lim(s)` is the smallest of
     /// * the path velocity limit,
-    /// * the curvature limit `√(a_max/κ)` (centripetal acceleration `v²κ ≤ a_max`),
+    /// * the curvature limit `√(q·a_max/κ)` (centripetal acceleration `v²κ ≤ q·a_max`),
+    /// * the turning-jerk limit `∛(q·j_max/|x_sss|)` (S-curve; `x_sss` the third derivative
+    ///   of the curve by arc length, `κ²` on a circle),
     /// * per axis `i`, `v_i/|T_i|` (unit tangent `T`),
-    /// * per axis `i`, `√(share·a_i/|κN_i|)` (curvature vector `κN`, `share` the axis
-    ///   centripetal share),
+    /// * per axis `i`, `√(q·a_i/|κN_i|)` (curvature vector `κN`),
     ///
-    /// sampled along the curve and grouped into zones of nearly constant limit (at most `Z`);
-    /// in each zone the path acceleration is limited by `a_max` and, per axis, by
-    /// `(a_i − v_zone²·|κN_i|)/|T_i|`, so that `|ẍ_i| = |s̈·T_i + ṡ²·κN_i| ≤ a_i`. A forward
-    /// and a backward pass choose the speeds at the zone boundaries, and each zone gets a
-    /// double S (or trapezoid) from its entry to its exit speed, with zero acceleration at
-    /// the boundaries.
+    /// sampled along the curve and grouped into zones of nearly constant limit (at most `Z`).
+    /// Each zone plans its speed changes with the path acceleration and jerk that the turning
+    /// at its speed limit leaves, so that the motion **in space** keeps `|ẍ| ≤ a_max`,
+    /// `|ẍ_i| ≤ a_i` and `|x⃛| ≤ j_max`. A forward and a backward pass choose the speeds at
+    /// the zone boundaries, and each zone gets a double S (or trapezoid) from its entry to its
+    /// exit speed, with zero acceleration at the boundaries.
     ///
-    /// Tangential (`s̈`) and centripetal (`v²κ`) path accelerations are each bounded by
-    /// `a_max`, not their vector sum.
+    /// The jerk bound assumes a curvature-continuous (G²) curve: where the curvature jumps
+    /// (a line tangent to an arc, the joins of C¹ Hermite or Catmull-Rom splines) the
+    /// centripetal acceleration steps by `v²·Δκ`.
     ///
     /// # Errors
     /// - [`Error::AxisMismatch`] when `A` is not the curve's point dimension;
