@@ -449,3 +449,38 @@ fn reference_starts_and_ends_at_rest() {
         assert_eq!(plan.param(plan.duration()).0, 1.0);
     });
 }
+
+/// One axis (a spindle or a linear stage) and six axes (the joints of a robot arm, in
+/// degrees): the same bounds and the exact end point in every format.
+#[test]
+fn one_and_six_axes() {
+    big_stack(|| {
+        let stage = BSpline::<[f64; 1], 5, 9>::clamped_uniform(
+            3,
+            &[[0.0], [20.0], [5.0], [60.0], [80.0]],
+            0.0,
+            1.0,
+        )
+        .expect("stage");
+        let limits = Limits::<1>::new(100.0, 1_000.0, 20_000.0).expect("limits");
+        let plan = PathTiming::<_, 256, 128>::scurve(&stage, &limits).expect("plan");
+        let one = three_formats("one axis", &stage, &plan, &CompileOptions::new());
+
+        let joints: [[f64; 6]; 6] = [
+            [0.0, -90.0, 90.0, 0.0, 45.0, 0.0],
+            [10.0, -80.0, 85.0, 5.0, 40.0, 15.0],
+            [40.0, -60.0, 70.0, 20.0, 30.0, 60.0],
+            [80.0, -45.0, 60.0, 10.0, 35.0, 120.0],
+            [110.0, -50.0, 75.0, -5.0, 45.0, 170.0],
+            [120.0, -55.0, 80.0, -10.0, 50.0, 180.0],
+        ];
+        let arm = BSpline::<[f64; 6], 6, 10>::clamped_uniform(3, &joints, 0.0, 1.0).expect("arm");
+        let limits = Limits::<6>::new(180.0, 720.0, 10_000.0)
+            .and_then(|l| l.with_axis_velocity([90.0, 60.0, 60.0, 120.0, 120.0, 180.0]))
+            .expect("limits");
+        let plan = PathTiming::<_, 256, 128>::scurve(&arm, &limits).expect("plan");
+        let six = three_formats("six axes", &arm, &plan, &CompileOptions::new());
+        println!("one axis: {one} ticks, six axes: {six} ticks");
+        assert!(one > 10_000 && six > 10_000);
+    });
+}
