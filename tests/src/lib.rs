@@ -9,6 +9,8 @@
 use proptest::prelude::*;
 use strak_curves::Point;
 
+pub mod spline_cases;
+
 /// The coordinates of a point as strak-ref's `Vec<f64>`.
 pub fn to_vec<P: Point>(p: P) -> Vec<f64> {
     (0..P::DIM)

@@ -19,31 +19,14 @@ use std::f64::consts::PI;
 use std::fmt::Debug;
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseError, TestCaseResult, TestRunner};
+use proptest::test_runner::{TestCaseError, TestCaseResult};
 use strak_curves::{
     ArcLengthTable, BSpline, Bezier, CubicSpline, HermiteSpline, I32F32, Nurbs, ParamCurve,
     ParamCurveDeriv, Parameterization, Point, Scalar, SplineBoundary, arc_length,
     arc_length_between, classify_breaks, classify_join, flatten, flatten_count, param_at_length,
 };
+use strak_tests::spline_cases::{fail, property};
 use strak_tests::{linspace, pts, to_vec, to_vecs};
-
-fn run<S: Strategy>(cases: u32, strategy: S, test: impl Fn(S::Value) -> TestCaseResult)
-where
-    S::Value: Debug,
-{
-    let config = Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    };
-    if let Err(e) = TestRunner::new(config).run(&strategy, test) {
-        panic!("{e}");
-    }
-}
-
-fn fail(e: strak_curves::Error) -> TestCaseError {
-    TestCaseError::fail(format!("unexpected error: {e:?}"))
-}
 
 /// A random clamped B-spline: degree `g`, sorted knots with simple inner knots (gaps ≥ 0.2),
 /// de Boor points in `[-4, 4]²`.
@@ -155,7 +138,7 @@ fn distance_near(p: &[f64], poly: &[Vec<f64>], cursor: &mut usize, tolerance: f6
 #[test]
 fn flatten_bspline() {
     let worst = Cell::new(0.0_f64);
-    run(
+    property(
         32,
         (
             spline(1..=5),
@@ -177,7 +160,7 @@ fn flatten_bspline() {
 /// certificate holds for the rounded parameters, so the slack is a few `ε`.
 #[test]
 fn flatten_bspline_i32f32() {
-    run(
+    property(
         16,
         (spline(1..=4), prop_oneof![Just(1e-2), Just(1e-3)]),
         |(s, tol)| {
@@ -214,7 +197,7 @@ fn flatten_nurbs_circle() {
 #[test]
 fn flatten_bezier_and_splines() {
     let worst = Cell::new(0.0_f64);
-    run(
+    property(
         32,
         (
             strak_tests::points(6..=6, 2, 4.0),
@@ -305,7 +288,7 @@ fn reference_length_to(s: &Spline, x: f64) -> f64 {
 #[test]
 fn arc_length_bspline_vs_reference() {
     let worst = Cell::new(0.0_f64);
-    run(32, (spline(1..=5), 0.0..1.0_f64), |(s, f)| {
+    property(32, (spline(1..=5), 0.0..1.0_f64), |(s, f)| {
         let c = s.curve();
         if min_speed(&c) < 1e-2 {
             return Ok(());
@@ -343,7 +326,7 @@ fn arc_length_bspline_vs_reference() {
 #[test]
 fn arc_length_bezier_and_cubic_spline_vs_reference() {
     let worst = Cell::new(0.0_f64);
-    run(32, strak_tests::points(5..=5, 2, 4.0), |p| {
+    property(32, strak_tests::points(5..=5, 2, 4.0), |p| {
         let q: Vec<[f64; 2]> = pts(&p);
         let acc = 1e-9;
         let bez = Bezier::new([q[0], q[1], q[2], q[3], q[4]]).map_err(fail)?;
@@ -475,7 +458,7 @@ fn arc_length_nurbs_circle_is_two_pi() {
 #[test]
 fn param_at_length_round_trip() {
     let worst = Cell::new(0.0_f64);
-    run(
+    property(
         32,
         (spline(1..=5), prop::collection::vec(0.0..=1.0_f64, 6)),
         |(s, fs)| {
@@ -561,7 +544,7 @@ fn check_table<C: ParamCurveDeriv<Point = [f64; 2]>>(c: &C, worst: &Cell<f64>) -
 #[test]
 fn arc_length_table_accuracy() {
     let worst = Cell::new(0.0_f64);
-    run(16, spline(2..=5), |s| check_table(&s.curve(), &worst));
+    property(16, spline(2..=5), |s| check_table(&s.curve(), &worst));
     let circle = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 2.0).unwrap();
     check_table(&circle, &worst).unwrap();
     let bez = Bezier::new([[0.0, 0.0], [1.0, 3.0], [4.0, 3.0], [5.0, 0.0]]).unwrap();
@@ -582,7 +565,7 @@ fn arc_length_table_accuracy() {
 /// the second derivatives generally differ, so the classification is exactly C¹ resp. C⁰.
 #[test]
 fn classify_join_of_bezier_joins() {
-    run(
+    property(
         48,
         (strak_tests::points(7..=7, 2, 4.0), 0.1..3.0_f64),
         |(p, len)| {
@@ -623,7 +606,7 @@ fn classify_join_of_bezier_joins() {
 /// least as high; a closed B-spline is `C^{g−1}` at its inner knots too.
 #[test]
 fn classify_breaks_bspline() {
-    run(48, spline(1..=5), |s| {
+    property(48, spline(1..=5), |s| {
         let c = s.curve();
         prop_assume!(c.piece_count() > 1);
         let k = classify_breaks(&c, 1e-9).map_err(fail)?;
@@ -643,7 +626,7 @@ fn classify_breaks_bspline() {
 /// chord-length and uniform parameterizations.
 #[test]
 fn classify_breaks_cubic_spline_and_catmull_rom() {
-    run(
+    property(
         48,
         (strak_tests::points(4..=7, 2, 4.0), any::<bool>()),
         |(p, chord)| {

@@ -39,107 +39,24 @@
 // index loops read closer to the formulas (as in strak-ref).
 #![allow(clippy::needless_range_loop)]
 
-use std::cell::Cell;
 use std::fmt::Debug;
 use std::ops::RangeInclusive;
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseError, TestCaseResult, TestRunner};
+use proptest::test_runner::{TestCaseError, TestCaseResult};
 use strak_curves::glam::{DVec3, Vec3};
 use strak_curves::{
     BSpline, Error, I16F16, I32F32, KnotVector, ParamCurve, ParamCurveDeriv, Point, Scalar,
     basis_function, bspline_basis, bspline_basis_derivs, classify_breaks,
+};
+use strak_tests::spline_cases::{
+    Tol, Worst, dyadic_gap, gap, open_knots, params, period_knots, property, sc, scales,
 };
 use strak_tests::{max_diff, pts, to_vec, to_vecs};
 
 // ---------------------------------------------------------------------------------------------
 // Harness
 // ---------------------------------------------------------------------------------------------
-
-/// Runs `test` on `cases` random values of `strategy` (no failure persistence: the printed
-/// minimal failing input is the regression record) and returns nothing; panics on failure.
-fn run<S: Strategy>(cases: u32, strategy: S, test: impl Fn(S::Value) -> TestCaseResult)
-where
-    S::Value: Debug,
-{
-    let config = Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    };
-    let mut runner = TestRunner::new(config);
-    if let Err(e) = runner.run(&strategy, test) {
-        panic!("{e}");
-    }
-}
-
-/// The largest `error / tolerance` seen, for the printed summary.
-#[derive(Debug, Default)]
-struct Worst(Cell<f64>);
-
-impl Worst {
-    fn check(
-        &self,
-        got: &[f64],
-        want: &[f64],
-        tol: f64,
-        what: impl Fn() -> String,
-    ) -> TestCaseResult {
-        let err = max_diff(got, want);
-        if tol > 0.0 {
-            self.0.set(self.0.get().max(err / tol));
-        }
-        if err <= tol {
-            Ok(())
-        } else {
-            Err(TestCaseError::fail(format!(
-                "{}: got {got:?}, want {want:?}, error {err:e} > tolerance {tol:e}",
-                what()
-            )))
-        }
-    }
-
-    fn report(&self, name: &str) {
-        eprintln!("{name}: largest error / tolerance = {:.3e}", self.0.get());
-    }
-}
-
-/// `x` as the scalar `S` (rounded; test inputs are chosen to fit).
-fn sc<S: Scalar>(x: f64) -> S {
-    S::from_f64(x).expect("test value fits the scalar")
-}
-
-/// How the tolerance is derived (see the module docs).
-#[derive(Clone, Copy, Debug)]
-enum Tol {
-    /// Relative to `A_k`.
-    Float(f64),
-    /// `safety · ε · ((g+1)(2 + 2A_k) + e_k)`.
-    Fixed(f64),
-}
-
-/// `A_0..A_{g+1}` for point magnitudes `mags` (or, with `mags = 0` and `add = 1`, the error
-/// recursion `e_k` in units of `ε`).
-fn scales(knots: &[f64], g: usize, mags: &[f64], add: f64) -> Vec<f64> {
-    let mut v = mags.to_vec();
-    let mut out = vec![v.iter().copied().fold(0.0, f64::max)];
-    for r in 1..=g + 1 {
-        let f = (g + 1 - r) as f64;
-        let next: Vec<f64> = (0..v.len().saturating_sub(1))
-            .map(|i| {
-                let den = knots[i + g + 1] - knots[i + r];
-                if den > 0.0 {
-                    f * (v[i] + v[i + 1]) / den + add
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        out.push(next.iter().copied().fold(0.0, f64::max));
-        v = next;
-    }
-    out
-}
 
 /// The smallest positive knot difference.
 fn min_gap(knots: &[f64]) -> f64 {
@@ -225,52 +142,6 @@ impl Shape {
     }
 }
 
-/// A knot gap: zero (a repeated knot) or well separated.
-fn gap(min: f64, max: f64) -> impl Strategy<Value = f64> {
-    prop_oneof![1 => Just(0.0), 3 => min..max]
-}
-
-/// Knots from gaps: clamped ends (`g + 1` equal knots) if asked, inner runs of equal knots at
-/// most `g` long (a zero gap that would make a run longer becomes `fill`), non-empty domain.
-fn open_knots(g: usize, clamped: bool, mut gaps: Vec<f64>, start: f64, fill: f64) -> Vec<f64> {
-    let m = gaps.len() + 1;
-    let k = m - g - 1;
-    if clamped {
-        for j in 0..g {
-            gaps[j] = 0.0;
-            gaps[m - 2 - j] = 0.0;
-        }
-        if gaps[g] == 0.0 {
-            gaps[g] = fill;
-        }
-        if gaps[m - 2 - g] == 0.0 {
-            gaps[m - 2 - g] = fill;
-        }
-    }
-    if gaps[g..k].iter().all(|&x| x == 0.0) {
-        gaps[g] = fill;
-    }
-    let mut run = 1;
-    for (j, gp) in gaps.iter_mut().enumerate() {
-        let protected = clamped && (j < g || j >= m - 1 - g);
-        if *gp == 0.0 {
-            if !protected && run >= g {
-                *gp = fill;
-                run = 1;
-            } else {
-                run += 1;
-            }
-        } else {
-            run = 1;
-        }
-    }
-    let mut knots = vec![start];
-    for gp in gaps {
-        knots.push(knots.last().copied().unwrap_or(start) + gp);
-    }
-    knots
-}
-
 /// Random open B-splines of the given shape (clamped or not).
 fn open_case(shape: Shape) -> impl Strategy<Value = Case> {
     let Shape {
@@ -297,19 +168,6 @@ fn open_case(shape: Shape) -> impl Strategy<Value = Case> {
                 fracs,
             })
     })
-}
-
-/// The sample parameters of a case: the domain ends, every knot inside the domain and the
-/// random fractions, all as `S`.
-fn params<S: Scalar>(knots: &[S], g: usize, fracs: &[f64]) -> Vec<S> {
-    let k = knots.len() - g - 1;
-    let (lo, hi) = (knots[g], knots[k]);
-    let mut out: Vec<S> = knots[g..=k].to_vec();
-    let (a, b) = (lo.to_f64(), hi.to_f64());
-    for f in fracs {
-        out.push(sc::<S>(a + (b - a) * f).clamp_to(lo, hi));
-    }
-    out
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -371,7 +229,7 @@ fn check_open<P: Point>(case: &Case, tol: Tol, worst: &Worst) -> TestCaseResult 
 
 fn open<P: Point>(name: &str, cases: u32, shape: Shape, tol: Tol) {
     let worst = Worst::default();
-    run(cases, open_case(shape), |case| {
+    property(cases, open_case(shape), |case| {
         check_open::<P>(&case, tol, &worst)
     });
     worst.report(name);
@@ -473,42 +331,6 @@ struct ClosedCase {
     fracs: Vec<f64>,
 }
 
-/// Period knots from `K` gaps: multiplicities around the circle at most `g` (consecutive zero
-/// gaps at most `g − 1`, counting the run that wraps over the seam).
-fn period_knots(g: usize, mut gaps: Vec<f64>, start: f64, fill: f64) -> Vec<f64> {
-    let mut zeros = 0;
-    for gp in gaps.iter_mut() {
-        if *gp == 0.0 {
-            if zeros + 1 > g - 1 {
-                *gp = fill;
-                zeros = 0;
-            } else {
-                zeros += 1;
-            }
-        } else {
-            zeros = 0;
-        }
-    }
-    let lead = gaps.iter().take_while(|&&x| x == 0.0).count();
-    let trail = gaps.iter().rev().take_while(|&&x| x == 0.0).count();
-    if lead == gaps.len() || lead + trail > g - 1 {
-        gaps[0] = fill;
-    }
-    let mut knots = vec![start];
-    for gp in gaps {
-        knots.push(knots.last().copied().unwrap_or(start) + gp);
-    }
-    knots
-}
-
-/// A knot gap on the grid `1/16`: zero or in `[0.25, 1.5]`. Dyadic knots make the periodic
-/// extension `u_j ± T` exact in every scalar type, so that strak-ref's extension (which does
-/// not snap `u_{K−1} − T` to `u_0` when `u_{K−1} = u_K`, see
-/// `reference_extension_rounding_at_a_multiple_seam`) sees exactly the same knots.
-fn dyadic_gap() -> impl Strategy<Value = f64> {
-    prop_oneof![1 => Just(0.0), 3 => (4..=24_u32).prop_map(|n| f64::from(n) / 16.0)]
-}
-
 fn closed_case(degrees: RangeInclusive<usize>, dim: usize) -> impl Strategy<Value = ClosedCase> {
     (degrees, 0..=5_usize, any::<bool>()).prop_flat_map(move |(g, extra, uniform)| {
         let k = g + 1 + extra;
@@ -599,7 +421,7 @@ fn extent_abs(v: &[f64]) -> f64 {
 
 fn closed<P: Point>(name: &str, cases: u32, dim: usize, tol: Tol) {
     let worst = Worst::default();
-    run(cases, closed_case(1..=5, dim), |case| {
+    property(cases, closed_case(1..=5, dim), |case| {
         check_closed::<P>(&case, tol, &worst)
     });
     worst.report(name);
@@ -688,7 +510,7 @@ fn check_basis<S: Scalar>(case: &Case, tol: Tol, worst: &Worst) -> TestCaseResul
 
 fn basis<S: Scalar>(name: &str, cases: u32, degrees: RangeInclusive<usize>, tol: Tol) {
     let worst = Worst::default();
-    run(cases, open_case(Shape::new(degrees, 1)), |case| {
+    property(cases, open_case(Shape::new(degrees, 1)), |case| {
         check_basis::<S>(&case, tol, &worst)
     });
     worst.report(name);
@@ -724,7 +546,7 @@ fn basis_i16f16() {
 #[test]
 fn bernstein_special_case() {
     let worst = Worst::default();
-    run(48, (1..=7_usize, 0.0..=1.0_f64), |(g, t)| {
+    property(48, (1..=7_usize, 0.0..=1.0_f64), |(g, t)| {
         let knots: Vec<f64> = (0..2 * g + 2)
             .map(|j| if j <= g { 0.0 } else { 1.0 })
             .collect();
@@ -821,7 +643,7 @@ fn check_partition<S: Scalar>(case: &Case, unity: f64) -> TestCaseResult {
 
 #[test]
 fn partition_of_unity_non_negativity_local_support_f64() {
-    run(48, open_case(Shape::new(1..=7, 1)), |case| {
+    property(48, open_case(Shape::new(1..=7, 1)), |case| {
         check_partition::<f64>(&case, 4e-16 * 8.0)
     });
 }
@@ -830,7 +652,7 @@ fn partition_of_unity_non_negativity_local_support_f64() {
 /// per product: at most `2(g+1)ε`, checked with `16ε`.
 #[test]
 fn partition_of_unity_non_negativity_local_support_i32f32() {
-    run(32, open_case(Shape::new(1..=5, 1)), |case| {
+    property(32, open_case(Shape::new(1..=5, 1)), |case| {
         check_partition::<I32F32>(&case, 16.0 * I32F32::EPSILON)
     });
 }
@@ -841,7 +663,7 @@ fn partition_of_unity_non_negativity_local_support_i32f32() {
 /// visible in `f64`).
 #[test]
 fn local_control() {
-    run(
+    property(
         48,
         (
             open_case(Shape::new(1..=5, 2)),
@@ -905,7 +727,7 @@ fn check_hull<P: Point>(case: &Case, slack: impl Fn(f64) -> f64) -> TestCaseResu
 
 #[test]
 fn convex_hull_f64() {
-    run(48, open_case(Shape::new(1..=5, 3)), |case| {
+    property(48, open_case(Shape::new(1..=5, 3)), |case| {
         check_hull::<[f64; 3]>(&case, |a0| 1e-15 * a0)
     });
 }
@@ -917,7 +739,7 @@ fn convex_hull_i16f16() {
         min_gap: 0.5,
         ..Shape::new(1..=3, 2)
     };
-    run(48, open_case(shape), |case| {
+    property(48, open_case(shape), |case| {
         let g = case.g as f64;
         check_hull::<[I16F16; 2]>(&case, move |_| 2.0 * (g + 1.0) * I16F16::EPSILON)
     });
@@ -929,7 +751,7 @@ fn convex_hull_i16f16() {
 fn affine_invariance() {
     let worst = Worst::default();
     let map = prop::collection::vec(-2.0..2.0_f64, 6);
-    run(48, (open_case(Shape::new(1..=5, 2)), map), |(case, m)| {
+    property(48, (open_case(Shape::new(1..=5, 2)), map), |(case, m)| {
         let g = case.g;
         let affine = |p: &[f64]| {
             [
@@ -1026,7 +848,7 @@ fn check_clamped_ends<P: Point>(case: &Case, tangent_tol: f64) -> TestCaseResult
 
 #[test]
 fn clamped_end_interpolation_f64() {
-    run(48, open_case(Shape::new(1..=5, 2)), |case| {
+    property(48, open_case(Shape::new(1..=5, 2)), |case| {
         check_clamped_ends::<[f64; 2]>(&case, 1e-13)
     });
 }
@@ -1040,7 +862,7 @@ fn clamped_end_interpolation_i16f16() {
     };
     // Fixed-point tangent: one rounded division, ≤ 2^-16 absolute; checked with 1e-4 relative
     // to max(|tangent|, 1).
-    run(48, open_case(shape), |case| {
+    property(48, open_case(shape), |case| {
         check_clamped_ends::<[I16F16; 2]>(&case, 1e-4)
     });
 }
@@ -1052,7 +874,7 @@ fn clamped_end_interpolation_i16f16() {
 #[test]
 fn continuity_at_knots() {
     let worst = Worst::default();
-    run(48, open_case(Shape::new(1..=5, 2)), |case| {
+    property(48, open_case(Shape::new(1..=5, 2)), |case| {
         let g = case.g;
         let points: Vec<[f64; 2]> = pts(&case.points);
         let c = BSpline::<[f64; 2], 16, 32>::new(g, &points, &case.knots)
@@ -1092,7 +914,7 @@ fn continuity_at_knots() {
 #[test]
 fn knot_insertion_preserves_curve() {
     let worst = Worst::default();
-    run(
+    property(
         48,
         (
             open_case(Shape::new(1..=5, 2)),
@@ -1184,7 +1006,7 @@ fn check_bezier_segments<const NB: usize>(case: &Case, worst: &Worst) -> TestCas
 #[test]
 fn bezier_segments_preserve_curve() {
     let worst = Worst::default();
-    run(48, open_case(Shape::new(1..=5, 2)), |case| match case.g {
+    property(48, open_case(Shape::new(1..=5, 2)), |case| match case.g {
         1 => check_bezier_segments::<2>(&case, &worst),
         2 => check_bezier_segments::<3>(&case, &worst),
         3 => check_bezier_segments::<4>(&case, &worst),

@@ -31,104 +31,24 @@
 // index loops read closer to the formulas (as in strak-ref).
 #![allow(clippy::needless_range_loop)]
 
-use std::cell::Cell;
 use std::fmt::Debug;
 use std::ops::RangeInclusive;
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseError, TestCaseResult, TestRunner};
+use proptest::test_runner::TestCaseResult;
 use strak_curves::glam::{DVec3, Vec3};
 use strak_curves::{BSpline, I16F16, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Point, Scalar};
+use strak_tests::spline_cases::{
+    Tol, Worst, dyadic_gap, fail, gap, open_knots, params, period_knots, property, sc, scales,
+};
 use strak_tests::{max_diff, pts, to_vec, to_vecs};
 
 // ---------------------------------------------------------------------------------------------
 // Harness (as in bspline_vs_ref.rs)
 // ---------------------------------------------------------------------------------------------
 
-fn run<S: Strategy>(cases: u32, strategy: S, test: impl Fn(S::Value) -> TestCaseResult)
-where
-    S::Value: Debug,
-{
-    let config = Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    };
-    let mut runner = TestRunner::new(config);
-    if let Err(e) = runner.run(&strategy, test) {
-        panic!("{e}");
-    }
-}
-
-/// The largest `error / tolerance` seen, for the printed summary.
-#[derive(Debug, Default)]
-struct Worst(Cell<f64>);
-
-impl Worst {
-    fn check(
-        &self,
-        got: &[f64],
-        want: &[f64],
-        tol: f64,
-        what: impl Fn() -> String,
-    ) -> TestCaseResult {
-        let err = max_diff(got, want);
-        if tol > 0.0 {
-            self.0.set(self.0.get().max(err / tol));
-        }
-        if err <= tol {
-            Ok(())
-        } else {
-            Err(TestCaseError::fail(format!(
-                "{}: got {got:?}, want {want:?}, error {err:e} > tolerance {tol:e}",
-                what()
-            )))
-        }
-    }
-
-    fn report(&self, name: &str) {
-        eprintln!("{name}: largest error / tolerance = {:.3e}", self.0.get());
-    }
-}
-
-fn sc<S: Scalar>(x: f64) -> S {
-    S::from_f64(x).expect("test value fits the scalar")
-}
-
-fn fail(e: strak_curves::Error) -> TestCaseError {
-    TestCaseError::fail(format!("constructor failed: {e:?}"))
-}
-
-/// `A_0..A_{g+1}` (see bspline_vs_ref.rs), or with `mags = 0`, `add = 1` the error recursion.
-fn scales(knots: &[f64], g: usize, mags: &[f64], add: f64) -> Vec<f64> {
-    let mut v = mags.to_vec();
-    let mut out = vec![v.iter().copied().fold(0.0, f64::max)];
-    for r in 1..=g + 1 {
-        let f = (g + 1 - r) as f64;
-        let next: Vec<f64> = (0..v.len().saturating_sub(1))
-            .map(|i| {
-                let den = knots[i + g + 1] - knots[i + r];
-                if den > 0.0 {
-                    f * (v[i] + v[i + 1]) / den + add
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        out.push(next.iter().copied().fold(0.0, f64::max));
-        v = next;
-    }
-    out
-}
-
 fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-}
-
-#[derive(Clone, Copy, Debug)]
-enum Tol {
-    Float(f64),
-    Fixed(f64),
 }
 
 /// Tolerances for the orders `0..=kmax` of a NURBS curve (see the module docs).
@@ -211,50 +131,6 @@ impl Shape {
     }
 }
 
-fn gap(min: f64, max: f64) -> impl Strategy<Value = f64> {
-    prop_oneof![1 => Just(0.0), 3 => min..max]
-}
-
-/// Knots from gaps: clamped ends if asked, inner runs at most `g`, non-empty domain.
-fn open_knots(g: usize, clamped: bool, mut gaps: Vec<f64>, start: f64, fill: f64) -> Vec<f64> {
-    let m = gaps.len() + 1;
-    let k = m - g - 1;
-    if clamped {
-        for j in 0..g {
-            gaps[j] = 0.0;
-            gaps[m - 2 - j] = 0.0;
-        }
-        if gaps[g] == 0.0 {
-            gaps[g] = fill;
-        }
-        if gaps[m - 2 - g] == 0.0 {
-            gaps[m - 2 - g] = fill;
-        }
-    }
-    if gaps[g..k].iter().all(|&x| x == 0.0) {
-        gaps[g] = fill;
-    }
-    let mut run = 1;
-    for (j, gp) in gaps.iter_mut().enumerate() {
-        let protected = clamped && (j < g || j >= m - 1 - g);
-        if *gp == 0.0 {
-            if !protected && run >= g {
-                *gp = fill;
-                run = 1;
-            } else {
-                run += 1;
-            }
-        } else {
-            run = 1;
-        }
-    }
-    let mut knots = vec![start];
-    for gp in gaps {
-        knots.push(knots.last().copied().unwrap_or(start) + gp);
-    }
-    knots
-}
-
 fn case(shape: Shape) -> impl Strategy<Value = Case> {
     let Shape {
         degrees,
@@ -281,18 +157,6 @@ fn case(shape: Shape) -> impl Strategy<Value = Case> {
                 fracs,
             })
     })
-}
-
-/// The domain ends, every knot of the domain and the random fractions, as `S`.
-fn params<S: Scalar>(knots: &[S], g: usize, fracs: &[f64]) -> Vec<S> {
-    let k = knots.len() - g - 1;
-    let (lo, hi) = (knots[g], knots[k]);
-    let mut out: Vec<S> = knots[g..=k].to_vec();
-    let (a, b) = (lo.to_f64(), hi.to_f64());
-    for f in fracs {
-        out.push(sc::<S>(a + (b - a) * f).clamp_to(lo, hi));
-    }
-    out
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -354,7 +218,7 @@ fn check_open<P: Point>(case: &Case, tol: Tol, worst: &Worst) -> TestCaseResult 
 
 fn open<P: Point>(name: &str, cases: u32, shape: Shape, tol: Tol) {
     let worst = Worst::default();
-    run(cases, case(shape), |c| check_open::<P>(&c, tol, &worst));
+    property(cases, case(shape), |c| check_open::<P>(&c, tol, &worst));
     worst.report(name);
 }
 
@@ -426,39 +290,6 @@ fn open_i16f16_2d() {
 // Closed NURBS
 // ---------------------------------------------------------------------------------------------
 
-/// A knot gap on the grid `1/16` (zero or in `[0.25, 1.5]`): the periodic extension is exact
-/// (see bspline_vs_ref.rs for why strak-ref needs that at repeated seam knots).
-fn dyadic_gap() -> impl Strategy<Value = f64> {
-    prop_oneof![1 => Just(0.0), 3 => (4..=24_u32).prop_map(|n| f64::from(n) / 16.0)]
-}
-
-/// Period knots with multiplicities at most `g` around the circle.
-fn period_knots(g: usize, mut gaps: Vec<f64>, start: f64) -> Vec<f64> {
-    let mut zeros = 0;
-    for gp in gaps.iter_mut() {
-        if *gp == 0.0 {
-            if zeros + 1 > g - 1 {
-                *gp = 0.75;
-                zeros = 0;
-            } else {
-                zeros += 1;
-            }
-        } else {
-            zeros = 0;
-        }
-    }
-    let lead = gaps.iter().take_while(|&&x| x == 0.0).count();
-    let trail = gaps.iter().rev().take_while(|&&x| x == 0.0).count();
-    if lead == gaps.len() || lead + trail > g - 1 {
-        gaps[0] = 0.75;
-    }
-    let mut knots = vec![start];
-    for gp in gaps {
-        knots.push(knots.last().copied().unwrap_or(start) + gp);
-    }
-    knots
-}
-
 /// A closed NURBS curve against `nurbs_deriv` of its definition as an open curve: the periodic
 /// extension of the knots (`strak_ref::periodic_extended_knots`) with the last `g` points and
 /// weights repeated in front (seeds/000 "geschlossene B-Splines"; the convention of
@@ -477,8 +308,8 @@ fn closed_f64() {
             prop::collection::vec(0.0..=1.0_f64, 8),
         )
     });
-    run(48, strategy, |(g, gaps, start, points, weights, fracs)| {
-        let period = period_knots(g, gaps, start);
+    property(48, strategy, |(g, gaps, start, points, weights, fracs)| {
+        let period = period_knots(g, gaps, start, 0.75);
         let kp = points.len();
         let p: Vec<[f64; 2]> = pts(&points);
         let c = Nurbs::<[f64; 2], 24, 40>::closed(g, &p, &weights, Some(&period)).map_err(fail)?;
@@ -521,7 +352,7 @@ fn closed_f64() {
 #[test]
 fn equal_weights_give_the_bspline() {
     let worst = Worst::default();
-    run(
+    property(
         48,
         (case(Shape::new(1..=5, 2)), 0.25..4.0_f64),
         |(case, h)| {
@@ -551,7 +382,7 @@ fn equal_weights_give_the_bspline() {
 /// the distance to `P_i` shrinks and `c_old`, `c_new`, `P_i` are collinear.
 #[test]
 fn raising_a_weight_pulls_towards_its_point() {
-    run(
+    property(
         48,
         (
             case(Shape::new(1..=5, 2)),
@@ -598,7 +429,7 @@ fn raising_a_weight_pulls_towards_its_point() {
 /// `1e-14·max|P|` of rounding.
 #[test]
 fn convex_hull() {
-    run(48, case(Shape::new(1..=5, 3)), |case| {
+    property(48, case(Shape::new(1..=5, 3)), |case| {
         let g = case.g;
         let p: Vec<[f64; 3]> = pts(&case.points);
         let c = Nurbs::<[f64; 3], 16, 32>::new(g, &p, &case.weights, &case.knots).map_err(fail)?;
@@ -625,7 +456,7 @@ fn convex_hull() {
 #[test]
 fn knot_insertion_preserves_curve() {
     let worst = Worst::default();
-    run(
+    property(
         48,
         (case(Shape::new(1..=5, 2)), 0.0..=1.0_f64),
         |(case, f)| {
@@ -707,7 +538,7 @@ fn check_rational_segments<const NB: usize>(case: &Case, worst: &Worst) -> TestC
 #[test]
 fn rational_bezier_segments_preserve_curve() {
     let worst = Worst::default();
-    run(48, case(Shape::new(1..=5, 2)), |case| match case.g {
+    property(48, case(Shape::new(1..=5, 2)), |case| match case.g {
         1 => check_rational_segments::<2>(&case, &worst),
         2 => check_rational_segments::<3>(&case, &worst),
         3 => check_rational_segments::<4>(&case, &worst),
@@ -721,7 +552,7 @@ fn rational_bezier_segments_preserve_curve() {
 /// control points are `(h_i P_i, h_i)`.
 #[test]
 fn homogeneous_round_trip() {
-    run(32, case(Shape::new(1..=5, 2)), |case| {
+    property(32, case(Shape::new(1..=5, 2)), |case| {
         let p: Vec<[f64; 2]> = pts(&case.points);
         let c =
             Nurbs::<[f64; 2], 16, 32>::new(case.g, &p, &case.weights, &case.knots).map_err(fail)?;
@@ -745,7 +576,7 @@ fn homogeneous_round_trip() {
 #[test]
 fn circle_vs_reference() {
     let worst = Worst::default();
-    run(
+    property(
         48,
         (
             -10.0..10.0_f64,
