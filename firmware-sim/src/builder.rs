@@ -4,8 +4,8 @@
 //! each constructor's typed error is reported against the field it concerns.
 
 use strak_curves::{
-    BSpline, Bezier, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource, Nurbs,
-    ParabolicBlend, Parameterization, PieceDeriv, Point, Scalar, SplineBoundary,
+    BSpline, Bezier, BezierChain, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource,
+    Nurbs, ParabolicBlend, Parameterization, PieceDeriv, Point, Scalar, SplineBoundary,
 };
 
 use crate::curve_file::{BoundaryName, CurveFile, FieldError, Kind};
@@ -261,6 +261,7 @@ fn build<S: Scalar, const D: usize, V: CurveVisitor>(
             Ok(visitor.visit(ParabolicBlend::<[S; D], CAPACITY>::new(&points).map_err(&err)?))
         }
         Kind::Bezier => build_bezier(&points, &err, visitor),
+        Kind::BezierChain => build_bezier_chain(file.degree.unwrap_or(0), &points, &err, visitor),
         Kind::Bspline | Kind::Nurbs => build_bspline(file, &points, number, &err, visitor),
     }
 }
@@ -297,6 +298,54 @@ fn build_bezier<S: Scalar, const D: usize, V: CurveVisitor>(
         };
     }
     by_count!(1 2 3 4 5 6 7 8 9 10 11 12)
+}
+
+/// The largest segment degree of a Bézier chain in a file.
+pub const BEZIER_CHAIN_MAX_DEGREE: usize = 5;
+
+/// The largest number of segments of a Bézier chain in a file (points: `n·degree + 1` ≤
+/// [`CAPACITY`] + 1 at degree 1).
+pub const BEZIER_CHAIN_MAX_SEGMENTS: usize = CAPACITY;
+
+/// A Bézier chain of segments with `N` points each.
+fn bezier_chain<S: Scalar, const D: usize, const N: usize, V: CurveVisitor>(
+    points: &[[S; D]],
+    err: &dyn Fn(Error) -> FieldError,
+    visitor: V,
+) -> Result<V::Output, FieldError> {
+    let chain =
+        BezierChain::<[S; D], N, BEZIER_CHAIN_MAX_SEGMENTS>::new(points).map_err(|e| match e {
+            Error::CapacityExceeded { required, .. } => FieldError::new(
+                "points",
+                format!(
+                    "a Bézier chain takes at most {BEZIER_CHAIN_MAX_SEGMENTS} segments, not {required}"
+                ),
+            ),
+            e => err(e),
+        })?;
+    Ok(visitor.visit(chain))
+}
+
+fn build_bezier_chain<S: Scalar, const D: usize, V: CurveVisitor>(
+    degree: usize,
+    points: &[[S; D]],
+    err: &dyn Fn(Error) -> FieldError,
+    visitor: V,
+) -> Result<V::Output, FieldError> {
+    macro_rules! by_degree {
+        ($($g:literal => $n:literal)*) => {
+            match degree {
+                $($g => bezier_chain::<S, D, $n, V>(points, err, visitor),)*
+                g => Err(FieldError::new(
+                    "degree",
+                    format!(
+                        "a Bézier chain takes segments of degree 1 to {BEZIER_CHAIN_MAX_DEGREE}, not {g}"
+                    ),
+                )),
+            }
+        };
+    }
+    by_degree!(1 => 2 2 => 3 3 => 4 4 => 5 5 => 6)
 }
 
 /// The largest degree of a B-spline or NURBS in a file.

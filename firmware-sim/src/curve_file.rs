@@ -1,7 +1,7 @@
 //! The curve file of `strak-sim sample`: one curve in TOML, checked field by field.
 //!
 //! ```toml
-//! kind = "bspline"   # bezier | bspline | nurbs | lagrange | hermite | catmull-rom | cubic-spline | parabolic-blend
+//! kind = "bspline"   # bezier | bezier-chain | bspline | nurbs | lagrange | hermite | catmull-rom | cubic-spline | parabolic-blend
 //! points = [[0.0, 0.0, 0.0], [1.0, 2.0, 0.5], [2.0, 0.0, 1.0], [3.0, 1.0, 0.0]]
 //! degree = 3
 //! ```
@@ -19,6 +19,9 @@ use serde::Deserialize;
 pub enum Kind {
     /// One Bézier curve; the degree is the number of points minus one.
     Bezier,
+    /// A piecewise Bézier curve: `n` segments of the given degree in the composite
+    /// representation, `n·degree + 1` points, consecutive segments sharing their join point.
+    BezierChain,
     /// A B-spline with de Boor points.
     Bspline,
     /// A NURBS curve (B-spline with weights).
@@ -40,6 +43,7 @@ impl Kind {
     pub fn name(self) -> &'static str {
         match self {
             Kind::Bezier => "bezier",
+            Kind::BezierChain => "bezier-chain",
             Kind::Bspline => "bspline",
             Kind::Nurbs => "nurbs",
             Kind::Lagrange => "lagrange",
@@ -72,7 +76,8 @@ pub struct CurveFile {
     pub kind: Kind,
     /// 1 to 4 coordinates per point.
     pub points: Vec<Vec<f64>>,
-    /// Degree (bspline, nurbs; optional for bezier, where it must equal points − 1).
+    /// Degree (bspline, nurbs, bezier-chain; optional for bezier, where it must equal
+    /// points − 1).
     pub degree: Option<usize>,
     /// Knot vector (bspline, nurbs).
     pub knots: Option<Vec<f64>>,
@@ -187,7 +192,11 @@ impl CurveFile {
             }
         };
         use Kind::*;
-        uses("degree", self.degree.is_some(), &[Bezier, Bspline, Nurbs])?;
+        uses(
+            "degree",
+            self.degree.is_some(),
+            &[Bezier, BezierChain, Bspline, Nurbs],
+        )?;
         uses("knots", self.knots.is_some(), &[Bspline, Nurbs])?;
         uses("closed", self.closed.is_some(), &[Bspline])?;
         uses("weights", self.weights.is_some(), &[Nurbs])?;
@@ -206,7 +215,7 @@ impl CurveFile {
         uses("end_tangent", self.end_tangent.is_some(), &[CubicSpline])?;
 
         let n = self.points.len();
-        if matches!(k, Bspline | Nurbs) && self.degree.is_none() {
+        if matches!(k, Bspline | Nurbs | BezierChain) && self.degree.is_none() {
             return Err(FieldError::new(
                 "degree",
                 format!("required for kind `{}`", k.name()),
@@ -222,6 +231,25 @@ impl CurveFile {
                     n - 1
                 ),
             ));
+        }
+        if let (BezierChain, Some(g)) = (k, self.degree) {
+            if g == 0 {
+                return Err(FieldError::new(
+                    "degree",
+                    "a Bézier chain needs segments of degree 1 or more",
+                ));
+            }
+            if n < g + 1 || !(n - 1).is_multiple_of(g) {
+                return Err(FieldError::new(
+                    "points",
+                    format!(
+                        "a Bézier chain of degree {g} has n·{g} + 1 points ({}, {}, {}, …), not {n}",
+                        g + 1,
+                        2 * g + 1,
+                        3 * g + 1
+                    ),
+                ));
+            }
         }
         if k == Nurbs {
             match &self.weights {
@@ -341,6 +369,29 @@ mod tests {
                 .contains("field `params`")
         );
         assert!(err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\ncolour = 3").contains("colour"));
+        assert!(
+            err("kind = \"bezier-chain\"\npoints = [[0.0], [1.0], [2.0]]")
+                .contains("field `degree`")
+        );
+        assert!(
+            err("kind = \"bezier-chain\"\npoints = [[0.0], [1.0]]\ndegree = 0")
+                .contains("field `degree`")
+        );
+        assert!(
+            err("kind = \"bezier-chain\"\npoints = [[0.0], [1.0], [2.0]]\ndegree = 3")
+                .contains("field `points`")
+        );
+        assert!(
+            err(
+                "kind = \"bezier-chain\"\npoints = [[0.0], [1.0], [2.0], [3.0], [4.0]]\ndegree = 3"
+            )
+            .contains("n·3 + 1 points (4, 7, 10, …), not 5")
+        );
+        let chain = CurveFile::parse(
+            "kind = \"bezier-chain\"\npoints = [[0.0], [1.0], [2.0], [3.0], [4.0]]\ndegree = 2",
+        )
+        .unwrap();
+        assert_eq!(chain.kind, Kind::BezierChain);
         assert!(
             err("kind = \"bezier\"\npoints = [[0.0], [1.0]]\ndegree = 3")
                 .contains("field `degree`")

@@ -111,4 +111,22 @@ mod tests {
         assert!(build_dyn::<f64, 3>(&file, Number::F64).is_err());
         assert!(build_dyn::<f32, 2>(&file, Number::F64).is_err());
     }
+
+    #[test]
+    fn boxed_bezier_chain_keeps_its_pieces() {
+        let file = CurveFile::parse(
+            "kind = \"bezier-chain\"\ndegree = 1\npoints = [[0.0, 0.0], [2.0, 4.0], [3.0, 4.0]]",
+        )
+        .unwrap();
+        let c: DynCurve<f64, 2> = build_dyn(&file, Number::F64).unwrap();
+        assert_eq!(c.domain(), (0.0, 2.0));
+        assert_eq!(c.piece_count(), 2);
+        assert_eq!(c.piece_domain(1), (1.0, 2.0));
+        assert_eq!(c.eval(1.5), [2.5, 4.0]);
+        // at the join: the segment starting there, and the left-hand limit of the one ending
+        assert_eq!(c.deriv(1.0, 1), [1.0, 0.0]);
+        assert_eq!(c.piece_deriv(0, 1.0, 1), [2.0, 4.0]);
+        let q: DynCurve<strak_curves::I32F32, 2> = build_dyn(&file, Number::Fixed).unwrap();
+        assert_eq!(q.piece_count(), 2);
+    }
 }

@@ -50,6 +50,13 @@ fn reference(file: &CurveFile) -> Reference {
             domain: (0.0, 1.0),
             eval: Box::new(move |u, k| r::bezier_deriv(&pts, u, k)),
         },
+        Kind::BezierChain => {
+            let g = file.degree.unwrap();
+            Reference {
+                domain: (0.0, ((n - 1) / g) as f64),
+                eval: Box::new(move |u, k| r::bezier_chain_deriv(&pts, g, u, k)),
+            }
+        }
         Kind::Bspline | Kind::Nurbs => {
             let g = file.degree.unwrap();
             let closed = file.closed.unwrap_or(false);
@@ -223,6 +230,8 @@ fn fixed_point_agrees_with_the_reference_within_1e_8() {
 fn one_and_four_coordinates() {
     for text in [
         "kind = \"bezier\"\npoints = [[0.0], [2.0], [1.0]]",
+        "kind = \"bezier-chain\"\ndegree = 2\npoints = [[0.0], [2.0], [1.0], [0.0], [3.0]]",
+        "kind = \"bezier-chain\"\ndegree = 1\npoints = [[0,0,0,0],[1,2,3,4],[2,0,1,0]]",
         "kind = \"bspline\"\ndegree = 2\npoints = [[0,0,0,0],[1,2,3,4],[2,0,1,0],[3,1,0,2]]",
     ] {
         let file = CurveFile::parse(text).unwrap();
@@ -341,6 +350,15 @@ fn bad_files_name_the_field() {
             "knots",
         ),
         ("kind = \"bezier\"\npoints = [[0, 0],[1, nan]]", "points"),
+        (
+            "kind = \"bezier-chain\"\ndegree = 2\npoints = [[0,0],[1,1],[2,0],[3,1]]",
+            "points",
+        ),
+        ("kind = \"bezier-chain\"\npoints = [[0,0],[1,1]]", "degree"),
+        (
+            "kind = \"bezier-chain\"\ndegree = 6\npoints = [[0],[1],[2],[3],[4],[5],[6]]",
+            "degree",
+        ),
         ("kind = \"bezier\"\npoints = [[0, 0],[1, 1e308]]", "points"),
         (
             "kind = \"parabolic-blend\"\npoints = [[0,0],[1,1]]",

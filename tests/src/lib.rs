@@ -168,3 +168,116 @@ pub fn ensure(cond: bool, what: impl FnOnce() -> String) -> TestCaseResult {
         Err(TestCaseError::fail(what()))
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Trajectory playback against the exact f64 curve
+
+use strak_curves::{ParamCurveDeriv, Scalar};
+use strak_trajectory::{Number, Path, Sample, Sampler, Timing};
+
+/// Runs `f` on a thread with a large stack (paths and the compiler's scratch live on it).
+pub fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
+    std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(f)
+        .expect("spawn")
+        .join()
+        .expect("test thread panicked")
+}
+
+/// The exact position at tick `k` of `path`: the `f64` curve at the time law's parameter at
+/// the tick's plan time (the compiler's time stretch included), `x_k = c(u(t_k))`; the last
+/// tick is the plan's end.
+pub fn exact_position<C, T, N, const A: usize, const P: usize>(
+    curve: &C,
+    timing: &T,
+    path: &Path<N, A, P>,
+    k: u32,
+) -> [f64; A]
+where
+    C: ParamCurveDeriv<Point = [f64; A]>,
+    T: Timing,
+    N: Number,
+{
+    let t = if k >= path.ticks() {
+        timing.duration()
+    } else {
+        path.plan_time(f64::from(k))
+    };
+    curve.eval(timing.param(t).0)
+}
+
+/// The largest position error of a playback, and its largest ratio to the bound.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Playback {
+    /// Number of samples until the sampler finished.
+    pub samples: u64,
+    /// Largest `|x − x_exact|` over all samples and axes.
+    pub err: f64,
+    /// Largest ratio of that error to the documented bound.
+    pub ratio: f64,
+}
+
+/// Plays `path` to its end and checks every sample against [`exact_position`]: the position
+/// error is within the documented bound `tolerance + playback_bound + output rounding`
+/// (`½ε·|x|` for floats via [`Number::rounding_error`], [`Number::OUT_ERROR`] for fixed-point);
+/// the number of samples is `ticks + 1`; the last sample is [`Path::end_position`] bit for
+/// bit. Panics (naming `name`) on a violation.
+pub fn check_playback<C, T, N, const A: usize, const P: usize>(
+    name: &str,
+    curve: &C,
+    timing: &T,
+    path: &Path<N, A, P>,
+) -> Playback
+where
+    C: ParamCurveDeriv<Point = [f64; A]>,
+    T: Timing,
+    N: Number,
+{
+    let mut sampler = Sampler::new(path);
+    let mut out = Playback::default();
+    let mut last: Option<Sample<N::Out, A>> = None;
+    while !sampler.is_finished() {
+        let s = sampler.next();
+        assert_eq!(s.tick, out.samples, "{name}: tick count");
+        let k = u32::try_from(s.tick).expect("ticks fit u32");
+        let ex = exact_position(curve, timing, path, k);
+        for (i, (p, e)) in s.position.iter().zip(ex).enumerate() {
+            let x = p.to_f64();
+            let rounding = if N::IS_FIXED {
+                N::OUT_ERROR
+            } else {
+                N::rounding_error(x)
+            };
+            let bound = path.tolerance() + path.playback_bound() + rounding;
+            let err = (x - e).abs();
+            out.err = out.err.max(err);
+            out.ratio = out.ratio.max(err / bound);
+            assert!(
+                err <= bound,
+                "{name}: tick {k}, axis {i}: error {err:e} > bound {bound:e}"
+            );
+        }
+        last = Some(s);
+        out.samples += 1;
+        assert!(
+            out.samples <= u64::from(path.ticks()) + 1,
+            "{name}: not finished"
+        );
+    }
+    assert_eq!(
+        out.samples,
+        u64::from(path.ticks()) + 1,
+        "{name}: ticks + 1 samples"
+    );
+    let last = last.expect("at least one sample");
+    let end = path.end_position();
+    for (i, (p, e)) in last.position.iter().zip(end).enumerate() {
+        assert_eq!(
+            p.to_f64().to_bits(),
+            e.to_f64().to_bits(),
+            "{name}: end point bit for bit, axis {i}"
+        );
+    }
+    out
+}

@@ -31,6 +31,7 @@
 mod arc_length;
 mod basis_change;
 mod bernstein;
+mod bezier_chain;
 mod bspline;
 mod closed_bspline;
 mod combinatorics;
@@ -49,6 +50,7 @@ mod vecops;
 pub use arc_length::*;
 pub use basis_change::*;
 pub use bernstein::*;
+pub use bezier_chain::*;
 pub use bspline::*;
 pub use closed_bspline::*;
 pub use combinatorics::*;

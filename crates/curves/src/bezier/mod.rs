@@ -5,8 +5,10 @@
 //! one file each: evaluation and validation (`curve.rs`), derivatives and the hodograph
 //! (`derivative.rs`), subdivision and sub-segments (`subdivide.rs`), degree elevation
 //! (`elevate.rs`), conversion to and from the monomial basis (`convert.rs`), C¹/G¹ joining
-//! (`join.rs`) and the cubic quarter circle (`circle.rs`).
+//! (`join.rs`), the cubic quarter circle (`circle.rs`) and [`BezierChain`], segments joined
+//! end to start (`chain.rs`).
 
+mod chain;
 mod circle;
 mod convert;
 mod curve;
@@ -15,5 +17,6 @@ mod elevate;
 mod join;
 mod subdivide;
 
+pub use chain::*;
 pub use circle::*;
 pub use curve::*;
