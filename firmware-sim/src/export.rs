@@ -12,10 +12,7 @@
 //! `strak-sim run` uses; the path capacity is [`PIECES`].
 
 use strak_curves::{I32F32, Scalar};
-use strak_trajectory::{
-    CompileOptions, Limits, Number, Path, PlanOptions, ProfileShape, Q40, Sampler, Tolerance,
-    compile,
-};
+use strak_trajectory::{CompileOptions, Limits, Number, Path, PlanOptions, Q40, Sampler, compile};
 
 use crate::curve_file::Kind;
 use crate::dyn_curve::{DynCurve, build_dyn};
@@ -298,65 +295,6 @@ fn recipe<const D: usize>(job: &Job, limits: &Limits<D>) -> Option<DeviceRecipe>
     })
 }
 
-/// Rust source of an `f64` with exactly these bits (`f64::from_bits(0x…)`).
-pub fn f64_source(x: f64) -> String {
-    format!("f64::from_bits({:#018x})", x.to_bits())
-}
-
-impl DeviceRecipe {
-    /// Rust source of an expression building the planner settings (`strak_trajectory`
-    /// in scope as `st`).
-    pub fn plan_source(&self) -> String {
-        let shape = match self.plan.shape() {
-            ProfileShape::Trapezoid => "st::ProfileShape::Trapezoid",
-            _ => "st::ProfileShape::SCurve",
-        };
-        format!(
-            "st::PlanOptions::new().with_shape({shape}).with_samples({}).with_zone_tolerance({}).with_axis_centripetal_share({})",
-            self.plan.samples(),
-            f64_source(self.plan.zone_tolerance()),
-            f64_source(self.plan.axis_centripetal_share())
-        )
-    }
-
-    /// Rust source of an expression building the compiler settings (`st` as above).
-    pub fn compile_source(&self) -> String {
-        let c = &self.compile;
-        let mut s = String::from("st::CompileOptions::new()");
-        match c.tolerance() {
-            Tolerance::Absolute(t) => s += &format!(".with_tolerance({})", f64_source(t)),
-            Tolerance::Relative(t) => {
-                s += &format!(".with_relative_tolerance({})", f64_source(t));
-            }
-        }
-        s += &format!(".with_max_piece_ticks({})", c.max_piece_ticks());
-        if let Some((a, j)) = c.limits() {
-            s += &format!(".with_limits({}, {})", f64_source(a), f64_source(j));
-        }
-        s += &format!(".with_feed_share({})", f64_source(c.feed_share()));
-        s
-    }
-
-    /// Rust source of an expression building the planning limits, a
-    /// `Result<st::Limits<D>, st::Error>` (`st` as above).
-    pub fn limits_source(&self) -> String {
-        let list = |v: &[f64]| {
-            v.iter()
-                .map(|x| f64_source(*x))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        format!(
-            "st::Limits::new({}, {}, {}).and_then(|l| l.with_axis_velocity([{}])).and_then(|l| l.with_axis_acceleration([{}]))",
-            f64_source(self.limits[0]),
-            f64_source(self.limits[1]),
-            f64_source(self.limits[2]),
-            list(&self.axis_velocity),
-            list(&self.axis_acceleration)
-        )
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -373,14 +311,5 @@ mod tests {
     fn out_bits_are_the_raw_bits() {
         assert_eq!(1.0_f32.out_bits(), 0x3f80_0000);
         assert_eq!(I32F32::from_num(-1).out_bits(), 0xffff_ffff_0000_0000);
-    }
-
-    #[test]
-    fn f64_source_is_exact() {
-        assert_eq!(f64_source(1.0), "f64::from_bits(0x3ff0000000000000)");
-        assert_eq!(
-            f64_source(f64::INFINITY),
-            "f64::from_bits(0x7ff0000000000000)"
-        );
     }
 }
