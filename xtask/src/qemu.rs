@@ -91,8 +91,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     let t = Instant::now();
     let blob_dir = root.join("target").join("qemu").join("blobs");
     let jobs = export_jobs(&root.join("firmware-sim/examples/jobs"), &blob_dir)?;
-    fs::write(blob_dir.join("jobs.rs"), jobs_source(&jobs))
-        .map_err(|e| format!("cannot write {}: {e}", blob_dir.display()))?;
+    write_if_changed(&blob_dir.join("jobs.rs"), jobs_source(&jobs).as_bytes())?;
     println!(
         "<== host: {} jobs × formats, {} samples ({:.1} s)",
         jobs.len(),
@@ -179,8 +178,7 @@ fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
             let export = export(&job, playback)
                 .map_err(|e| format!("{} ({}): {e}", file.display(), playback.name()))?;
             let blob_path = blob_dir.join(format!("{name}-{}.strk", playback.name()));
-            fs::write(&blob_path, &export.blob)
-                .map_err(|e| format!("cannot write {}: {e}", blob_path.display()))?;
+            write_if_changed(&blob_path, &export.blob)?;
             println!(
                 "    {name} {}: {} axes, {} pieces, {} ticks, {} samples, blob {} bytes{}",
                 playback.name(),
@@ -203,6 +201,15 @@ fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
         }
     }
     Ok(out)
+}
+
+/// Writes `bytes` to `path` unless it holds them already (an unchanged file keeps its time,
+/// so cargo does not rebuild the firmware).
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    if fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 /// Rust source of an `f64` with exactly these bits.
