@@ -6,6 +6,7 @@
 pub mod builder;
 pub mod curve_file;
 pub mod dyn_curve;
+pub mod export;
 pub mod job;
 pub mod plot;
 pub mod run;

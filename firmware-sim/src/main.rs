@@ -3,6 +3,7 @@
 //! ```text
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
 //! strak-sim run [JOB.toml] [--out DIR]
+//! strak-sim compile JOB.toml --number f32|fixed --out FILE.strk
 //! ```
 
 use std::fs;
@@ -14,6 +15,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 
 use strak_sim::curve_file::CurveFile;
+use strak_sim::export::{Playback, export};
 use strak_sim::job::Job;
 use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, run_job};
 use strak_sim::sample::{Number, SampleOptions, sample_to_csv};
@@ -55,6 +57,20 @@ enum Command {
         /// Output folder (created if missing); default `out/<job name>`.
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Plan and compile a job exactly as `run` does and write the path as a blob
+    /// (`Path::to_bytes`) for firmware to embed and play (`Path::from_bytes`). The number format
+    /// is chosen here, not by the job: `f32` (curve and playback in f32) or `fixed` (curve in
+    /// I32F32, playback in Q40).
+    Compile {
+        /// The job file (TOML).
+        job: PathBuf,
+        /// Playback number format of the blob.
+        #[arg(long, value_parser = ["f32", "fixed"])]
+        number: String,
+        /// The blob file to write.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -123,6 +139,26 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if !summary.finished {
                 eprintln!("strak-sim: warning: {}", summary.stop);
             }
+            Ok(())
+        }
+        Command::Compile { job, number, out } => {
+            let label = job.display().to_string();
+            let text = fs::read_to_string(&job).with_context(|| format!("cannot read {label}"))?;
+            let parsed = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+            let playback = Playback::from_name(&number)
+                .ok_or_else(|| anyhow::anyhow!("--number must be f32 or fixed"))?;
+            let compiled =
+                export(&parsed, playback).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+            fs::write(&out, &compiled.blob)
+                .with_context(|| format!("cannot write {}", out.display()))?;
+            println!(
+                "{}: {} bytes, {} axes, {} pieces, {} ticks ({number})",
+                out.display(),
+                compiled.blob.len(),
+                compiled.axes,
+                compiled.pieces,
+                compiled.ticks
+            );
             Ok(())
         }
     }

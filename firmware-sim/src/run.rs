@@ -264,7 +264,37 @@ pub fn plan_options(job: &Job) -> PlanOptions {
     o
 }
 
-fn curve_error(e: crate::curve_file::FieldError) -> JobError {
+/// The time law of `job` along `curve` (built in the job's number format), planned with
+/// `limits` ([`planning_limits`]) as `strak-sim run` plans it.
+///
+/// # Errors
+/// A [`JobError`] naming the field for a profile that cannot be planned.
+pub fn plan_timing<'c, S: Scalar, const D: usize>(
+    job: &Job,
+    curve: &'c DynCurve<S, D>,
+    limits: &Limits<D>,
+) -> Result<Box<dyn Timing + 'c>, JobError> {
+    Ok(match job.profile.kind {
+        ProfileKind::Parameter => Box::new(
+            ParameterTiming::over(curve, job.profile.duration.unwrap_or(1.0))
+                .map_err(|e| plan_error(job, e))?,
+        ),
+        ProfileKind::ConstantSpeed => Box::new(
+            PathTiming::<_, TABLE, ZONES>::constant_speed(
+                curve,
+                job.profile.speed.unwrap_or(job.limits.velocity),
+            )
+            .map_err(|e| plan_error(job, e))?,
+        ),
+        ProfileKind::Trapezoid | ProfileKind::SCurve => Box::new(
+            PathTiming::<_, TABLE, ZONES>::plan(curve, limits, &plan_options(job))
+                .map_err(|e| plan_error(job, e))?,
+        ),
+    })
+}
+
+/// A curve file error as an error on the job's `path.…` field.
+pub fn curve_error(e: crate::curve_file::FieldError) -> JobError {
     JobError::new(
         format!("path.{}", e.field),
         e.message.replace("--number ", "number = "),
@@ -299,7 +329,9 @@ fn plan_error(job: &Job, e: TrajError) -> JobError {
     }
 }
 
-fn compile_error(job: &Job, e: TrajError, duration: f64, max_abs: f64) -> JobError {
+/// A compile error as an error on the job field that causes it (`max_abs`: the largest
+/// coordinate of the path's points, for the fixed-point range message).
+pub fn compile_error(job: &Job, e: TrajError, duration: f64, max_abs: f64) -> JobError {
     let rate = job.rate_hz;
     match e {
         TrajError::InvalidRate => JobError::new("rate_hz", e.to_string()),
@@ -417,23 +449,7 @@ where
     let limits = planning_limits::<D>(job)?;
 
     // The time law.
-    let timing: Box<dyn Timing + '_> = match job.profile.kind {
-        ProfileKind::Parameter => Box::new(
-            ParameterTiming::over(&curve, job.profile.duration.unwrap_or(1.0))
-                .map_err(|e| plan_error(job, e))?,
-        ),
-        ProfileKind::ConstantSpeed => Box::new(
-            PathTiming::<_, TABLE, ZONES>::constant_speed(
-                &curve,
-                job.profile.speed.unwrap_or(job.limits.velocity),
-            )
-            .map_err(|e| plan_error(job, e))?,
-        ),
-        ProfileKind::Trapezoid | ProfileKind::SCurve => Box::new(
-            PathTiming::<_, TABLE, ZONES>::plan(&curve, &limits, &plan_options(job))
-                .map_err(|e| plan_error(job, e))?,
-        ),
-    };
+    let timing = plan_timing(job, &curve, &limits)?;
     let planned = started.elapsed();
 
     // Compile.

@@ -2,10 +2,20 @@
 //!
 //! ```text
 //! cargo xtask test     formatting, clippy -D warnings, host tests + doctests, rustdoc,
-//!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf
+//!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf,
+//!                      then `qemu`
+//! cargo xtask qemu [--bless]
+//!                      the example firmware under QEMU (Cortex-M4F and Cortex-M3), its samples
+//!                      compared bit for bit with the host's; firmware sizes checked against
+//!                      firmware-sim/qemu/sizes.txt (`--bless` rewrites it)
 //! ```
 //!
-//! Missing rustup targets are installed; anything that cannot be installed fails loudly.
+//! Missing rustup targets, qemu-system-arm and defmt-print are installed; anything that cannot
+//! be installed fails loudly.
+
+mod compare;
+mod qemu;
+mod size;
 
 use std::env;
 use std::process::{Command, ExitCode};
@@ -22,6 +32,13 @@ fn main() -> ExitCode {
     let args: Vec<String> = env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => test(),
+        Some("qemu") => match args.get(1).map(String::as_str) {
+            None => qemu::qemu(false),
+            Some("--bless") => qemu::qemu(true),
+            Some(other) => Err(format!(
+                "unknown option `{other}` of qemu; try `cargo xtask help`"
+            )),
+        },
         Some("help") | Some("--help") | Some("-h") | None => {
             print_help();
             Ok(())
@@ -42,7 +59,12 @@ fn print_help() {
     println!();
     println!("tasks:");
     println!("  test   fmt check, clippy -D warnings, host tests and doctests, rustdoc,");
-    println!("         no_std cross builds (installs missing rustup targets)");
+    println!("         no_std cross builds (installs missing rustup targets), then qemu");
+    println!("  qemu   build the example firmware (firmware-sim/qemu) for Cortex-M4F and");
+    println!("         Cortex-M3, run it under QEMU, compare every sample with the host bit for");
+    println!("         bit, check the firmware sizes (installs qemu-system-arm, defmt-print)");
+    println!("  qemu --bless");
+    println!("         the same, rewriting firmware-sim/qemu/sizes.txt instead of checking it");
 }
 
 /// The README's test command.
@@ -100,6 +122,7 @@ fn test() -> Result<(), String> {
             }
         }
     }
+    qemu::qemu(false)?;
     println!(
         "\nxtask test: all checks passed in {:.0} s",
         started.elapsed().as_secs_f64()
@@ -126,7 +149,7 @@ fn step(name: &str, args: &[&str], envs: &[(&str, &str)]) -> Result<(), String> 
 }
 
 /// Installs the rustup targets that are missing; fails loudly when rustup cannot.
-fn ensure_targets(targets: &[&str]) -> Result<(), String> {
+pub(crate) fn ensure_targets(targets: &[&str]) -> Result<(), String> {
     let output = Command::new("rustup")
         .args(["target", "list", "--installed"])
         .output()

@@ -1,0 +1,64 @@
+//! strak's example firmware, shared by its binaries: the jobs embedded in flash, the
+//! tick handler that plays a path through [`Sampler`], on-device compiling, the output
+//! protocol, the panic handler and the exit to QEMU.
+//!
+//! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
+//! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a
+//! folder and builds this crate with `STRAK_BLOBS` pointing there; `build.rs` copies
+//! `jobs.rs` into `OUT_DIR`, where [`jobs`] includes it.
+//!
+//! # Output protocol (defmt, decoded by `defmt-print`)
+//! ```text
+//! J <job> <format> <source> <axes>      a stream starts (source: blob | device)
+//! C <job> <format> <bytes> <pieces>     the device compiled the job; its blob equals the host's
+//! S <tick> [<bits>, …]                  one sample: positions, velocities, accelerations
+//! E <job> <format> <source> <samples>   the stream ends
+//! DONE <streams>                        all streams played; exit code 0 follows
+//! ```
+//! A sample's bits are `f32::to_bits` (f32 playback) or the `i64` bits of the `I32F32`
+//! output (fixed-point playback), widened to `u64`. Nothing else is logged on success, so
+//! the output is deterministic.
+
+#![no_std]
+#![forbid(unsafe_code)]
+
+pub mod counter;
+pub mod device;
+pub mod jobs;
+pub mod play;
+
+use cortex_m_semihosting::debug;
+// The defmt global logger (semihosting) is linked from here.
+use defmt_semihosting as _;
+
+/// Path capacity of the firmware: the bundled jobs need at most 166 pieces.
+pub const PIECES: usize = 256;
+
+/// Exits QEMU with status 0.
+pub fn exit_success() -> ! {
+    debug::exit(debug::EXIT_SUCCESS);
+    loop {
+        cortex_m::asm::bkpt();
+    }
+}
+
+/// Exits QEMU with a failure status.
+pub fn exit_failure() -> ! {
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::bkpt();
+    }
+}
+
+/// Logs the panic through defmt (`defmt-print` drops plain-text panic messages) and exits
+/// QEMU with failure.
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+    defmt::error!("panic: {}", defmt::Display2Format(info));
+    exit_failure()
+}
+
+/// One step of a 64-bit FNV-1a-style hash over whole words (for the size probes' output).
+pub fn mix(hash: u64, word: u64) -> u64 {
+    (hash ^ word).wrapping_mul(0x0000_0100_0000_01b3)
+}

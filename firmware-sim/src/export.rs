@@ -1,0 +1,315 @@
+//! Jobs for firmware: compile a job into a path blob exactly as `strak-sim run` compiles it,
+//! and play it on the host with the job's events, keeping every sample's raw bits.
+//!
+//! This is what `strak-sim compile` writes and what `cargo xtask qemu` compares the firmware
+//! under QEMU against: the firmware plays the same blob with the same events, one
+//! [`Sampler::next`] per tick, and must produce the same bits.
+//!
+//! The playback format is chosen here, not by the job's `number`: [`Playback::F32`] builds the
+//! curve in `f32` and plays `Path<f32, …>`, [`Playback::Fixed`] builds it in `I32F32` and plays
+//! `Path<Q40, …>` (as [`JobNumber::curve_number`] pairs them). Planning ([`planning_limits`],
+//! [`plan_options`], [`plan_timing`]) and compiling ([`compile_options`]) are the functions
+//! `strak-sim run` uses; the path capacity is [`PIECES`].
+
+use strak_curves::{I32F32, Scalar};
+use strak_trajectory::{CompileOptions, Limits, Number, Path, PlanOptions, Q40, Sampler, compile};
+
+use crate::curve_file::Kind;
+use crate::dyn_curve::{DynCurve, build_dyn};
+use crate::job::{Action, Job, JobError, JobNumber, ProfileKind};
+use crate::run::{
+    PIECES, compile_error, compile_options, curve_error, plan_options, plan_timing, planning_limits,
+};
+
+/// The number format a job is compiled and played in for firmware.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Playback {
+    /// Curve in `f32`, playback in `f32`, samples in `f32` (bits: `u32`).
+    F32,
+    /// Curve in `I32F32`, playback in `Q40`, samples in `I32F32` (bits: `i64`).
+    Fixed,
+}
+
+impl Playback {
+    /// Both formats.
+    pub const ALL: [Playback; 2] = [Playback::F32, Playback::Fixed];
+
+    /// The name on the command line and in the firmware's output (`f32`, `fixed`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Playback::F32 => "f32",
+            Playback::Fixed => "fixed",
+        }
+    }
+
+    /// The format named `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// The job number format with the same curve and playback types.
+    pub fn job_number(self) -> JobNumber {
+        match self {
+            Playback::F32 => JobNumber::F32,
+            Playback::Fixed => JobNumber::Fixed,
+        }
+    }
+}
+
+/// A sample value's raw bits, widened to `u64` (`f32`: `to_bits`; `I32F32`: the `i64` bits
+/// reinterpreted).
+pub trait OutBits: Scalar {
+    /// The bits.
+    fn out_bits(self) -> u64;
+}
+
+impl OutBits for f32 {
+    fn out_bits(self) -> u64 {
+        u64::from(self.to_bits())
+    }
+}
+
+impl OutBits for I32F32 {
+    fn out_bits(self) -> u64 {
+        self.to_bits().cast_unsigned()
+    }
+}
+
+/// The settings `strak-sim run` plans and compiles a job with, as plain values: what firmware
+/// needs to compile the same path on the device.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeviceRecipe {
+    /// The control rate in Hz.
+    pub rate_hz: f64,
+    /// The B-spline's degree (clamped uniform knots over `[0, 1]`).
+    pub degree: usize,
+    /// The B-spline's control points.
+    pub points: Vec<Vec<f64>>,
+    /// Planning limits: path velocity, acceleration, jerk (acceleration and jerk already
+    /// reduced by the feed share).
+    pub limits: [f64; 3],
+    /// Per-axis velocity limits (`inf`: none).
+    pub axis_velocity: Vec<f64>,
+    /// Per-axis acceleration limits, reduced by the feed share (`inf`: none).
+    pub axis_acceleration: Vec<f64>,
+    /// The planner's settings.
+    pub plan: PlanOptions,
+    /// The compiler's settings.
+    pub compile: CompileOptions,
+}
+
+/// A job compiled for firmware and played on the host.
+#[derive(Clone, Debug)]
+pub struct Export {
+    /// The playback format.
+    pub playback: Playback,
+    /// Number of axes.
+    pub axes: usize,
+    /// The serialized path ([`Path::to_bytes`]).
+    pub blob: Vec<u8>,
+    /// Number of pieces of the path.
+    pub pieces: usize,
+    /// Length of the path in ticks.
+    pub ticks: u32,
+    /// The events, sorted by tick (feed as the sampler receives it: `f32`).
+    pub events: Vec<(u64, Action)>,
+    /// Every sample's bits, `3 · axes` values per tick: positions, velocities, accelerations.
+    pub bits: Vec<u64>,
+    /// Whether the sampler finished (`false`: stopped by the guard of `strak-sim run`).
+    pub finished: bool,
+    /// The settings to compile the same path on the device, for the job kinds firmware can
+    /// build without the curve file parser (clamped uniform B-splines planned as trapezoid or
+    /// S-curve); `None` otherwise.
+    pub recipe: Option<DeviceRecipe>,
+}
+
+impl Export {
+    /// Number of samples played.
+    pub fn samples(&self) -> usize {
+        self.bits.len() / (3 * self.axes).max(1)
+    }
+
+    /// The bits of sample `tick` (positions, velocities, accelerations).
+    pub fn sample(&self, tick: usize) -> Option<&[u64]> {
+        let n = 3 * self.axes;
+        self.bits.get(tick * n..(tick + 1) * n)
+    }
+}
+
+/// Compiles `job` for firmware in `playback` and plays it on the host (see the module docs).
+///
+/// # Errors
+/// A [`JobError`] naming the field, as `strak-sim run` reports it, when the job cannot be
+/// built, planned, compiled or serialized.
+pub fn export(job: &Job, playback: Playback) -> Result<Export, JobError> {
+    let mut job = job.clone();
+    job.number = playback.job_number();
+    let job = &job;
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .name("strak-sim export".to_owned())
+            .stack_size(crate::run::STACK_BYTES)
+            .spawn_scoped(scope, || match playback {
+                Playback::F32 => by_dim::<f32, f32>(job, playback),
+                Playback::Fixed => by_dim::<Q40, I32F32>(job, playback),
+            })
+            .map_err(|e| JobError::new("job", format!("cannot start the export thread: {e}")))?
+            .join()
+            .map_err(|_| JobError::new("job", "the export thread panicked"))?
+    })
+}
+
+fn by_dim<N, S>(job: &Job, playback: Playback) -> Result<Export, JobError>
+where
+    N: Number,
+    N::Out: OutBits,
+    S: Scalar,
+{
+    match job.axes() {
+        1 => export_typed::<N, S, 1>(job, playback),
+        2 => export_typed::<N, S, 2>(job, playback),
+        3 => export_typed::<N, S, 3>(job, playback),
+        4 => export_typed::<N, S, 4>(job, playback),
+        d => Err(JobError::new(
+            "path.points",
+            format!("points need 1 to 4 coordinates, not {d}"),
+        )),
+    }
+}
+
+fn export_typed<N, S, const D: usize>(job: &Job, playback: Playback) -> Result<Export, JobError>
+where
+    N: Number,
+    N::Out: OutBits,
+    S: Scalar,
+{
+    let curve: DynCurve<S, D> =
+        build_dyn(&job.path, job.number.curve_number()).map_err(curve_error)?;
+    let limits = planning_limits::<D>(job)?;
+    let timing = plan_timing(job, &curve, &limits)?;
+    let max_abs = job
+        .path
+        .points
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let options = compile_options(job);
+    let path: Box<Path<N, D, PIECES>> = Box::new(
+        compile(&curve, &*timing, job.rate_hz, &options)
+            .map_err(|e| compile_error(job, e, timing.duration(), max_abs))?,
+    );
+    let mut blob = vec![0_u8; path.blob_len()];
+    let written = path
+        .to_bytes(&mut blob)
+        .map_err(|e| JobError::new("path", format!("cannot serialize the path: {e}")))?;
+    blob.truncate(written);
+    // The blob is the path, bit for bit (what firmware plays is what was compiled).
+    let back: Box<Path<N, D, PIECES>> = Box::new(
+        Path::from_bytes(&blob)
+            .map_err(|e| JobError::new("path", format!("the blob does not read back: {e}")))?,
+    );
+    if back != path {
+        return Err(JobError::new(
+            "path",
+            "the blob reads back as a different path",
+        ));
+    }
+
+    // Play exactly as `strak-sim run` does.
+    let events = job.sorted_events();
+    let last_event = events.last().map_or(0, |e| e.0);
+    let ticks = u64::from(path.ticks());
+    let guard = 10 * (ticks + 1) + last_event + 1;
+    let mut sampler = Sampler::new(&*back);
+    let mut bits = Vec::with_capacity(3 * D * usize::try_from(ticks + 1).unwrap_or(0));
+    let mut next_event = 0;
+    let mut samples: u64 = 0;
+    let finished = loop {
+        while let Some(&(tick, action)) = events.get(next_event) {
+            if tick > samples {
+                break;
+            }
+            match action {
+                Action::Feed(f) => sampler.set_feed(f as f32),
+                Action::Hold => sampler.hold(),
+                Action::Resume => sampler.resume(),
+                Action::Abort => sampler.abort(),
+            }
+            next_event += 1;
+        }
+        let s = sampler.next();
+        samples += 1;
+        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
+            bits.push(v.out_bits());
+        }
+        if sampler.is_finished() {
+            break true;
+        }
+        if samples >= guard {
+            break false;
+        }
+    };
+    let recipe = recipe::<D>(job, &limits);
+    Ok(Export {
+        playback,
+        axes: D,
+        blob,
+        pieces: path.pieces().len(),
+        ticks: path.ticks(),
+        events: events
+            .into_iter()
+            .map(|(t, a)| match a {
+                Action::Feed(f) => (t, Action::Feed(f64::from(f as f32))),
+                other => (t, other),
+            })
+            .collect(),
+        bits,
+        finished,
+        recipe,
+    })
+}
+
+/// The device recipe of a clamped uniform B-spline job planned as trapezoid or S-curve.
+fn recipe<const D: usize>(job: &Job, limits: &Limits<D>) -> Option<DeviceRecipe> {
+    let p = &job.path;
+    let plain_bspline = p.kind == Kind::Bspline
+        && p.knots.is_none()
+        && p.weights.is_none()
+        && !p.closed.unwrap_or(false);
+    let planned = matches!(
+        job.profile.kind,
+        ProfileKind::Trapezoid | ProfileKind::SCurve
+    );
+    if !(plain_bspline && planned) {
+        return None;
+    }
+    Some(DeviceRecipe {
+        rate_hz: job.rate_hz,
+        degree: p.degree.unwrap_or(0),
+        points: p.points.clone(),
+        limits: [limits.velocity(), limits.acceleration(), limits.jerk()],
+        axis_velocity: limits.axis_velocity().to_vec(),
+        axis_acceleration: limits.axis_acceleration().to_vec(),
+        plan: plan_options(job),
+        compile: compile_options(job),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn playback_names_round_trip() {
+        for p in Playback::ALL {
+            assert_eq!(Playback::from_name(p.name()), Some(p));
+        }
+        assert_eq!(Playback::from_name("f64"), None);
+    }
+
+    #[test]
+    fn out_bits_are_the_raw_bits() {
+        assert_eq!(1.0_f32.out_bits(), 0x3f80_0000);
+        assert_eq!(I32F32::from_num(-1).out_bits(), 0xffff_ffff_0000_0000);
+    }
+}

@@ -1,0 +1,656 @@
+//! `cargo xtask qemu`: the sampler inside real Cortex-M firmware under QEMU, compared bit for
+//! bit with the host.
+//!
+//! 1. Installs what is missing: the rustup targets, `qemu-system-arm` (apt-get),
+//!    `defmt-print` (cargo install, pinned to [`DEFMT_PRINT_VERSION`]).
+//! 2. Compiles every bundled job (`firmware-sim/examples/jobs/*.toml`) on the host in `f32`
+//!    and fixed-point with `strak_sim::export` (what `strak-sim compile` writes) and plays it
+//!    with its events, keeping every sample's bits; writes the blobs and a `jobs.rs` for the
+//!    firmware into `target/qemu/blobs`.
+//! 3. Checks formatting and clippy of the firmware workspace `firmware-sim/qemu`, builds it
+//!    for the Cortex-M4F and the Cortex-M3.
+//! 4. Runs each firmware under QEMU, decodes its defmt output with defmt-print, and compares
+//!    every stream with the host's (the first differing tick and value is named).
+//! 5. Reads the firmware sizes from the ELF headers and checks them against
+//!    `firmware-sim/qemu/sizes.txt` (`--bless` rewrites it).
+
+use std::env;
+use std::fs;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::thread;
+use std::time::{Duration, Instant};
+
+use strak_sim::export::{Export, Playback, export};
+use strak_sim::job::{Action, Job};
+
+use crate::compare::{self, StreamKey};
+use crate::size::{self, Expected};
+
+/// The defmt-print release matching the firmware's defmt 1.x.
+pub(crate) const DEFMT_PRINT_VERSION: &str = "1.2.0";
+
+/// How long one firmware may run under QEMU.
+const QEMU_TIMEOUT: Duration = Duration::from_secs(600);
+
+/// The firmware binaries built for each target: the example firmware and the size probes.
+const BINARIES: [&str; 3] = ["strak-qemu", "size-sampler", "size-baseline"];
+
+/// One firmware build and the QEMU machine it runs on.
+#[derive(Clone, Copy, Debug)]
+struct Firmware {
+    label: &'static str,
+    target: &'static str,
+    cpu: &'static str,
+    machine: &'static str,
+    formats: &'static [Playback],
+}
+
+const FIRMWARES: [Firmware; 2] = [
+    Firmware {
+        label: "Cortex-M4F (mps2-an386)",
+        target: "thumbv7em-none-eabihf",
+        cpu: "cortex-m4",
+        machine: "mps2-an386",
+        formats: &[Playback::F32, Playback::Fixed],
+    },
+    Firmware {
+        label: "Cortex-M3 (mps2-an385)",
+        target: "thumbv7m-none-eabi",
+        cpu: "cortex-m3",
+        machine: "mps2-an385",
+        formats: &[Playback::Fixed],
+    },
+];
+
+/// A job exported for firmware in one format.
+struct HostJob {
+    name: String,
+    export: Export,
+    blob_path: PathBuf,
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_owned)
+}
+
+/// Runs the whole check; `bless` rewrites the expected sizes instead of checking them.
+pub(crate) fn qemu(bless: bool) -> Result<(), String> {
+    let started = Instant::now();
+    let root = root();
+    let fw_dir = root.join("firmware-sim").join("qemu");
+    let targets: Vec<&str> = FIRMWARES.iter().map(|f| f.target).collect();
+    crate::ensure_targets(&targets)?;
+    let qemu = ensure_qemu()?;
+    let defmt_print = ensure_defmt_print()?;
+
+    println!("\n==> host: compiling and playing the bundled jobs (f32 and fixed)");
+    let t = Instant::now();
+    let blob_dir = root.join("target").join("qemu").join("blobs");
+    let jobs = export_jobs(&root.join("firmware-sim/examples/jobs"), &blob_dir)?;
+    write_if_changed(&blob_dir.join("jobs.rs"), jobs_source(&jobs).as_bytes())?;
+    println!(
+        "<== host: {} jobs × formats, {} samples ({:.1} s)",
+        jobs.len(),
+        jobs.iter().map(|j| j.export.samples()).sum::<usize>(),
+        t.elapsed().as_secs_f64()
+    );
+
+    let blobs = blob_dir.to_string_lossy().into_owned();
+    let envs = [("STRAK_BLOBS", blobs.as_str())];
+    fw_step(&fw_dir, "firmware format", &["fmt", "--", "--check"], &envs)?;
+    for fw in &FIRMWARES {
+        fw_step(
+            &fw_dir,
+            &format!("firmware clippy ({})", fw.target),
+            &[
+                "clippy",
+                "--release",
+                "--target",
+                fw.target,
+                "--",
+                "-D",
+                "warnings",
+            ],
+            &envs,
+        )?;
+        fw_step(
+            &fw_dir,
+            &format!("firmware build ({})", fw.target),
+            &["build", "--release", "--target", fw.target, "--bins"],
+            &envs,
+        )?;
+    }
+
+    let mut compared = 0_usize;
+    for fw in &FIRMWARES {
+        let elf = fw_dir
+            .join("target")
+            .join(fw.target)
+            .join("release")
+            .join("strak-qemu");
+        println!("\n==> QEMU {}: {}", fw.label, elf.display());
+        let t = Instant::now();
+        let text = run_firmware(&qemu, &defmt_print, fw, &elf)?;
+        let secs = t.elapsed().as_secs_f64();
+        let n = check_output(fw, &jobs, &text)?;
+        compared += n;
+        println!(
+            "<== QEMU {}: {n} samples equal the host's bit for bit ({secs:.1} s)",
+            fw.label
+        );
+    }
+
+    check_sizes(&fw_dir, bless)?;
+    println!(
+        "\nxtask qemu: {compared} firmware samples equal the host's bit for bit; done in {:.0} s",
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Exports every job file of `dir` in both formats, writing the blobs into `blob_dir`.
+fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
+    let mut files: Vec<PathBuf> = fs::read_dir(dir)
+        .map_err(|e| format!("cannot read {}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(format!("no job files in {}", dir.display()));
+    }
+    fs::create_dir_all(blob_dir)
+        .map_err(|e| format!("cannot create {}: {e}", blob_dir.display()))?;
+    let mut out = Vec::new();
+    for file in files {
+        let name = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let text = fs::read_to_string(&file)
+            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        let job = Job::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+        for playback in Playback::ALL {
+            let export = export(&job, playback)
+                .map_err(|e| format!("{} ({}): {e}", file.display(), playback.name()))?;
+            let blob_path = blob_dir.join(format!("{name}-{}.strk", playback.name()));
+            write_if_changed(&blob_path, &export.blob)?;
+            println!(
+                "    {name} {}: {} axes, {} pieces, {} ticks, {} samples, blob {} bytes{}",
+                playback.name(),
+                export.axes,
+                export.pieces,
+                export.ticks,
+                export.samples(),
+                export.blob.len(),
+                if export.recipe.is_some() && export.axes == 3 {
+                    ", also compiled on the device"
+                } else {
+                    ""
+                }
+            );
+            out.push(HostJob {
+                name: name.clone(),
+                export,
+                blob_path,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Writes `bytes` to `path` unless it holds them already (an unchanged file keeps its time,
+/// so cargo does not rebuild the firmware).
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    if fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// Rust source of an `f64` with exactly these bits.
+fn f64_src(x: f64) -> String {
+    format!("f64::from_bits({:#018x})", x.to_bits())
+}
+
+fn events_src(events: &[(u64, Action)]) -> String {
+    let list: Vec<String> = events
+        .iter()
+        .map(|(tick, a)| {
+            let event = match a {
+                #[allow(clippy::cast_possible_truncation)]
+                Action::Feed(f) => format!(
+                    "Event::Feed(f32::from_bits({:#010x}))",
+                    (*f as f32).to_bits()
+                ),
+                Action::Hold => "Event::Hold".to_owned(),
+                Action::Resume => "Event::Resume".to_owned(),
+                Action::Abort => "Event::Abort".to_owned(),
+            };
+            format!("TimedEvent {{ tick: {tick}, event: {event} }}")
+        })
+        .collect();
+    format!("&[{}]", list.join(", "))
+}
+
+/// The jobs that are compiled on the device too: plain B-spline jobs of 3 axes.
+fn device_jobs(jobs: &[HostJob]) -> Vec<(&HostJob, &HostJob)> {
+    jobs.iter()
+        .filter(|j| {
+            j.export.playback == Playback::F32 && j.export.axes == 3 && j.export.recipe.is_some()
+        })
+        .filter_map(|f| {
+            jobs.iter()
+                .find(|x| x.name == f.name && x.export.playback == Playback::Fixed)
+                .map(|x| (f, x))
+        })
+        .collect()
+}
+
+/// The firmware's `jobs.rs`: the blobs (`include_bytes!`), their events, and the device jobs.
+fn jobs_source(jobs: &[HostJob]) -> String {
+    let mut s = String::from(
+        "// @generated by `cargo xtask qemu` from firmware-sim/examples/jobs: do not edit.\n\n\
+         /// The jobs compiled on the host, as blobs in flash.\npub static BLOB_JOBS: &[BlobJob] = &[\n",
+    );
+    for j in jobs {
+        let format = match j.export.playback {
+            Playback::F32 => "Format::F32",
+            Playback::Fixed => "Format::Fixed",
+        };
+        s += &format!(
+            "    BlobJob {{ name: {:?}, format: {format}, axes: {}, blob: include_bytes!({:?}), events: {} }},\n",
+            j.name,
+            j.export.axes,
+            j.blob_path.to_string_lossy(),
+            events_src(&j.export.events)
+        );
+    }
+    s += "];\n\n/// The jobs compiled on the device at start-up (3 axes).\npub static DEVICE_JOBS: &[DeviceJob<3>] = &[\n";
+    for (f, x) in device_jobs(jobs) {
+        let Some(r) = &f.export.recipe else { continue };
+        let list = |v: &[f64]| v.iter().map(|x| f64_src(*x)).collect::<Vec<_>>().join(", ");
+        let points: Vec<String> = r.points.iter().map(|p| format!("[{}]", list(p))).collect();
+        let c = &r.compile;
+        let mut compile = String::from("strak_trajectory::CompileOptions::new()");
+        match c.tolerance() {
+            strak_trajectory::Tolerance::Absolute(t) => {
+                compile += &format!(".with_tolerance({})", f64_src(t))
+            }
+            strak_trajectory::Tolerance::Relative(t) => {
+                compile += &format!(".with_relative_tolerance({})", f64_src(t));
+            }
+        }
+        compile += &format!(".with_max_piece_ticks({})", c.max_piece_ticks());
+        if let Some((a, j)) = c.limits() {
+            compile += &format!(".with_limits({}, {})", f64_src(a), f64_src(j));
+        }
+        compile += &format!(".with_feed_share({})", f64_src(c.feed_share()));
+        s += &format!(
+            "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        scurve: {},\n        samples: {},\n        zone_tolerance: {},\n        axis_centripetal_share: {},\n        compile: {compile},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
+            f.name,
+            f64_src(r.rate_hz),
+            r.degree,
+            points.join(", "),
+            list(&r.limits),
+            list(&r.axis_velocity),
+            list(&r.axis_acceleration),
+            r.plan.shape() == strak_trajectory::ProfileShape::SCurve,
+            r.plan.samples(),
+            f64_src(r.plan.zone_tolerance()),
+            f64_src(r.plan.axis_centripetal_share()),
+            events_src(&f.export.events),
+            f.blob_path.to_string_lossy(),
+            x.blob_path.to_string_lossy(),
+        );
+    }
+    s += "];\n";
+    s
+}
+
+/// `cargo ARGS` in the firmware workspace (its own `.cargo/config.toml` applies).
+fn fw_step(dir: &Path, name: &str, args: &[&str], envs: &[(&str, &str)]) -> Result<(), String> {
+    println!("\n==> {name}: cargo {}", args.join(" "));
+    let t = Instant::now();
+    let cargo = env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    let status = Command::new(cargo)
+        .args(args)
+        .current_dir(dir)
+        .envs(envs.iter().copied())
+        // The firmware's linker scripts come from its config; a RUSTFLAGS would replace them.
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_TARGET_DIR")
+        .status()
+        .map_err(|e| format!("{name}: could not start cargo: {e}"))?;
+    if status.success() {
+        println!("<== {name}: ok ({:.0} s)", t.elapsed().as_secs_f64());
+        Ok(())
+    } else {
+        Err(format!("{name} failed ({status})"))
+    }
+}
+
+fn runs(program: &Path, args: &[&str]) -> Option<String> {
+    let out = Command::new(program).args(args).output().ok()?;
+    out.status
+        .success()
+        .then(|| String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// `qemu-system-arm`, installed with apt-get when missing (`apt-get update` and a second
+/// try when the first install fails).
+fn ensure_qemu() -> Result<PathBuf, String> {
+    let qemu = PathBuf::from("qemu-system-arm");
+    if runs(&qemu, &["--version"]).is_some() {
+        return Ok(qemu);
+    }
+    println!("==> installing qemu-system-arm: apt-get install -y qemu-system-arm");
+    let install = || {
+        Command::new("apt-get")
+            .args(["install", "-y", "qemu-system-arm"])
+            .env("DEBIAN_FRONTEND", "noninteractive")
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if !install() {
+        println!("==> apt-get install failed; apt-get update, then again");
+        let updated = Command::new("apt-get")
+            .arg("update")
+            .env("DEBIAN_FRONTEND", "noninteractive")
+            .status()
+            .is_ok_and(|s| s.success());
+        if !updated || !install() {
+            return Err(
+                "qemu-system-arm is missing and `apt-get install -y qemu-system-arm` failed \
+                 (it needs root and Debian's package lists); install it by hand"
+                    .to_owned(),
+            );
+        }
+    }
+    runs(&qemu, &["--version"])
+        .map(|_| qemu)
+        .ok_or_else(|| "qemu-system-arm was installed but does not run".to_owned())
+}
+
+/// `defmt-print` of [`DEFMT_PRINT_VERSION`], installed with `cargo install --locked` when
+/// missing or of another version.
+fn ensure_defmt_print() -> Result<PathBuf, String> {
+    let cargo_home = env::var_os("CARGO_HOME")
+        .map(PathBuf::from)
+        .or_else(|| env::var_os("HOME").map(|h| PathBuf::from(h).join(".cargo")));
+    let candidates: Vec<PathBuf> = cargo_home
+        .iter()
+        .map(|h| h.join("bin").join("defmt-print"))
+        .chain([PathBuf::from("defmt-print")])
+        .collect();
+    let wanted = format!("defmt-print {DEFMT_PRINT_VERSION}");
+    let find = || {
+        candidates.iter().find(|c| {
+            runs(c, &["-V"]).is_some_and(|v| v.lines().next().is_some_and(|l| l.trim() == wanted))
+        })
+    };
+    if let Some(found) = find() {
+        return Ok(found.clone());
+    }
+    println!(
+        "==> installing {wanted}: cargo install defmt-print --version ={DEFMT_PRINT_VERSION} --locked"
+    );
+    let cargo = env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    let ok = Command::new(cargo)
+        .args(["install", "defmt-print", "--version"])
+        .arg(format!("={DEFMT_PRINT_VERSION}"))
+        .arg("--locked")
+        .env_remove("RUSTFLAGS")
+        .status()
+        .is_ok_and(|s| s.success());
+    if !ok {
+        return Err(format!(
+            "`cargo install defmt-print --version ={DEFMT_PRINT_VERSION} --locked` failed"
+        ));
+    }
+    find().cloned().ok_or_else(|| {
+        format!("{wanted} was installed but is not found in $CARGO_HOME/bin or on PATH")
+    })
+}
+
+fn read_all(mut r: impl Read + Send + 'static) -> thread::JoinHandle<String> {
+    thread::spawn(move || {
+        let mut buf = Vec::new();
+        let _ = r.read_to_end(&mut buf);
+        String::from_utf8_lossy(&buf).into_owned()
+    })
+}
+
+fn kill(child: &mut Child) {
+    let _ = child.kill();
+    let _ = child.wait();
+}
+
+/// Runs `elf` under QEMU, its output piped into defmt-print; returns defmt-print's text.
+fn run_firmware(
+    qemu: &Path,
+    defmt_print: &Path,
+    fw: &Firmware,
+    elf: &Path,
+) -> Result<String, String> {
+    let mut q = Command::new(qemu)
+        .args(["-cpu", fw.cpu, "-machine", fw.machine, "-nographic"])
+        .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+        .arg(elf)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {}: {e}", qemu.display()))?;
+    let q_out = q.stdout.take().ok_or("no QEMU stdout")?;
+    let q_err = read_all(q.stderr.take().ok_or("no QEMU stderr")?);
+    let mut d = match Command::new(defmt_print)
+        .arg("-e")
+        .arg(elf)
+        .args(["--log-format", "{L} {s}"])
+        .stdin(q_out)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+    {
+        Ok(d) => d,
+        Err(e) => {
+            kill(&mut q);
+            return Err(format!("cannot start {}: {e}", defmt_print.display()));
+        }
+    };
+    let d_out = read_all(d.stdout.take().ok_or("no defmt-print stdout")?);
+    let d_err = read_all(d.stderr.take().ok_or("no defmt-print stderr")?);
+    let deadline = Instant::now() + QEMU_TIMEOUT;
+    let status = loop {
+        match q.try_wait() {
+            Ok(Some(status)) => break Some(status),
+            Ok(None) if Instant::now() < deadline => thread::sleep(Duration::from_millis(50)),
+            _ => {
+                kill(&mut q);
+                break None;
+            }
+        }
+    };
+    let _ = d.wait();
+    let text = d_out.join().unwrap_or_default();
+    let d_err = d_err.join().unwrap_or_default();
+    let q_err = q_err.join().unwrap_or_default();
+    let tail = |s: &str| {
+        s.lines()
+            .rev()
+            .take(20)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    match status {
+        Some(s) if s.success() => Ok(text),
+        Some(s) => Err(format!(
+            "{} failed under QEMU ({s}); its last lines:\n{}\n{}{}",
+            fw.label,
+            tail(&text),
+            q_err,
+            d_err
+        )),
+        None => Err(format!(
+            "{} did not finish within {} s under QEMU; its last lines:\n{}",
+            fw.label,
+            QEMU_TIMEOUT.as_secs(),
+            tail(&text)
+        )),
+    }
+}
+
+/// Compares the firmware's output with the host's streams; returns the samples compared.
+fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, String> {
+    let out = compare::parse(text)?;
+    if !out.other.is_empty() {
+        return Err(format!(
+            "{}: unexpected firmware output:\n{}",
+            fw.label,
+            out.other.join("\n")
+        ));
+    }
+    let mut expected: Vec<(StreamKey, &HostJob)> = Vec::new();
+    for j in jobs
+        .iter()
+        .filter(|j| fw.formats.contains(&j.export.playback))
+    {
+        let key = (
+            j.name.clone(),
+            j.export.playback.name().to_owned(),
+            "blob".to_owned(),
+        );
+        expected.push((key, j));
+    }
+    for (f, x) in device_jobs(jobs) {
+        for j in [f, x] {
+            if fw.formats.contains(&j.export.playback) {
+                let format = j.export.playback.name().to_owned();
+                match out.compiled.get(&(j.name.clone(), format.clone())) {
+                    Some(&(bytes, pieces))
+                        if bytes == j.export.blob.len() && pieces == j.export.pieces => {}
+                    other => {
+                        return Err(format!(
+                            "{}: {} {format}: the device did not report its compiled path as equal to the host's blob ({other:?})",
+                            fw.label, j.name
+                        ));
+                    }
+                }
+                expected.push(((j.name.clone(), format, "device".to_owned()), j));
+            }
+        }
+    }
+    let mut samples = 0;
+    for (key, job) in &expected {
+        let label = format!("{}: {} {} ({})", fw.label, key.0, key.1, key.2);
+        let stream = out
+            .stream(key)
+            .ok_or_else(|| format!("{label}: the firmware did not play this stream"))?;
+        if stream.axes != job.export.axes {
+            return Err(format!(
+                "{label}: {} axes, the host has {}",
+                stream.axes, job.export.axes
+            ));
+        }
+        let n = compare::compare(&job.export.bits, &stream.bits, stream.axes, &key.1)
+            .map_err(|m| format!("{label}: the firmware differs from the host: {m}"))?;
+        if stream.ended != u32::try_from(n).ok() {
+            return Err(format!(
+                "{label}: the stream ended with {:?} samples, {n} were compared",
+                stream.ended
+            ));
+        }
+        samples += n;
+    }
+    if out.streams.len() != expected.len() || out.done != u32::try_from(expected.len()).ok() {
+        return Err(format!(
+            "{}: {} streams played (DONE {:?}), {} expected",
+            fw.label,
+            out.streams.len(),
+            out.done,
+            expected.len()
+        ));
+    }
+    Ok(samples)
+}
+
+/// Reads the sizes of every firmware binary and checks them (or rewrites the file).
+fn check_sizes(fw_dir: &Path, bless: bool) -> Result<(), String> {
+    let file = fw_dir.join("sizes.txt");
+    let mut actual = Vec::new();
+    for fw in &FIRMWARES {
+        for bin in BINARIES {
+            let elf = fw_dir
+                .join("target")
+                .join(fw.target)
+                .join("release")
+                .join(bin);
+            let bytes =
+                fs::read(&elf).map_err(|e| format!("cannot read {}: {e}", elf.display()))?;
+            let sizes = size::elf32_sizes(&bytes).map_err(|e| format!("{}: {e}", elf.display()))?;
+            actual.push(Expected {
+                name: bin.to_owned(),
+                target: fw.target.to_owned(),
+                sizes,
+            });
+        }
+    }
+    println!("\n==> firmware sizes (bytes)");
+    for a in &actual {
+        println!("    {:<14} {:<22} {}", a.name, a.target, a.sizes);
+    }
+    for fw in &FIRMWARES {
+        let flash = |bin: &str| {
+            actual
+                .iter()
+                .find(|a| a.name == bin && a.target == fw.target)
+                .map_or(0, |a| a.sizes.flash())
+        };
+        println!(
+            "    sampler alone on {}: {} bytes of flash (size-sampler − size-baseline)",
+            fw.target,
+            flash("size-sampler").cast_signed() - flash("size-baseline").cast_signed()
+        );
+    }
+    if bless {
+        fs::write(&file, size::write_expected(&actual))
+            .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        println!("<== wrote {}", file.display());
+        return Ok(());
+    }
+    let text = fs::read_to_string(&file).map_err(|e| {
+        format!(
+            "cannot read {}: {e} (create it with `cargo xtask qemu --bless`)",
+            file.display()
+        )
+    })?;
+    let expected = size::parse_expected(&text)?;
+    for a in &actual {
+        let e = expected
+            .iter()
+            .find(|e| e.name == a.name && e.target == a.target)
+            .ok_or_else(|| {
+                format!(
+                    "{} has no line for {} {}: run `cargo xtask qemu --bless` and commit it",
+                    file.display(),
+                    a.name,
+                    a.target
+                )
+            })?;
+        size::check(&format!("{} ({})", a.name, a.target), e.sizes, a.sizes)?;
+    }
+    println!(
+        "<== sizes within {:.0} % of {}",
+        size::GROWTH * 100.0,
+        file.display()
+    );
+    Ok(())
+}
