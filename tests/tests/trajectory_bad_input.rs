@@ -191,6 +191,10 @@ fn invalid_limit_plan_options() {
         PlanOptions::new().with_centripetal_share(1.0),
         PlanOptions::new().with_centripetal_share(NAN),
         PlanOptions::new().with_centripetal_share(-0.5),
+        PlanOptions::new().with_corner_angle(0.0),
+        PlanOptions::new().with_corner_angle(-1e-3),
+        PlanOptions::new().with_corner_angle(NAN),
+        PlanOptions::new().with_corner_angle(INF),
     ];
     for o in bad_options {
         assert!(
@@ -206,6 +210,7 @@ fn invalid_limit_plan_options() {
         PlanOptions::new().with_samples(1),
         PlanOptions::new().with_zone_tolerance(0.0),
         PlanOptions::new().with_centripetal_share(0.999),
+        PlanOptions::new().with_corner_angle(3.0),
         PlanOptions::new().with_shape(ProfileShape::Trapezoid),
     ] {
         assert!(PathTiming::<_, 16, 4>::plan(&c, &l, &o).is_ok(), "{o:?}");

@@ -290,8 +290,17 @@ fn jobs_source(jobs: &[HostJob]) -> String {
             compile += &format!(".with_limits({}, {})", f64_src(a), f64_src(j));
         }
         compile += &format!(".with_feed_share({})", f64_src(c.feed_share()));
+        let p = &r.plan;
+        let plan = format!(
+            "strak_trajectory::PlanOptions::new().with_shape(strak_trajectory::ProfileShape::{:?}).with_samples({}).with_zone_tolerance({}).with_centripetal_share({}).with_corner_angle({})",
+            p.shape(),
+            p.samples(),
+            f64_src(p.zone_tolerance()),
+            f64_src(p.centripetal_share()),
+            f64_src(p.corner_angle()),
+        );
         s += &format!(
-            "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        scurve: {},\n        samples: {},\n        zone_tolerance: {},\n        axis_centripetal_share: {},\n        compile: {compile},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
+            "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        plan: {plan},\n        compile: {compile},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
             f.name,
             f64_src(r.rate_hz),
             r.degree,
@@ -299,10 +308,6 @@ fn jobs_source(jobs: &[HostJob]) -> String {
             list(&r.limits),
             list(&r.axis_velocity),
             list(&r.axis_acceleration),
-            r.plan.shape() == strak_trajectory::ProfileShape::SCurve,
-            r.plan.samples(),
-            f64_src(r.plan.zone_tolerance()),
-            f64_src(r.plan.axis_centripetal_share()),
             events_src(&f.export.events),
             f.blob_path.to_string_lossy(),
             x.blob_path.to_string_lossy(),

@@ -5,9 +5,7 @@
 
 use heapless::Vec;
 use strak_curves::{BSpline, Point, Scalar};
-use strak_trajectory::{
-    Error, Limits, Number, Path, PathTiming, PlanOptions, ProfileShape, compile,
-};
+use strak_trajectory::{Error, Limits, Number, Path, PathTiming, compile};
 
 use crate::jobs::DeviceJob;
 
@@ -52,16 +50,7 @@ where
     let limits = Limits::<D>::new(v, a, j)?
         .with_axis_velocity(job.axis_velocity)?
         .with_axis_acceleration(job.axis_acceleration)?;
-    let plan = PlanOptions::new()
-        .with_shape(if job.scurve {
-            ProfileShape::SCurve
-        } else {
-            ProfileShape::Trapezoid
-        })
-        .with_samples(job.samples)
-        .with_zone_tolerance(job.zone_tolerance)
-        .with_axis_centripetal_share(job.axis_centripetal_share);
-    let timing = PathTiming::<_, TABLE, ZONES>::plan(&curve, &limits, &plan)?;
+    let timing = PathTiming::<_, TABLE, ZONES>::plan(&curve, &limits, &job.plan)?;
     compile(&curve, &timing, job.rate_hz, &job.compile)
 }
 

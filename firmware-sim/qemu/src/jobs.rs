@@ -1,7 +1,7 @@
 //! The jobs embedded in flash: what `cargo xtask qemu` generated into `jobs.rs` (see the
 //! crate docs), as the types of this module.
 
-use strak_trajectory::CompileOptions;
+use strak_trajectory::{CompileOptions, PlanOptions};
 
 /// The playback number format of a job.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
@@ -87,14 +87,8 @@ pub struct DeviceJob<const D: usize> {
     pub axis_velocity: [f64; D],
     /// Per-axis acceleration limits (`inf`: none).
     pub axis_acceleration: [f64; D],
-    /// S-curve (`true`) or trapezoid (`false`).
-    pub scurve: bool,
-    /// The planner's sampling intervals.
-    pub samples: usize,
-    /// The planner's zone tolerance.
-    pub zone_tolerance: f64,
-    /// The planner's per-axis centripetal share.
-    pub axis_centripetal_share: f64,
+    /// The planner's settings.
+    pub plan: PlanOptions,
     /// The compiler's settings.
     pub compile: CompileOptions,
     /// The events, sorted by tick.

@@ -112,6 +112,7 @@ pub struct ProfileZone {
     pub(super) v_limit: f64,
     pub(super) a_limit: f64,
     pub(super) j_limit: f64,
+    pub(super) stop: bool,
     pub(super) v_start: f64,
     pub(super) v_end: f64,
     pub(super) t_start: f64,
@@ -128,6 +129,7 @@ impl ProfileZone {
             v_limit,
             a_limit,
             j_limit,
+            stop: false,
             v_start: 0.0,
             v_end: 0.0,
             t_start: 0.0,
@@ -160,6 +162,11 @@ impl ProfileZone {
     /// The zone's limit of the path jerk `|s⃛|` (`∞` for trapezoidal profiles).
     pub fn j_limit(&self) -> f64 {
         self.j_limit
+    }
+
+    /// `true` when the zone ends at a corner of the path, where the motion comes to rest.
+    pub fn stops_at_end(&self) -> bool {
+        self.stop
     }
 
     /// Speed on entering the zone.

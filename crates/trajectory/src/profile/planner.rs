@@ -51,6 +51,10 @@ pub enum ProfileShape {
 ///    zone's speed limit leave of `a_max`, `a_i` and `j_max`, so that the acceleration and
 ///    jerk **in space** stay within the limits (the formulas are in the source of
 ///    `profile/speed_limit.rs`).
+///    A join of pieces where the tangent turns by more than the corner angle (a C⁰ corner
+///    of a Bézier chain or a Hermite spline, a B-spline knot of full multiplicity) ends a
+///    zone, and the motion comes to rest there (a turn at speed would need an infinite
+///    acceleration).
 /// 3. **Boundary speeds.** A forward pass sets each zone's exit speed to the fastest
 ///    reachable from its entry speed within its length (the exact minimum distance of a
 ///    jerk-limited speed change with zero acceleration at both ends), capped by the limits
@@ -81,6 +85,7 @@ pub struct PlanOptions {
     samples: usize,
     zone_tolerance: f64,
     centripetal_share: f64,
+    corner_angle: f64,
 }
 
 impl Default for PlanOptions {
@@ -91,32 +96,33 @@ impl Default for PlanOptions {
 
 impl PlanOptions {
     /// The defaults: S-curve, 1024 sampling intervals, zone tolerance 0.05 (5 %),
-    /// centripetal share 0.5.
-    pub fn new() -> Self {
+    /// centripetal share 0.5, corner angle 10⁻⁴ rad.
+    pub const fn new() -> Self {
         PlanOptions {
             shape: ProfileShape::SCurve,
             samples: 1024,
             zone_tolerance: 0.05,
             centripetal_share: 0.5,
+            corner_angle: 1e-4,
         }
     }
 
     /// The velocity profile of the zones.
-    pub fn with_shape(mut self, shape: ProfileShape) -> Self {
+    pub const fn with_shape(mut self, shape: ProfileShape) -> Self {
         self.shape = shape;
         self
     }
 
     /// The number of sampling intervals along the parameter (`1 ..= 2²⁰`; each costs two
     /// evaluations of `c'` and `c''`).
-    pub fn with_samples(mut self, samples: usize) -> Self {
+    pub const fn with_samples(mut self, samples: usize) -> Self {
         self.samples = samples;
         self
     }
 
     /// The relative spread of the speed limit allowed inside one zone (finite, `≥ 0`; 0
     /// merges only equal limits).
-    pub fn with_zone_tolerance(mut self, tolerance: f64) -> Self {
+    pub const fn with_zone_tolerance(mut self, tolerance: f64) -> Self {
         self.zone_tolerance = tolerance;
         self
     }
@@ -126,28 +132,43 @@ impl PlanOptions {
     /// and `v²|κN_i| ≤ q·a_i` per axis, the turning jerk `v³|x_sss| ≤ q·j_max`. The rest is
     /// left for speed changes along the path. A larger share corners faster and accelerates
     /// more gently in curves.
-    pub fn with_centripetal_share(mut self, share: f64) -> Self {
+    pub const fn with_centripetal_share(mut self, share: f64) -> Self {
         self.centripetal_share = share;
         self
     }
 
+    /// The smallest turn of the tangent at a join of pieces that counts as a corner, in
+    /// radians (finite, `> 0`): the motion stops at corners. A join with a smaller turn `θ`
+    /// is passed at speed; the compiled path smooths it over its knot spacing, an
+    /// acceleration of about `v·θ/h` for a piece of `h` seconds (100 mm/s, 10⁻⁴ rad and 1 ms:
+    /// 10 mm/s²).
+    pub const fn with_corner_angle(mut self, radians: f64) -> Self {
+        self.corner_angle = radians;
+        self
+    }
+
+    /// The smallest turn at a join that counts as a corner (radians).
+    pub const fn corner_angle(&self) -> f64 {
+        self.corner_angle
+    }
+
     /// The velocity profile of the zones.
-    pub fn shape(&self) -> ProfileShape {
+    pub const fn shape(&self) -> ProfileShape {
         self.shape
     }
 
     /// The number of sampling intervals.
-    pub fn samples(&self) -> usize {
+    pub const fn samples(&self) -> usize {
         self.samples
     }
 
     /// The relative spread of the speed limit inside one zone.
-    pub fn zone_tolerance(&self) -> f64 {
+    pub const fn zone_tolerance(&self) -> f64 {
         self.zone_tolerance
     }
 
     /// The share of the limits the turning of the path may take.
-    pub fn centripetal_share(&self) -> f64 {
+    pub const fn centripetal_share(&self) -> f64 {
         self.centripetal_share
     }
 
@@ -160,6 +181,8 @@ impl PlanOptions {
             && share < 1.0
             && tol.is_finite()
             && tol >= 0.0
+            && self.corner_angle.is_finite()
+            && self.corner_angle > 0.0
         {
             Ok(())
         } else {
@@ -177,7 +200,11 @@ fn boundary_speeds(zones: &mut [ProfileZone]) {
         let next_limit = zones.get(i + 1).map_or(0.0, |z| z.v_limit);
         if let Some(z) = zones.get_mut(i) {
             z.v_start = v;
-            let cap = z.v_limit.min(next_limit);
+            let cap = if z.stop {
+                0.0
+            } else {
+                z.v_limit.min(next_limit)
+            };
             z.v_end = reach(v, z.end - z.start, cap, z.a_limit, z.j_limit);
             v = z.v_end;
         }
@@ -654,6 +681,9 @@ mod tests {
             PlanOptions::new().with_zone_tolerance(f64::NAN),
             PlanOptions::new().with_centripetal_share(0.0),
             PlanOptions::new().with_centripetal_share(1.0),
+            PlanOptions::new().with_corner_angle(0.0),
+            PlanOptions::new().with_corner_angle(f64::NAN),
+            PlanOptions::new().with_corner_angle(f64::INFINITY),
         ] {
             assert!(matches!(
                 PathTiming::<_, 8, 4>::plan(&c, &l, &o),

@@ -44,7 +44,7 @@
 //! and gentler speed changes where the path turns while the speed is high.
 
 use heapless::Vec;
-use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
+use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use super::greater;
 use super::motion::ProfileZone;
@@ -244,6 +244,26 @@ fn zone_limits<const A: usize>(
     }
 }
 
+/// `true` when the tangent direction turns by more than the corner angle (`cos_corner` its
+/// cosine) at the join after piece `piece`: the left tangent is taken one step of the
+/// parameter's resolution before the join, the right one at the join (the piece starting
+/// there). Joins where either tangent vanishes are not corners.
+fn is_corner<C: ParamCurveDeriv>(curve: &C, piece: usize, cos_corner: f64) -> bool {
+    let (lo, u_join) = curve.piece_domain(piece);
+    let (lo, u) = (lo.to_f64(), u_join.to_f64());
+    let step = 2.0 * ScalarOf::<C>::EPSILON.to_f64() * u.abs().max(1.0);
+    let left_at = to_param(curve, (u - step).max(lo));
+    let (left, right) = (curve.deriv(left_at, 1), curve.deriv(u_join, 1));
+    let (mut ll, mut rr, mut lr) = (0.0, 0.0, 0.0);
+    for i in 0..<C::Point as Point>::DIM {
+        let (l, r) = (left.coord(i).to_f64(), right.coord(i).to_f64());
+        ll += l * l;
+        rr += r * r;
+        lr += l * r;
+    }
+    greater(ll, 0.0) && greater(rr, 0.0) && lr < cos_corner * libm::sqrt(ll * rr)
+}
+
 /// Samples the speed limit on `options.samples()` intervals uniform in the parameter (each
 /// interval at its ends and midpoint, taking the worst) and groups consecutive intervals
 /// into zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
@@ -285,13 +305,18 @@ where
 
     let mut out: Vec<ProfileZone, Z> = Vec::new();
     let mut required = 0_usize;
-    let mut close = |open: &Open<A>, s_end: f64, out: &mut Vec<ProfileZone, Z>| {
+    let mut close = |open: &Open<A>, s_end: f64, stop: bool, out: &mut Vec<ProfileZone, Z>| {
         required += 1;
         let zl = zone_limits(&open.worst, limits, jerk, share);
-        let zone = ProfileZone::new(open.s_start, s_end, open.worst.v, zl.acceleration, zl.jerk);
+        let mut zone =
+            ProfileZone::new(open.s_start, s_end, open.worst.v, zl.acceleration, zl.jerk);
+        zone.stop = stop;
         // Beyond the capacity only the count goes on.
         let _ = out.push(zone);
     };
+    let joins = curve.piece_count().saturating_sub(1);
+    let cos_corner = libm::cos(options.corner_angle());
+    let mut join = 0;
 
     let mut prev = sample(0)?;
     let mut open: Option<Open<A>> = None;
@@ -320,7 +345,7 @@ where
                     z.v_high = high;
                     z.worst.merge(&worst);
                 } else {
-                    close(z, s_here, &mut out);
+                    close(z, s_here, false, &mut out);
                     *z = Open {
                         s_start: s_here,
                         v_high: worst.v,
@@ -329,9 +354,34 @@ where
                 }
             }
         }
+        // Corners in this interval: the zone ends there, at rest.
+        let u_next = at(2 * k + 2);
+        while join < joins {
+            let u_join = curve.piece_domain(join).1.to_f64();
+            if k + 1 < m && u_join >= u_next {
+                break;
+            }
+            join += 1;
+            if !is_corner(curve, join - 1, cos_corner) {
+                continue;
+            }
+            let s_join = table.length_at(u_join);
+            if let Some(z) = open.as_mut() {
+                if greater(s_join, z.s_start) {
+                    close(z, s_join, true, &mut out);
+                    *z = Open {
+                        s_start: s_join,
+                        v_high: worst.v,
+                        worst,
+                    };
+                } else if let Some(last) = out.last_mut() {
+                    last.stop = true;
+                }
+            }
+        }
     }
     if let Some(z) = open.as_ref() {
-        close(z, length, &mut out);
+        close(z, length, false, &mut out);
     }
     if required > Z {
         return Err(Error::CapacityExceeded {
