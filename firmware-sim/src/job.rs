@@ -23,7 +23,8 @@
 //! # parameter:      duration = 2.0 (seconds, required)
 //! # constant-speed: speed = 100.0 (optional, default limits.velocity)
 //! # trapezoid, s-curve: samples = 1024, zone_tolerance = 0.05,
-//! #                     centripetal_share = 0.5 (optional planner settings)
+//! #                     centripetal_share = 0.5, corner_angle = 1e-4 (radians; optional
+//! #                     planner settings)
 //!
 //! [compile]                   # optional
 //! tolerance = 0.001           # position tolerance in units (default 1e-4 of the extent)
@@ -142,6 +143,9 @@ pub struct JobProfile {
     /// Trapezoid, S-curve: the share of the acceleration and jerk limits (path and per
     /// axis) the turning of the path may take (default 0.5).
     pub centripetal_share: Option<f64>,
+    /// Trapezoid, S-curve: the smallest turn of the tangent at a join that counts as a
+    /// corner, where the motion stops (radians, default 10⁻⁴).
+    pub corner_angle: Option<f64>,
 }
 
 /// The optional `[compile]` table.
@@ -506,6 +510,11 @@ impl Job {
             p.centripetal_share.is_some(),
             &[Trapezoid, SCurve],
         )?;
+        uses(
+            "corner_angle",
+            p.corner_angle.is_some(),
+            &[Trapezoid, SCurve],
+        )?;
         match (k, p.duration) {
             (Parameter, None) => {
                 return Err(JobError::new(
@@ -551,6 +560,14 @@ impl Job {
             return Err(JobError::new(
                 "profile.centripetal_share",
                 format!("must be between 0 and 1 (exclusive), not {s}"),
+            ));
+        }
+        if let Some(a) = p.corner_angle
+            && !positive(a)
+        {
+            return Err(JobError::new(
+                "profile.corner_angle",
+                format!("must be finite and > 0 radians, not {a}"),
             ));
         }
         Ok(())

@@ -261,6 +261,9 @@ pub fn plan_options(job: &Job) -> PlanOptions {
     if let Some(s) = p.centripetal_share {
         o = o.with_centripetal_share(s);
     }
+    if let Some(a) = p.corner_angle {
+        o = o.with_corner_angle(a);
+    }
     o
 }
 

@@ -288,6 +288,25 @@ fn profile_field_of_another_kind() {
 }
 
 #[test]
+fn planner_settings_out_of_range() {
+    for (setting, field) in [
+        ("samples = 0", "profile.samples"),
+        ("zone_tolerance = -0.1", "profile.zone_tolerance"),
+        ("centripetal_share = 1.0", "profile.centripetal_share"),
+        ("corner_angle = 0.0", "profile.corner_angle"),
+        ("corner_angle = -1e-3", "profile.corner_angle"),
+    ] {
+        fails_naming(
+            &with(
+                "kind = \"s-curve\"",
+                &format!("kind = \"s-curve\"\n{setting}"),
+            ),
+            field,
+        );
+    }
+}
+
+#[test]
 fn feed_out_of_range() {
     fails_naming(
         &format!("{GOOD}\n[[events]]\ntick = 10\nfeed = 1.5\n"),
