@@ -1,11 +1,16 @@
-//! A SysTick-based counter: the hook for counting instructions per tick later.
+//! A SysTick-based counter of **instructions** (not cycles) under QEMU `-icount`.
 //!
 //! QEMU does not implement the DWT cycle counter (it reads 0). Run with
-//! `-icount shift=N` and the virtual clock advances per instruction, so SysTick on the core
-//! clock counts **instructions**, not cycles, deterministically (`shift=0`: one 25 MHz
-//! SysTick count is 40 instructions; a larger shift resolves finer). Without `-icount` the
-//! counts follow the host's wall clock and are not reproducible: nothing here is logged by
-//! the firmware's normal run.
+//! `-icount shift=N` and the virtual clock advances `2^N` ns per instruction, so SysTick on
+//! the 25 MHz core clock (40 ns per count) counts **instructions**, not cycles,
+//! deterministically. `shift=0` is too coarse (one count is 40 instructions);
+//! `cargo xtask qemu` runs the `icount` firmware with [`ICOUNT_SHIFT`] = 10: one instruction is
+//! 1024 ns = 25.6 counts, so a count difference converts to a whole number of instructions
+//! with no rounding ambiguity ([`Calibration`] measures the ratio and the measurement's own
+//! overhead with straight runs of `nop`s). Without `-icount` the counts follow the host's wall
+//! clock and are not reproducible: the example firmware (`strak-qemu`) logs none of them.
+
+use core::sync::atomic::{Ordering, compiler_fence};
 
 use cortex_m::peripheral::SYST;
 use cortex_m::peripheral::syst::SystClkSource;
@@ -46,9 +51,112 @@ impl Counter {
         earlier.wrapping_sub(self.now()) & RELOAD
     }
 
+    /// SysTick counts spent in `f`: the counter is read, `f` runs, the counter is read again.
+    ///
+    /// Not inlined, so that the compiler cannot move the caller's own work in between the two
+    /// reads; make `f` a call of an `#[inline(never)]` function, and the region measured is
+    /// that call (its argument set-up, `bl`, the function, its return) and the second read.
+    /// [`Calibration`] subtracts the counts of a call of an empty function measured the same
+    /// way.
+    #[inline(never)]
+    pub fn counts<R>(&self, f: impl FnOnce() -> R) -> (u32, R) {
+        let t0 = self.now();
+        compiler_fence(Ordering::SeqCst);
+        let r = f();
+        compiler_fence(Ordering::SeqCst);
+        (self.since(t0), r)
+    }
+
     /// Stops the counter and hands SysTick back.
     pub fn stop(mut self) -> SYST {
         self.syst.disable_counter();
         self.syst
+    }
+}
+
+/// The `-icount shift` that `cargo xtask qemu` runs the `icount` firmware with.
+pub const ICOUNT_SHIFT: u32 = 10;
+
+/// The length of the calibration's straight run of `nop`s.
+pub const CALIBRATION_NOPS: u32 = 256;
+
+/// Converts SysTick counts into instructions: the counts of an empty measurement (the
+/// overhead, subtracted) and of a straight run of [`CALIBRATION_NOPS`] `nop`s (the scale),
+/// both measured with [`Counter::counts`] exactly as the work is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
+pub struct Calibration {
+    /// Counts of an empty measurement.
+    pub empty: u32,
+    /// Counts of [`CALIBRATION_NOPS`] `nop`s.
+    pub nops: u32,
+}
+
+/// 64 `nop` instructions in a row (inline assembly: one instruction each, no loop).
+#[inline(always)]
+fn nop64() {
+    macro_rules! x8 {
+        ($e:expr) => {
+            $e;
+            $e;
+            $e;
+            $e;
+            $e;
+            $e;
+            $e;
+            $e;
+        };
+    }
+    x8!(x8!(cortex_m::asm::nop()));
+}
+
+/// An empty function: its call is the measurement's overhead.
+#[inline(never)]
+fn nothing() {
+    cortex_m::asm::nop();
+}
+
+/// [`CALIBRATION_NOPS`] `nop`s in a function shaped like [`nothing`].
+#[inline(never)]
+fn nops() {
+    cortex_m::asm::nop();
+    nop64();
+    nop64();
+    nop64();
+    nop64();
+}
+
+/// 64 `nop`s in a function shaped like [`nothing`].
+#[inline(never)]
+fn nops64() {
+    cortex_m::asm::nop();
+    nop64();
+}
+
+impl Calibration {
+    /// Measures the overhead and the scale.
+    pub fn measure(counter: &Counter) -> Self {
+        let (empty, ()) = counter.counts(nothing);
+        let (nops, ()) = counter.counts(nops);
+        Calibration { empty, nops }
+    }
+
+    /// A check of the calibration: the instructions of a call of 64 `nop`s, measured now
+    /// (exactly 64 when counting is exact).
+    pub fn check_nop64(&self, counter: &Counter) -> u32 {
+        let (c, ()) = counter.counts(nops64);
+        self.instructions(c)
+    }
+
+    /// The instructions of a measurement of `counts` SysTick counts, the overhead subtracted
+    /// (rounded to nearest; 0 when the measurement is at or below the overhead, or when the
+    /// calibration is degenerate).
+    pub fn instructions(&self, counts: u32) -> u32 {
+        let span = u64::from(self.nops.saturating_sub(self.empty));
+        if span == 0 {
+            return 0;
+        }
+        let c = u64::from(counts.saturating_sub(self.empty));
+        let n = (c * u64::from(CALIBRATION_NOPS) + span / 2) / span;
+        u32::try_from(n).unwrap_or(u32::MAX)
     }
 }

@@ -147,6 +147,10 @@ pub struct Sampler<'a, N: Number, const A: usize, const P: usize> {
     tick: u64,
     /// The position after finishing.
     rest: [N::Out; A],
+    /// Only when the next tick is a plain forward-differencing step: running, not at the
+    /// end, `φ = 1` with no ramp, `θ = 0` (see [`Sampler::refresh`]). [`Sampler::next`]
+    /// tests this one flag; everything else is out of line.
+    fast: bool,
 }
 
 impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
@@ -166,8 +170,10 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             at_end: false,
             tick: 0,
             rest: path.end.position,
+            fast: false,
         };
         s.load(0);
+        s.refresh();
         s
     }
 
@@ -192,7 +198,10 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
                     }
                 }
             }
-            None => self.at_end = true,
+            None => {
+                self.at_end = true;
+                self.fast = false;
+            }
         }
     }
 
@@ -205,15 +214,77 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         }
     }
 
+    /// Sets [`fast`](Self::fast) from the state: called after every change other than the
+    /// forward-differencing step itself (which can only end the path, see
+    /// [`load`](Self::load)).
+    #[inline]
+    fn refresh(&mut self) {
+        self.fast = self.mode != SamplerState::Finished
+            && !self.at_end
+            && self.feed.phi == N::ONE
+            && self.theta == N::ZERO
+            && self.feed.is_idle();
+    }
+
     /// The next setpoint; call once per tick.
     ///
     /// Constant time, no panic path (see [`Sampler`] for the operation counts). After the end (or an abort) it keeps returning the last position with zero
     /// velocity and acceleration.
     #[allow(clippy::should_implement_trait)]
+    #[inline]
     pub fn next(&mut self) -> Sample<N::Out, A> {
+        if self.fast {
+            self.step_fast()
+        } else {
+            self.next_other()
+        }
+    }
+
+    /// A forward-differencing tick (the state must allow it: [`fast`](Self::fast)).
+    #[inline(always)]
+    fn step_fast(&mut self) -> Sample<N::Out, A> {
         let tick = self.tick;
         self.tick = self.tick.wrapping_add(1);
+        let mut sample = Sample {
+            tick,
+            position: [N::Out::ZERO; A],
+            velocity: [N::Out::ZERO; A],
+            acceleration: [N::Out::ZERO; A],
+        };
+        // One pass over the axes: read a state, write its sample values and its step
+        // (`self.state.map(..)` per output array copied the whole state three times:
+        // measured on the Cortex-M4F, firmware-sim/qemu/ICOUNT.md).
+        let out = sample
+            .position
+            .iter_mut()
+            .zip(sample.velocity.iter_mut())
+            .zip(sample.acceleration.iter_mut());
+        for (s, ((x, v), a)) in self.state.iter_mut().zip(out) {
+            *x = s.position.to_out();
+            *v = s.velocity.to_out();
+            *a = s.acceleration.to_out();
+            s.step();
+        }
+        self.advance_index();
+        sample
+    }
+
+    /// Every tick that is not a plain forward-differencing step: the end sample, standing
+    /// at the end, interpolation (feed override, ramps). Out of line, so that the common
+    /// tick in [`next`](Self::next) carries none of its code or register saves.
+    #[inline(never)]
+    fn next_other(&mut self) -> Sample<N::Out, A> {
+        let sample = self.next_checked();
+        self.refresh();
+        sample
+    }
+
+    /// The tick by the full case analysis (it does not rely on [`fast`](Self::fast)).
+    #[inline(always)]
+    fn next_checked(&mut self) -> Sample<N::Out, A> {
         if self.mode == SamplerState::Finished {
+            let tick = self.tick;
+            self.tick = self.tick.wrapping_add(1);
             return Sample {
                 tick,
                 position: self.rest,
@@ -222,6 +293,8 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             };
         }
         if self.at_end {
+            let tick = self.tick;
+            self.tick = self.tick.wrapping_add(1);
             self.mode = SamplerState::Finished;
             self.rest = self.path.end.position;
             let (velocity, acceleration) = if self.feed.phi == N::ONE {
@@ -242,19 +315,53 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         }
         let fast = self.feed.phi == N::ONE && self.theta == N::ZERO && self.feed.is_idle();
         if fast {
-            let sample = Sample {
-                tick,
-                position: self.state.map(|s| s.position.to_out()),
-                velocity: self.state.map(|s| s.velocity.to_out()),
-                acceleration: self.state.map(|s| s.acceleration.to_out()),
-            };
-            for s in &mut self.state {
-                s.step();
-            }
-            self.advance_index();
-            return sample;
+            return self.step_fast();
         }
+        let tick = self.tick;
+        self.tick = self.tick.wrapping_add(1);
         self.interpolate(tick)
+    }
+
+    /// The next setpoint's positions only: exactly [`next`](Self::next)`().position`, bit for
+    /// bit, and the sampler advances exactly as with [`next`](Self::next) (the two may be
+    /// mixed freely).
+    ///
+    /// For firmware that only commands positions: the velocities and accelerations are not
+    /// converted or written out. Constant time and no panic path, like
+    /// [`next`](Self::next).
+    ///
+    /// ```
+    /// use strak_trajectory::{compile, CompileOptions, Path, Sampler, Timing};
+    /// use strak_curves::Bezier;
+    ///
+    /// struct Linear;
+    /// impl Timing for Linear {
+    ///     fn duration(&self) -> f64 { 0.01 }
+    ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.01) / 0.01, 100.0) }
+    /// }
+    /// let line = Bezier::new([[0.0_f64], [2.0]])?;
+    /// let path: Path<f32, 1, 8> = compile(&line, &Linear, 1_000.0, &CompileOptions::new())?;
+    /// let (mut a, mut b) = (Sampler::new(&path), Sampler::new(&path));
+    /// while !a.is_finished() {
+    ///     assert_eq!(a.next_position(), b.next().position);
+    /// }
+    /// assert_eq!(b.next().position, path.end_position());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[inline]
+    pub fn next_position(&mut self) -> [N::Out; A] {
+        if !self.fast {
+            return self.next_other().position;
+        }
+        // `step_fast` without the velocity and acceleration outputs.
+        self.tick = self.tick.wrapping_add(1);
+        let mut position = [N::Out::ZERO; A];
+        for (s, x) in self.state.iter_mut().zip(position.iter_mut()) {
+            *x = s.position.to_out();
+            s.step();
+        }
+        self.advance_index();
+        position
     }
 
     /// A tick in interpolation mode.
@@ -337,6 +444,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
                 self.feed.target = v;
             }
         }
+        self.refresh();
     }
 
     /// The feed override last set (1 initially).
@@ -355,6 +463,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             self.mode = SamplerState::Holding;
             self.feed.target = N::ZERO;
         }
+        self.refresh();
     }
 
     /// Resume after a hold: ramp back up to the override (ignored unless holding).
@@ -363,6 +472,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             self.mode = SamplerState::Running;
             self.feed.target = self.feed_override;
         }
+        self.refresh();
     }
 
     /// Abort: ramp down to feed 0, then finish where the motion stopped (on the path, not at
@@ -372,6 +482,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             self.mode = SamplerState::Aborting;
             self.feed.target = N::ZERO;
         }
+        self.refresh();
     }
 
     /// The playback point in (fractional) path ticks: where the next sample is taken
@@ -486,6 +597,51 @@ mod tests {
             &CompileOptions::new().with_tolerance(1e-6),
         )
         .unwrap()
+    }
+
+    /// `next_position` against `next().position`, bit for bit, over a whole path with a feed
+    /// override, a hold and a resume, alternating the two calls on a third sampler.
+    fn position_only<N: Number>() {
+        let path = helix_path::<N>();
+        let mut full = Sampler::new(&path);
+        let mut pos = Sampler::new(&path);
+        let mut mixed = Sampler::new(&path);
+        let mut k = 0_u64;
+        while !full.is_finished() {
+            for s in [&mut full, &mut pos, &mut mixed] {
+                match k {
+                    400 => s.set_feed(0.6),
+                    900 => s.hold(),
+                    2500 => s.resume(),
+                    3000 => s.set_feed(1.0),
+                    _ => {}
+                }
+            }
+            let want = full.next();
+            assert_eq!(pos.next_position(), want.position, "tick {k}");
+            let m = if k % 2 == 0 {
+                mixed.next_position()
+            } else {
+                mixed.next().position
+            };
+            assert_eq!(m, want.position, "tick {k} (mixed)");
+            assert_eq!(pos.state(), full.state());
+            k += 1;
+            assert!(k < 20 * u64::from(path.ticks()));
+        }
+        assert!(pos.is_finished() && mixed.is_finished());
+        assert_eq!(pos.next_position(), path.end_position());
+        assert!(
+            k > u64::from(path.ticks()) + 1000,
+            "the hold took time: {k}"
+        );
+    }
+
+    #[test]
+    fn next_position_is_next_position_bit_for_bit() {
+        big_stack(position_only::<f32>);
+        big_stack(position_only::<f64>);
+        big_stack(position_only::<Q40>);
     }
 
     fn exact_loads<N: Number>() {
