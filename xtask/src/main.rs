@@ -7,13 +7,15 @@
 //! cargo xtask qemu [--bless]
 //!                      the example firmware under QEMU (Cortex-M4F and Cortex-M3), its samples
 //!                      compared bit for bit with the host's; firmware sizes checked against
-//!                      firmware-sim/qemu/sizes.txt (`--bless` rewrites it)
+//!                      firmware-sim/qemu/sizes.txt, instructions per tick under QEMU -icount
+//!                      against firmware-sim/qemu/icount-budgets.txt (`--bless` rewrites both)
 //! ```
 //!
 //! Missing rustup targets, qemu-system-arm and defmt-print are installed; anything that cannot
 //! be installed fails loudly.
 
 mod compare;
+mod icount;
 mod qemu;
 mod size;
 
@@ -62,9 +64,11 @@ fn print_help() {
     println!("         no_std cross builds (installs missing rustup targets), then qemu");
     println!("  qemu   build the example firmware (firmware-sim/qemu) for Cortex-M4F and");
     println!("         Cortex-M3, run it under QEMU, compare every sample with the host bit for");
-    println!("         bit, check the firmware sizes (installs qemu-system-arm, defmt-print)");
+    println!("         bit, check the firmware sizes and the instructions per tick under");
+    println!("         -icount (instruction counts, not cycles; installs qemu-system-arm,");
+    println!("         defmt-print)");
     println!("  qemu --bless");
-    println!("         the same, rewriting firmware-sim/qemu/sizes.txt instead of checking it");
+    println!("         the same, rewriting firmware-sim/qemu/sizes.txt and icount-budgets.txt");
 }
 
 /// The README's test command.

@@ -13,6 +13,10 @@
 //!    every stream with the host's (the first differing tick and value is named).
 //! 5. Reads the firmware sizes from the ELF headers and checks them against
 //!    `firmware-sim/qemu/sizes.txt` (`--bless` rewrites it).
+//! 6. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per
+//!    tick (instruction counts, not cycles), checked against
+//!    `firmware-sim/qemu/icount-budgets.txt` (`--bless` rewrites it) and written to
+//!    `target/qemu/counts.json` (see [`crate::icount`]).
 
 use std::env;
 use std::fs;
@@ -26,6 +30,7 @@ use strak_sim::export::{Export, Playback, export};
 use strak_sim::job::{Action, Job};
 
 use crate::compare::{self, StreamKey};
+use crate::icount;
 use crate::size::{self, Expected};
 
 /// The defmt-print release matching the firmware's defmt 1.x.
@@ -134,7 +139,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
             .join("strak-qemu");
         println!("\n==> QEMU {}: {}", fw.label, elf.display());
         let t = Instant::now();
-        let text = run_firmware(&qemu, &defmt_print, fw, &elf)?;
+        let text = run_firmware(&qemu, &defmt_print, fw, &elf, &[])?;
         let secs = t.elapsed().as_secs_f64();
         let n = check_output(fw, &jobs, &text)?;
         compared += n;
@@ -145,6 +150,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     }
 
     check_sizes(&fw_dir, bless)?;
+    check_icount(&qemu, &defmt_print, &root, &fw_dir, bless)?;
     println!(
         "\nxtask qemu: {compared} firmware samples equal the host's bit for bit; done in {:.0} s",
         started.elapsed().as_secs_f64()
@@ -441,9 +447,11 @@ fn run_firmware(
     defmt_print: &Path,
     fw: &Firmware,
     elf: &Path,
+    extra: &[&str],
 ) -> Result<String, String> {
     let mut q = Command::new(qemu)
         .args(["-cpu", fw.cpu, "-machine", fw.machine, "-nographic"])
+        .args(extra)
         .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
         .arg(elf)
         .stdin(Stdio::null())
@@ -657,5 +665,66 @@ fn check_sizes(fw_dir: &Path, bless: bool) -> Result<(), String> {
         size::GROWTH * 100.0,
         file.display()
     );
+    Ok(())
+}
+
+/// Runs the `icount` firmware on every target under `-icount`, checks the counts against
+/// the budget file (or rewrites it when `bless`) and writes `target/qemu/counts.json`.
+fn check_icount(
+    qemu: &Path,
+    defmt_print: &Path,
+    root: &Path,
+    fw_dir: &Path,
+    bless: bool,
+) -> Result<(), String> {
+    let shift = format!("shift={}", icount::ICOUNT_SHIFT);
+    let mut measured = Vec::new();
+    for fw in &FIRMWARES {
+        let elf = fw_dir
+            .join("target")
+            .join(fw.target)
+            .join("release")
+            .join("icount");
+        println!(
+            "\n==> QEMU -icount {shift} {}: instructions per call (instruction counts, not cycles)",
+            fw.label
+        );
+        let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
+        let cases =
+            icount::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
+        println!(
+            "    {:<30} {:>6} {:>6} {:>6} {:>6}",
+            "case", "min", "median", "max", "calls"
+        );
+        for m in &cases {
+            println!(
+                "    {:<30} {:>6} {:>6} {:>6} {:>6}",
+                m.name, m.min, m.median, m.max, m.calls
+            );
+        }
+        measured.extend(cases);
+    }
+    for line in icount::target_report(&measured) {
+        println!("    target: {line}");
+    }
+    let file = fw_dir.join("icount-budgets.txt");
+    if bless {
+        fs::write(&file, icount::write_budgets(&measured))
+            .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        println!("<== wrote {}", file.display());
+    }
+    let text = fs::read_to_string(&file).map_err(|e| {
+        format!(
+            "cannot read {}: {e} (create it with `cargo xtask qemu --bless`)",
+            file.display()
+        )
+    })?;
+    let budgets = icount::parse_budgets(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    let json = root.join("target").join("qemu").join("counts.json");
+    fs::write(&json, icount::counts_json(&measured, &budgets))
+        .map_err(|e| format!("cannot write {}: {e}", json.display()))?;
+    println!("    wrote {}", json.display());
+    icount::check(&measured, &budgets)?;
+    println!("<== instruction counts within {}", file.display());
     Ok(())
 }
