@@ -619,7 +619,7 @@ mod tests {
             }
             let want = full.next();
             assert_eq!(pos.next_position(), want.position, "tick {k}");
-            let m = if k % 2 == 0 {
+            let m = if k.is_multiple_of(2) {
                 mixed.next_position()
             } else {
                 mixed.next().position
