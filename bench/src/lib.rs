@@ -2,3 +2,4 @@
 //! generator of `BENCHMARKS.md` (`cargo run -p strak-bench --bin report`).
 
 pub mod fixture;
+pub mod report;
