@@ -439,7 +439,7 @@ fn flatness_one<N: Number>(c: &mut Criterion, path: &Path<N, 3, PIECES>) {
 }
 
 fn main() {
-    let mut c = Criterion::default().configure_from_args();
+    let mut c = Criterion::default().without_plots().configure_from_args();
     evaluation(&mut c);
     playback(&mut c);
     let paths = strak_paths(FLATNESS_N);
