@@ -1,6 +1,7 @@
 //! strak's one entry point for checks, so that a local run is the CI run.
 //!
 //! ```text
+//! cargo xtask bench    criterion benchmarks against the peers, then BENCHMARKS.md
 //! cargo xtask test     formatting, clippy -D warnings, host tests + doctests, rustdoc,
 //!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf,
 //!                      then `qemu`
@@ -41,6 +42,7 @@ fn main() -> ExitCode {
                 "unknown option `{other}` of qemu; try `cargo xtask help`"
             )),
         },
+        Some("bench") => bench(),
         Some("help") | Some("--help") | Some("-h") | None => {
             print_help();
             Ok(())
@@ -69,6 +71,30 @@ fn print_help() {
     println!("         defmt-print)");
     println!("  qemu --bless");
     println!("         the same, rewriting firmware-sim/qemu/sizes.txt and icount-budgets.txt");
+    println!("  bench  criterion benchmarks of strak against its peers (bench/), then");
+    println!("         BENCHMARKS.md from their results and the QEMU counts in target/qemu");
+}
+
+/// `cargo xtask bench`: the host benchmarks (one criterion run, peers included) and the
+/// report. The Cortex-M section of the report is filled from `target/qemu` when
+/// `cargo xtask qemu` has written its counts there.
+fn bench() -> Result<(), String> {
+    let started = Instant::now();
+    step(
+        "benchmarks (strak and its peers)",
+        &["bench", "-p", "strak-bench", "--bench", "peers"],
+        &[],
+    )?;
+    step(
+        "BENCHMARKS.md",
+        &["run", "--release", "-p", "strak-bench", "--bin", "report"],
+        &[],
+    )?;
+    println!(
+        "\nxtask bench: BENCHMARKS.md written ({:.0} s)",
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
 }
 
 /// The README's test command.

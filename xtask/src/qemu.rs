@@ -20,6 +20,7 @@
 
 use std::env;
 use std::fs;
+use std::fs::File;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -441,7 +442,12 @@ fn kill(child: &mut Child) {
     let _ = child.wait();
 }
 
-/// Runs `elf` under QEMU, its output piped into defmt-print; returns defmt-print's text.
+/// Runs `elf` under QEMU with its output written to a file, then decodes the file with
+/// defmt-print; returns defmt-print's text.
+///
+/// Not a pipe: QEMU's semihosting writes to a non-blocking standard output, and into a full
+/// pipe (a slow reader on a loaded machine) they fail and the bytes are lost, which
+/// defmt-print then skips. A file never refuses a write.
 fn run_firmware(
     qemu: &Path,
     defmt_print: &Path,
@@ -449,35 +455,20 @@ fn run_firmware(
     elf: &Path,
     extra: &[&str],
 ) -> Result<String, String> {
+    let raw = elf.with_extension("defmt");
+    let raw_file =
+        File::create(&raw).map_err(|e| format!("cannot create {}: {e}", raw.display()))?;
     let mut q = Command::new(qemu)
         .args(["-cpu", fw.cpu, "-machine", fw.machine, "-nographic"])
         .args(extra)
         .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
         .arg(elf)
         .stdin(Stdio::null())
-        .stdout(Stdio::piped())
+        .stdout(raw_file)
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| format!("cannot start {}: {e}", qemu.display()))?;
-    let q_out = q.stdout.take().ok_or("no QEMU stdout")?;
     let q_err = read_all(q.stderr.take().ok_or("no QEMU stderr")?);
-    let mut d = match Command::new(defmt_print)
-        .arg("-e")
-        .arg(elf)
-        .args(["--log-format", "{L} {s}"])
-        .stdin(q_out)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-    {
-        Ok(d) => d,
-        Err(e) => {
-            kill(&mut q);
-            return Err(format!("cannot start {}: {e}", defmt_print.display()));
-        }
-    };
-    let d_out = read_all(d.stdout.take().ok_or("no defmt-print stdout")?);
-    let d_err = read_all(d.stderr.take().ok_or("no defmt-print stderr")?);
     let deadline = Instant::now() + QEMU_TIMEOUT;
     let status = loop {
         match q.try_wait() {
@@ -489,10 +480,17 @@ fn run_firmware(
             }
         }
     };
-    let _ = d.wait();
-    let text = d_out.join().unwrap_or_default();
-    let d_err = d_err.join().unwrap_or_default();
     let q_err = q_err.join().unwrap_or_default();
+    let input = File::open(&raw).map_err(|e| format!("cannot read {}: {e}", raw.display()))?;
+    let decoded = Command::new(defmt_print)
+        .arg("-e")
+        .arg(elf)
+        .args(["--log-format", "{L} {s}"])
+        .stdin(input)
+        .output()
+        .map_err(|e| format!("cannot start {}: {e}", defmt_print.display()))?;
+    let text = String::from_utf8_lossy(&decoded.stdout).into_owned();
+    let d_err = String::from_utf8_lossy(&decoded.stderr).into_owned();
     let tail = |s: &str| {
         s.lines()
             .rev()

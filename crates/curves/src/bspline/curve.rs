@@ -332,8 +332,35 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
     }
 
     /// `c(u)` on the polynomial piece of span `s` (also used for one-sided limits in tests).
+    #[inline]
     pub(crate) fn eval_in_span(&self, s: usize, u: P::Scalar) -> P {
+        if self.degree() == 3
+            && let Some(p) = self.cubic_in_span(s, u)
+        {
+            return p;
+        }
         de_boor(&self.knots, s, self.degree(), self.local_points(s), u)
+    }
+
+    /// De Boor's algorithm for degree 3 on span `s`, unrolled: the same convex combinations
+    /// with the same operands in the same order as [`de_boor`] (bit for bit the same result),
+    /// without the generic loops and the copy of a `LOCAL`-sized array. `None` when the span
+    /// does not have its 4 de Boor points and 6 knots (never for a span from the knot vector).
+    #[inline]
+    fn cubic_in_span(&self, s: usize, u: P::Scalar) -> Option<P> {
+        let [d0, d1, d2, d3] = *self.points.get(s.checked_sub(3)?..=s)? else {
+            return None;
+        };
+        let [t0, t1, t2, t3, t4, t5] = *self.knots.as_slice().get(s.checked_sub(2)?..s + 4)? else {
+            return None;
+        };
+        // r = 1 (j = 3, 2, 1), r = 2 (j = 3, 2), r = 3 (j = 3); t_k here is u_{s−2+k}.
+        let e3 = d2.lerp(d3, ratio(u - t2, t5 - t2));
+        let e2 = d1.lerp(d2, ratio(u - t1, t4 - t1));
+        let e1 = d0.lerp(d1, ratio(u - t0, t3 - t0));
+        let f3 = e2.lerp(e3, ratio(u - t2, t4 - t2));
+        let f2 = e1.lerp(e2, ratio(u - t1, t3 - t1));
+        Some(f2.lerp(f3, ratio(u - t2, t3 - t2)))
     }
 
     /// `c^{(k)}(u)` on the polynomial piece of span `s`.
@@ -552,6 +579,39 @@ mod tests {
             acc[1] += n * d[1];
         }
         acc
+    }
+
+    /// The unrolled cubic gives the generic de Boor's bits (non-uniform knots, every format).
+    #[test]
+    fn cubic_fast_path_is_bit_identical() {
+        fn check<P: Point>(c: &BSpline<P, 16, 32>) {
+            let (lo, hi) = c.domain();
+            for i in 0..=997 {
+                let u =
+                    P::Scalar::from_f64(lo.to_f64() + (hi - lo).to_f64() * f64::from(i) / 997.0)
+                        .unwrap();
+                let s = c.knots.span(u);
+                let generic = de_boor(&c.knots, s, 3, c.local_points(s), u);
+                assert_eq!(c.cubic_in_span(s, u), Some(generic), "u = {u:?}");
+                assert_eq!(c.eval(u), generic);
+            }
+        }
+        let t = [0., 0., 0., 0., 0.3, 0.31, 1.7, 2., 4., 4., 4., 4.];
+        let d: [[f64; 2]; 8] = core::array::from_fn(|i| {
+            let x = i as f64;
+            [x * 1.37 - 2.0, (x * 0.9).sin() * 3.1]
+        });
+        check(&C2::new(3, &d, &t).unwrap());
+        let f = |x: f64| [x as f32, (x * 0.7) as f32, 1.0 / (x + 1.5) as f32];
+        let d32: [[f32; 3]; 8] = core::array::from_fn(|i| f(i as f64));
+        let t32 = t.map(|x| x as f32);
+        check(&BSpline::<[f32; 3], 16, 32>::new(3, &d32, &t32).unwrap());
+        let q = |x: f64| I32F32::from_num(x);
+        let dq: [[I32F32; 2]; 8] = core::array::from_fn(|i| [q(d[i][0]), q(d[i][1])]);
+        check(&BSpline::<[I32F32; 2], 16, 32>::new(3, &dq, &t.map(q)).unwrap());
+        let h = |x: f64| I16F16::from_num(x);
+        let dh: [[I16F16; 2]; 8] = core::array::from_fn(|i| [h(d[i][0]), h(d[i][1])]);
+        check(&BSpline::<[I16F16; 2], 16, 32>::new(3, &dh, &t.map(h)).unwrap());
     }
 
     #[test]

@@ -1,0 +1,5 @@
+//! Host benchmarks of strak against its peers (criterion, `benches/peers.rs`) and the
+//! generator of `BENCHMARKS.md` (`cargo run -p strak-bench --bin report`).
+
+pub mod fixture;
+pub mod report;
