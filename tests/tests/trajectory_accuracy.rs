@@ -33,9 +33,8 @@
 
 #![allow(clippy::needless_range_loop)] // axis loops index several arrays at once
 
-use std::thread;
-
 use strak_curves::{BSpline, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Scalar};
+use strak_tests::big_stack;
 use strak_trajectory::{
     CompileOptions, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing, compile,
 };
@@ -46,15 +45,6 @@ const RATE: f64 = 100_000.0;
 const DELTA: f64 = 2e-5;
 /// Piece capacity (10⁶ ticks need ≥ 3907 pieces of 256 ticks).
 const PIECES: usize = 8192;
-
-fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(f)
-        .expect("spawn")
-        .join()
-        .expect("test thread panicked")
-}
 
 /// The pick-and-place de Boor points (mm).
 const PICK: [[f64; 3]; 8] = [

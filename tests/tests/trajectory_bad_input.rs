@@ -4,11 +4,11 @@
 //! panic, and that sampling any successfully compiled path never panics and always ends.
 
 use std::cell::Cell;
-use std::thread;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
+use strak_tests::big_stack;
 use strak_trajectory::{
     BLOB_MAGIC, BLOB_VERSION, CompileOptions, Error, Limits, MotionProfile, Number,
     ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler, SamplerState,
@@ -20,15 +20,6 @@ const INF: f64 = f64::INFINITY;
 
 /// Values that are not a valid limit.
 const BAD: [f64; 6] = [0.0, -0.0, -1.0, NAN, INF, -INF];
-
-fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    thread::Builder::new()
-        .stack_size(64 << 20)
-        .spawn(f)
-        .expect("spawn")
-        .join()
-        .expect("test thread panicked")
-}
 
 fn line2() -> Bezier<[f64; 2], 2> {
     Bezier::new([[0.0, 0.0], [30.0, 40.0]]).expect("line")

@@ -21,11 +21,10 @@
 //!
 //! The compiled path has `N = ⌈T·f⌉` ticks: `N/f ≥ T` and `N/f − T < 1/f`.
 
-use std::thread;
-
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::Bezier;
+use strak_tests::big_stack;
 use strak_trajectory::{
     CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Timing, compile,
@@ -79,15 +78,6 @@ fn trapezoid_duration(l: f64, v: f64, a: f64) -> f64 {
 
 fn rel(x: f64, y: f64) -> f64 {
     (x - y).abs() / y
-}
-
-fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    thread::Builder::new()
-        .stack_size(64 << 20)
-        .spawn(f)
-        .expect("spawn")
-        .join()
-        .expect("test thread panicked")
 }
 
 /// A straight line from `p` to `q` with uneven parametric speed (collinear cubic Bézier

@@ -30,11 +30,10 @@
 
 #![allow(clippy::needless_range_loop)] // axis loops index several arrays at once
 
-use std::thread;
-
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::{BSpline, ParamCurve, Scalar};
+use strak_tests::big_stack;
 use strak_trajectory::{
     CompileOptions, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, SamplerState, Timing,
     compile,
@@ -46,15 +45,6 @@ const PIECES: usize = 1024;
 
 type Curve = BSpline<[f64; 3], 8, 12>;
 type Plan<'a> = PathTiming<'a, Curve, 256, 128>;
-
-fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    thread::Builder::new()
-        .stack_size(64 << 20)
-        .spawn(f)
-        .expect("spawn")
-        .join()
-        .expect("test thread panicked")
-}
 
 fn pick_and_place() -> Curve {
     let d = [

@@ -67,6 +67,7 @@ use strak_curves::{
     BSpline, Bezier, CubicSpline, Nurbs, ParamCurve, ParamCurveDeriv, Parameterization,
     SplineBoundary,
 };
+use strak_tests::big_stack;
 use strak_trajectory::{
     CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Sampler, Timing, compile,
@@ -85,15 +86,6 @@ const TABLE: usize = 256;
 const ZONES: usize = 128;
 /// Piece capacity of the compiled paths.
 const PIECES: usize = 4096;
-
-fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    thread::Builder::new()
-        .stack_size(128 << 20)
-        .spawn(f)
-        .expect("spawn")
-        .join()
-        .expect("test thread panicked")
-}
 
 // ---------------------------------------------------------------------------------------------
 // Curves and machines
