@@ -18,7 +18,8 @@ use crate::curve_file::Kind;
 use crate::dyn_curve::{DynCurve, build_dyn};
 use crate::job::{Action, Job, JobError, JobNumber, ProfileKind};
 use crate::run::{
-    PIECES, compile_error, compile_options, curve_error, plan_options, plan_timing, planning_limits,
+    PIECES, apply_due_events, compile_error, compile_options, curve_error, plan_options,
+    plan_timing, planning_limits,
 };
 
 /// The number format a job is compiled and played in for firmware.
@@ -225,18 +226,7 @@ where
     let mut next_event = 0;
     let mut samples: u64 = 0;
     let finished = loop {
-        while let Some(&(tick, action)) = events.get(next_event) {
-            if tick > samples {
-                break;
-            }
-            match action {
-                Action::Feed(f) => sampler.set_feed(f as f32),
-                Action::Hold => sampler.hold(),
-                Action::Resume => sampler.resume(),
-                Action::Abort => sampler.abort(),
-            }
-            next_event += 1;
-        }
+        apply_due_events(&mut sampler, &events, &mut next_event, samples);
         let s = sampler.next();
         samples += 1;
         for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {

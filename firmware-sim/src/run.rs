@@ -192,6 +192,34 @@ fn dispatch(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
     }
 }
 
+/// Applies the events due before the sample of tick `tick` (`events` sorted by tick,
+/// `next` the first not yet applied); `true` when one of them was an abort. The one place
+/// that defines how `strak-sim run` (and the firmware comparison) apply `[[events]]`.
+pub fn apply_due_events<N: Number, const D: usize, const P: usize>(
+    sampler: &mut Sampler<'_, N, D, P>,
+    events: &[(u64, Action)],
+    next: &mut usize,
+    tick: u64,
+) -> bool {
+    let mut aborted = false;
+    while let Some(&(at, action)) = events.get(*next) {
+        if at > tick {
+            break;
+        }
+        match action {
+            Action::Feed(f) => sampler.set_feed(f as f32),
+            Action::Hold => sampler.hold(),
+            Action::Resume => sampler.resume(),
+            Action::Abort => {
+                sampler.abort();
+                aborted = true;
+            }
+        }
+        *next += 1;
+    }
+    aborted
+}
+
 /// The job's per-axis limits as an array (`inf` where none is given).
 fn axis_array<const D: usize>(v: Option<&[f64]>) -> [f64; D] {
     let mut out = [f64::INFINITY; D];
@@ -511,21 +539,7 @@ where
     let mut row = String::new();
     let mut values: Vec<f64> = Vec::with_capacity(4 * D + 3);
     let finished = loop {
-        while let Some(&(tick, action)) = events.get(next_event) {
-            if tick > samples {
-                break;
-            }
-            match action {
-                Action::Feed(f) => sampler.set_feed(f as f32),
-                Action::Hold => sampler.hold(),
-                Action::Resume => sampler.resume(),
-                Action::Abort => {
-                    sampler.abort();
-                    aborted = true;
-                }
-            }
-            next_event += 1;
-        }
+        aborted |= apply_due_events(&mut sampler, &events, &mut next_event, samples);
         let progress = sampler.progress();
         let s = sampler.next();
         let k = samples;
