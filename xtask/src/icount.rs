@@ -33,6 +33,8 @@ pub(crate) struct Measured {
     pub(crate) max: u32,
     /// Number of calls measured.
     pub(crate) calls: u32,
+    /// Index (from 0) of the first call that took `max`.
+    pub(crate) worst: u32,
 }
 
 /// The budget of one case on one target.
@@ -124,7 +126,7 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
                 }
                 calibrated = true;
             }
-            ["I", name, min, median, max, calls, _worst] => {
+            ["I", name, min, median, max, calls, worst] => {
                 out.push(Measured {
                     name: (*name).to_owned(),
                     target: target.to_owned(),
@@ -132,6 +134,7 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
                     median: num(median)?,
                     max: num(max)?,
                     calls: num(calls)?,
+                    worst: num(worst)?,
                 });
             }
             ["DONE", n] => done = Some(num(n)?),
@@ -300,6 +303,7 @@ mod tests {
             median,
             max,
             calls: 5,
+            worst: 0,
         }
     }
 
@@ -357,7 +361,8 @@ mod tests {
                 min: 1,
                 median: 2,
                 max: 3,
-                calls: 10
+                calls: 10,
+                worst: 4
             }]
         );
         let e = parse_output("CAL 154 6707 66\nDONE 0\n", "t").unwrap_err();

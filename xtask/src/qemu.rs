@@ -691,13 +691,13 @@ fn check_icount(
         let cases =
             icount::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
         println!(
-            "    {:<30} {:>6} {:>6} {:>6} {:>6}",
-            "case", "min", "median", "max", "calls"
+            "    {:<30} {:>6} {:>6} {:>6} {:>6} {:>9}",
+            "case", "min", "median", "max", "calls", "max at"
         );
         for m in &cases {
             println!(
-                "    {:<30} {:>6} {:>6} {:>6} {:>6}",
-                m.name, m.min, m.median, m.max, m.calls
+                "    {:<30} {:>6} {:>6} {:>6} {:>6} {:>9}",
+                m.name, m.min, m.median, m.max, m.calls, m.worst
             );
         }
         measured.extend(cases);

@@ -6,6 +6,10 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use strak_curves::{I32F32, Scalar};
 
+use crate::path::AxisState;
+use crate::sampler::Sample;
+use crate::sampler::kernel::portable;
+
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -32,6 +36,7 @@ mod sealed {
 /// ```
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(transparent)]
 pub struct Q40(i64);
 
 impl Q40 {
@@ -247,6 +252,37 @@ pub trait Number:
     /// The product with an integer: exact in `Q40` (an integer multiplication, wrapping; the
     /// callers keep it in range), rounded once in floats.
     fn mul_int(self, k: i64) -> Self;
+
+    /// Crate-internal (the trait is sealed): the sampler's tick kernel, the sample of
+    /// `state` at `tick`, then one forward-differencing step of every axis. Portable Rust
+    /// unless the format has a faster kernel on the target (`sampler::kernel`).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn tick_sample<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        tick: u64,
+    ) -> Sample<Self::Out, A> {
+        portable::tick_sample(state, tick)
+    }
+
+    /// Crate-internal: [`Number::tick_sample`]'s positions and step.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn tick_position<const A: usize>(state: &mut [AxisState<Self>; A]) -> [Self::Out; A] {
+        portable::tick_position(state)
+    }
+
+    /// Crate-internal: the sample of `state` at `tick`, then `state = *next` (a piece
+    /// switch).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_sample<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[AxisState<Self>; A],
+        tick: u64,
+    ) -> Sample<Self::Out, A> {
+        portable::switch_sample(state, next, tick)
+    }
 }
 
 fn write_bytes(src: &[u8], out: &mut [u8]) {
@@ -265,6 +301,25 @@ fn read_bytes<const B: usize>(bytes: &[u8]) -> [u8; B] {
 
 impl Number for f32 {
     type Out = f32;
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn tick_sample<const A: usize>(state: &mut [AxisState<f32>; A], tick: u64) -> Sample<f32, A> {
+        crate::sampler::kernel::vfp::tick_sample(state, tick)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn tick_position<const A: usize>(state: &mut [AxisState<f32>; A]) -> [f32; A] {
+        crate::sampler::kernel::vfp::tick_position(state)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_sample<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[AxisState<f32>; A],
+        tick: u64,
+    ) -> Sample<f32, A> {
+        crate::sampler::kernel::vfp::switch_sample(state, next, tick)
+    }
     const FORMAT_ID: u8 = 1;
     const NAME: &'static str = "f32";
     const IS_FIXED: bool = false;
@@ -380,6 +435,28 @@ impl Number for f64 {
 
 impl Number for Q40 {
     type Out = I32F32;
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn tick_sample<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        tick: u64,
+    ) -> Sample<I32F32, A> {
+        crate::sampler::kernel::thumb2::tick_sample(state, tick)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn tick_position<const A: usize>(state: &mut [AxisState<Q40>; A]) -> [I32F32; A] {
+        crate::sampler::kernel::thumb2::tick_position(state)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_sample<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[AxisState<Q40>; A],
+        tick: u64,
+    ) -> Sample<I32F32, A> {
+        crate::sampler::kernel::thumb2::switch_sample(state, next, tick)
+    }
     const FORMAT_ID: u8 = 3;
     const NAME: &'static str = "Q40";
     const IS_FIXED: bool = true;

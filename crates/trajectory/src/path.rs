@@ -43,6 +43,7 @@ use crate::sampler::Sample;
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(C)] // nine consecutive values: the Cortex-M tick kernels load an axis in one instruction
 pub struct AxisState<N> {
     /// Position `p(i)`.
     pub position: N,

@@ -2,6 +2,7 @@
 //! time, with feed override, feed hold, resume and abort.
 
 mod feed;
+pub(crate) mod kernel;
 
 use strak_curves::Scalar;
 
@@ -144,13 +145,20 @@ pub struct Sampler<'a, N: Number, const A: usize, const P: usize> {
     mode: SamplerState,
     /// The path's end has been reached; the next sample is the end sample.
     at_end: bool,
+    /// Wall-clock tick of the next sample as of the last [`sync`](Self::sync) (the fast path
+    /// counts only `left`: the next sample's tick is `tick + synced − left`).
     tick: u64,
     /// The position after finishing.
     rest: [N::Out; A],
-    /// Only when the next tick is a plain forward-differencing step: running, not at the
-    /// end, `φ = 1` with no ramp, `θ = 0` (see [`Sampler::refresh`]). [`Sampler::next`]
-    /// tests this one flag; everything else is out of line.
-    fast: bool,
+    /// Ticks [`next`](Sampler::next) may still take on its fast path: while running at full
+    /// feed with no ramp and `θ = 0`, the ticks left in the current piece (the last of them
+    /// outputs and loads the next piece); 0 otherwise. Set by [`Sampler::refresh`] after
+    /// every change other than the forward-differencing tick itself.
+    left: u32,
+    /// `left` when `local` was last brought up to date: the fast path counts down `left`
+    /// only, so the tick within the piece is `local + synced − left` (see
+    /// [`Sampler::sync`]).
+    synced: u32,
 }
 
 impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
@@ -170,7 +178,8 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             at_end: false,
             tick: 0,
             rest: path.end.position,
-            fast: false,
+            left: 0,
+            synced: 0,
         };
         s.load(0);
         s.refresh();
@@ -200,7 +209,8 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             }
             None => {
                 self.at_end = true;
-                self.fast = false;
+                self.left = 0;
+                self.synced = 0;
             }
         }
     }
@@ -214,16 +224,31 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         }
     }
 
-    /// Sets [`fast`](Self::fast) from the state: called after every change other than the
-    /// forward-differencing step itself (which can only end the path, see
-    /// [`load`](Self::load)).
+    /// Brings `local` and `tick` up to date with the ticks the fast path has counted down in
+    /// `left`.
+    #[inline]
+    fn sync(&mut self) {
+        let done = self.synced.wrapping_sub(self.left);
+        self.local = self.local.wrapping_add(done);
+        self.tick = self.tick.wrapping_add(u64::from(done));
+        self.synced = self.left;
+    }
+
+    /// Sets [`left`](Self::left) from the state (after [`sync`](Self::sync)): called after
+    /// every change other than the forward-differencing tick itself.
     #[inline]
     fn refresh(&mut self) {
-        self.fast = self.mode != SamplerState::Finished
+        let fast = self.mode != SamplerState::Finished
             && !self.at_end
             && self.feed.phi == N::ONE
             && self.theta == N::ZERO
             && self.feed.is_idle();
+        self.left = if fast {
+            self.piece_ticks.saturating_sub(self.local)
+        } else {
+            0
+        };
+        self.synced = self.left;
     }
 
     /// The next setpoint; call once per tick.
@@ -233,40 +258,66 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     #[allow(clippy::should_implement_trait)]
     #[inline]
     pub fn next(&mut self) -> Sample<N::Out, A> {
-        if self.fast {
-            self.step_fast()
+        if self.left > 1 {
+            // A plain forward-differencing tick inside a piece: one counter and the format's
+            // tick kernel.
+            let tick = self
+                .tick
+                .wrapping_add(u64::from(self.synced.wrapping_sub(self.left)));
+            self.left -= 1;
+            N::tick_sample(&mut self.state, tick)
         } else {
-            self.next_other()
+            self.next_edge()
         }
     }
 
-    /// A forward-differencing tick (the state must allow it: [`fast`](Self::fast)).
-    #[inline(always)]
-    fn step_fast(&mut self) -> Sample<N::Out, A> {
-        let tick = self.tick;
-        self.tick = self.tick.wrapping_add(1);
-        let mut sample = Sample {
-            tick,
-            position: [N::Out::ZERO; A],
-            velocity: [N::Out::ZERO; A],
-            acceleration: [N::Out::ZERO; A],
-        };
-        // One pass over the axes: read a state, write its sample values and its step
-        // (`self.state.map(..)` per output array copied the whole state three times:
-        // measured on the Cortex-M4F, firmware-sim/qemu/ICOUNT.md).
-        let out = sample
-            .position
-            .iter_mut()
-            .zip(sample.velocity.iter_mut())
-            .zip(sample.acceleration.iter_mut());
-        for (s, ((x, v), a)) in self.state.iter_mut().zip(out) {
-            *x = s.position.to_out();
-            *v = s.velocity.to_out();
-            *a = s.acceleration.to_out();
-            step_whole(s);
+    /// A tick off the fast path: the last tick of a piece at full feed (its sample, then the
+    /// next piece loaded), or [`next_other`](Self::next_other).
+    #[inline(never)]
+    fn next_edge(&mut self) -> Sample<N::Out, A> {
+        self.sync();
+        if self.left == 1 && self.shift == N::ZERO {
+            let tick = self.tick;
+            self.tick = tick.wrapping_add(1);
+            let next = self.piece + 1;
+            return match self.path.pieces.get(next) {
+                Some(p) => {
+                    // Still at full feed: the new piece is played on the fast path.
+                    let s = N::switch_sample(&mut self.state, &p.axes, tick);
+                    self.piece = next;
+                    self.local = 0;
+                    self.piece_ticks = p.ticks;
+                    self.left = p.ticks;
+                    self.synced = p.ticks;
+                    s
+                }
+                None => {
+                    // The path's last tick; `load` marks the end (and clears `left`).
+                    let s = N::tick_sample(&mut self.state, tick);
+                    self.advance_index();
+                    s
+                }
+            };
         }
-        self.advance_index();
-        sample
+        if self.at_end && self.mode == SamplerState::Running && self.feed.phi == N::ONE {
+            // The end sample at full feed (what `next_checked` returns here, without its
+            // case analysis: the final tick stays within a normal tick's cost).
+            let tick = self.tick;
+            self.tick = tick.wrapping_add(1);
+            self.mode = SamplerState::Finished;
+            let end = &self.path.end;
+            let sample = Sample {
+                tick,
+                position: end.position,
+                velocity: end.velocity,
+                acceleration: end.acceleration,
+            };
+            // From the local copy: a copy from the path would be a `memmove` call (the
+            // compiler cannot tell that the path and the sampler do not overlap).
+            self.rest = sample.position;
+            return sample;
+        }
+        self.next_other()
     }
 
     /// Every tick that is not a plain forward-differencing step: the end sample, standing
@@ -274,12 +325,13 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     /// tick in [`next`](Self::next) carries none of its code or register saves.
     #[inline(never)]
     fn next_other(&mut self) -> Sample<N::Out, A> {
+        self.sync();
         let sample = self.next_checked();
         self.refresh();
         sample
     }
 
-    /// The tick by the full case analysis (it does not rely on [`fast`](Self::fast)).
+    /// The tick by the full case analysis (it does not rely on [`left`](Self::left)).
     #[inline(always)]
     fn next_checked(&mut self) -> Sample<N::Out, A> {
         if self.mode == SamplerState::Finished {
@@ -313,9 +365,13 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
                 acceleration,
             };
         }
-        let fast = self.feed.phi == N::ONE && self.theta == N::ZERO && self.feed.is_idle();
-        if fast {
-            return self.step_fast();
+        let tick_grid = self.feed.phi == N::ONE && self.theta == N::ZERO && self.feed.is_idle();
+        if tick_grid {
+            let tick = self.tick;
+            self.tick = tick.wrapping_add(1);
+            let sample = N::tick_sample(&mut self.state, tick);
+            self.advance_index();
+            return sample;
         }
         let tick = self.tick;
         self.tick = self.tick.wrapping_add(1);
@@ -350,18 +406,13 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     /// ```
     #[inline]
     pub fn next_position(&mut self) -> [N::Out; A] {
-        if !self.fast {
-            return self.next_other().position;
+        if self.left > 1 {
+            // `next`'s fast path without the velocity and acceleration outputs.
+            self.left -= 1;
+            N::tick_position(&mut self.state)
+        } else {
+            self.next_edge().position
         }
-        // `step_fast` without the velocity and acceleration outputs.
-        self.tick = self.tick.wrapping_add(1);
-        let mut position = [N::Out::ZERO; A];
-        for (s, x) in self.state.iter_mut().zip(position.iter_mut()) {
-            *x = s.position.to_out();
-            step_whole(s);
-        }
-        self.advance_index();
-        position
     }
 
     /// A tick in interpolation mode.
@@ -444,6 +495,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
                 self.feed.target = v;
             }
         }
+        self.sync();
         self.refresh();
     }
 
@@ -463,6 +515,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             self.mode = SamplerState::Holding;
             self.feed.target = N::ZERO;
         }
+        self.sync();
         self.refresh();
     }
 
@@ -472,6 +525,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             self.mode = SamplerState::Running;
             self.feed.target = self.feed_override;
         }
+        self.sync();
         self.refresh();
     }
 
@@ -482,6 +536,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             self.mode = SamplerState::Aborting;
             self.feed.target = N::ZERO;
         }
+        self.sync();
         self.refresh();
     }
 
@@ -496,29 +551,9 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         if self.at_end {
             return f64::from(self.path.ticks);
         }
-        start + f64::from(self.local) + self.shift.to_f64() + self.theta.to_f64()
+        let local = self.local.wrapping_add(self.synced.wrapping_sub(self.left));
+        start + f64::from(local) + self.shift.to_f64() + self.theta.to_f64()
     }
-}
-
-/// [`AxisState::step`] written as one read of the old state and one write of the new: the
-/// same six additions of the same operands (every sum uses the old values, as `step` does),
-/// so the same bits. Reading the whole state first keeps the compiler from pairing
-/// neighbouring fields into overlapping vector loads of values the previous tick has just
-/// stored (a store-forwarding stall on x86-64).
-#[inline(always)]
-fn step_whole<N: Number>(s: &mut AxisState<N>) {
-    let o = *s;
-    *s = AxisState {
-        position: o.position + o.delta1,
-        delta1: o.delta1 + o.delta2,
-        delta2: o.delta2 + o.delta3,
-        delta3: o.delta3,
-        velocity: o.velocity + o.velocity_delta1,
-        velocity_delta1: o.velocity_delta1 + o.velocity_delta2,
-        velocity_delta2: o.velocity_delta2,
-        acceleration: o.acceleration + o.acceleration_delta,
-        acceleration_delta: o.acceleration_delta,
-    };
 }
 
 #[cfg(test)]

@@ -1,0 +1,89 @@
+//! The tick kernels in portable Rust (every target; the reference for the assembly ones).
+
+use strak_curves::Scalar;
+
+use crate::number::Number;
+use crate::path::AxisState;
+use crate::sampler::Sample;
+
+/// [`AxisState::step`] written as one read of the old state and one write of the new: the
+/// same six additions of the same operands (every sum uses the old values, as `step` does),
+/// so the same bits. Reading the whole state first keeps the compiler from pairing
+/// neighbouring fields into overlapping vector loads of values the previous tick has just
+/// stored (a store-forwarding stall on x86-64).
+#[inline(always)]
+pub(crate) fn step_whole<N: Number>(s: &mut AxisState<N>) {
+    let o = *s;
+    *s = AxisState {
+        position: o.position + o.delta1,
+        delta1: o.delta1 + o.delta2,
+        delta2: o.delta2 + o.delta3,
+        delta3: o.delta3,
+        velocity: o.velocity + o.velocity_delta1,
+        velocity_delta1: o.velocity_delta1 + o.velocity_delta2,
+        velocity_delta2: o.velocity_delta2,
+        acceleration: o.acceleration + o.acceleration_delta,
+        acceleration_delta: o.acceleration_delta,
+    };
+}
+
+/// The sample of the current state (tick `tick`), then one step of every axis.
+#[inline(always)]
+pub(crate) fn tick_sample<N: Number, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    tick: u64,
+) -> Sample<N::Out, A> {
+    let mut sample = Sample {
+        tick,
+        position: [N::Out::ZERO; A],
+        velocity: [N::Out::ZERO; A],
+        acceleration: [N::Out::ZERO; A],
+    };
+    // One pass over the axes: read a state, write its sample values and its step
+    // (`state.map(..)` per output array copied the whole state three times: measured on
+    // the Cortex-M4F, firmware-sim/qemu/ICOUNT.md).
+    let out = sample
+        .position
+        .iter_mut()
+        .zip(sample.velocity.iter_mut())
+        .zip(sample.acceleration.iter_mut());
+    for (s, ((x, v), a)) in state.iter_mut().zip(out) {
+        *x = s.position.to_out();
+        *v = s.velocity.to_out();
+        *a = s.acceleration.to_out();
+        step_whole(s);
+    }
+    sample
+}
+
+/// The positions of the current state, then one step of every axis (the same step as
+/// [`tick_sample`]).
+#[inline(always)]
+pub(crate) fn tick_position<N: Number, const A: usize>(
+    state: &mut [AxisState<N>; A],
+) -> [N::Out; A] {
+    let mut position = [N::Out::ZERO; A];
+    for (s, x) in state.iter_mut().zip(position.iter_mut()) {
+        *x = s.position.to_out();
+        step_whole(s);
+    }
+    position
+}
+
+/// The sample of the current state, then the state replaced by `next` (a piece switch with
+/// no shift).
+#[inline(always)]
+pub(crate) fn switch_sample<N: Number, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    next: &[AxisState<N>; A],
+    tick: u64,
+) -> Sample<N::Out, A> {
+    let sample = Sample {
+        tick,
+        position: state.map(|s| s.position.to_out()),
+        velocity: state.map(|s| s.velocity.to_out()),
+        acceleration: state.map(|s| s.acceleration.to_out()),
+    };
+    *state = *next;
+    sample
+}

@@ -1,0 +1,327 @@
+//! The tick kernels for [`Q40`] on Armv7-M and Armv8-M Mainline (Thumb-2: `strak_thumb2`,
+//! set by `build.rs`), the Cortex-M3 among them.
+//!
+//! A `Q40` value is an `i64` ([`Q40`] is `#[repr(transparent)]`, [`AxisState`] `#[repr(C)]`:
+//! 18 consecutive words per axis). Per axis: the position chain in one `ldm` (8 words), the
+//! velocity chain in one, the acceleration chain in two `ldrd`; each 64-bit addition of
+//! [`portable::step_whole`](super::portable::step_whole) is an `adds`/`adc` pair (exact, like
+//! `Q40`'s wrapping `+`); the sample values are `Number::to_out`'s rounding
+//! `(x + 2⁷) >> 8` into [`I32F32`]: five instructions and one `strd`. The axes are unrolled
+//! (up to [`UNROLLED`]; more axes use the portable kernel). Integer arithmetic: the same bits
+//! as the portable kernel by construction (checked on every sample by the firmware's
+//! bit-identity run).
+#![allow(unsafe_code)]
+
+use core::arch::asm;
+
+use strak_curves::I32F32;
+
+use super::portable;
+use crate::number::Q40;
+use crate::path::AxisState;
+use crate::sampler::Sample;
+
+/// Axes handled by the unrolled kernels.
+const UNROLLED: usize = 8;
+
+/// Calls `$f::<A, K>(args)` for `K = 0 .. A` (A ≤ [`UNROLLED`]), unrolled: the conditions are
+/// constants.
+macro_rules! each_axis {
+    ($A:ident, $f:ident, $($arg:expr),*) => {
+        if $A > 0 { $f::<$A, 0>($($arg),*); }
+        if $A > 1 { $f::<$A, 1>($($arg),*); }
+        if $A > 2 { $f::<$A, 2>($($arg),*); }
+        if $A > 3 { $f::<$A, 3>($($arg),*); }
+        if $A > 4 { $f::<$A, 4>($($arg),*); }
+        if $A > 5 { $f::<$A, 5>($($arg),*); }
+        if $A > 6 { $f::<$A, 6>($($arg),*); }
+        if $A > 7 { $f::<$A, 7>($($arg),*); }
+    };
+}
+
+/// `I32F32` from its two words (`lo`, `hi`).
+#[inline(always)]
+fn out(lo: u32, hi: u32) -> I32F32 {
+    I32F32::from_bits((i64::from(hi.cast_signed()) << 32) | i64::from(lo))
+}
+
+/// The position chain of the axis at `*st`: `p += Δ¹; Δ¹ += Δ²; Δ² += Δ³`; returns the old
+/// `p` as `I32F32` (rounded) and moves `*st` to the velocity.
+///
+/// # Safety
+/// `*st` points to a readable and writable `AxisState<Q40>`.
+#[inline(always)]
+unsafe fn position_chain(st: &mut *mut AxisState<Q40>) -> I32F32 {
+    let (lo, hi): (u32, u32);
+    // SAFETY: the caller's contract; the asm touches only the first 32 bytes at `*st` and
+    // the declared registers.
+    unsafe {
+        asm!(
+            "ldm {st}, {{r0, r1, r2, r3, r4, r5, r8, r9}}",
+            "adds {lo}, r0, #128",
+            "adc {hi}, r1, #0",
+            "lsr {lo}, {lo}, #8",
+            "orr {lo}, {lo}, {hi}, lsl #24",
+            "asr {hi}, {hi}, #8",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "adds r2, r2, r4",
+            "adc r3, r3, r5",
+            "adds r4, r4, r8",
+            "adc r5, r5, r9",
+            "stmia {st}!, {{r0, r1, r2, r3, r4, r5}}",
+            "add {st}, {st}, #8",
+            st = inout(reg) *st,
+            lo = out(reg) lo,
+            hi = out(reg) hi,
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _,
+            options(nostack),
+        );
+    }
+    out(lo, hi)
+}
+
+/// The velocity and acceleration chains of the axis whose velocity is at `*st`
+/// (`v += Δv¹; Δv¹ += Δv²; a += Δa`); returns the old `v` and `a` as `I32F32` and moves
+/// `*st` to the next axis.
+///
+/// # Safety
+/// `*st` points to the velocity of a readable and writable `AxisState<Q40>`.
+#[inline(always)]
+unsafe fn derivative_chains(st: &mut *mut AxisState<Q40>) -> (I32F32, I32F32) {
+    let (vlo, vhi, alo, ahi): (u32, u32, u32, u32);
+    // SAFETY: the caller's contract; the asm touches only the last 40 bytes of the state.
+    unsafe {
+        asm!(
+            "ldm {st}, {{r0, r1, r2, r3, r4, r5}}",
+            "adds {vlo}, r0, #128",
+            "adc {vhi}, r1, #0",
+            "lsr {vlo}, {vlo}, #8",
+            "orr {vlo}, {vlo}, {vhi}, lsl #24",
+            "asr {vhi}, {vhi}, #8",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "adds r2, r2, r4",
+            "adc r3, r3, r5",
+            "stmia {st}!, {{r0, r1, r2, r3}}",
+            "ldrd r0, r1, [{st}, #8]",
+            "ldrd r2, r3, [{st}, #16]",
+            "adds {alo}, r0, #128",
+            "adc {ahi}, r1, #0",
+            "lsr {alo}, {alo}, #8",
+            "orr {alo}, {alo}, {ahi}, lsl #24",
+            "asr {ahi}, {ahi}, #8",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "strd r0, r1, [{st}, #8]",
+            "add {st}, {st}, #24",
+            st = inout(reg) *st,
+            vlo = out(reg) vlo,
+            vhi = out(reg) vhi,
+            alo = out(reg) alo,
+            ahi = out(reg) ahi,
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            options(nostack),
+        );
+    }
+    (out(vlo, vhi), out(alo, ahi))
+}
+
+/// [`derivative_chains`] without the sample values (for position-only ticks).
+///
+/// # Safety
+/// As [`derivative_chains`].
+#[inline(always)]
+unsafe fn derivative_steps(st: &mut *mut AxisState<Q40>) {
+    // SAFETY: as in `derivative_chains`.
+    unsafe {
+        asm!(
+            "ldm {st}, {{r0, r1, r2, r3, r4, r5}}",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "adds r2, r2, r4",
+            "adc r3, r3, r5",
+            "stmia {st}!, {{r0, r1, r2, r3}}",
+            "ldrd r0, r1, [{st}, #8]",
+            "ldrd r2, r3, [{st}, #16]",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "strd r0, r1, [{st}, #8]",
+            "add {st}, {st}, #24",
+            st = inout(reg) *st,
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            options(nostack),
+        );
+    }
+}
+
+/// Axis `K` of a full tick into `s`.
+///
+/// # Safety
+/// `*st` points to axis `K` of a readable and writable `[AxisState<Q40>; A]`.
+#[inline(always)]
+unsafe fn axis_sample<const A: usize, const K: usize>(
+    st: &mut *mut AxisState<Q40>,
+    s: &mut Sample<I32F32, A>,
+) {
+    // SAFETY: the caller's contract.
+    let (x, (v, a)) = unsafe { (position_chain(st), derivative_chains(st)) };
+    if let (Some(px), Some(pv), Some(pa)) = (
+        s.position.get_mut(K),
+        s.velocity.get_mut(K),
+        s.acceleration.get_mut(K),
+    ) {
+        (*px, *pv, *pa) = (x, v, a);
+    }
+}
+
+/// Axis `K` of a position-only tick into `p`.
+///
+/// # Safety
+/// As [`axis_sample`].
+#[inline(always)]
+unsafe fn axis_position<const A: usize, const K: usize>(
+    st: &mut *mut AxisState<Q40>,
+    p: &mut [I32F32; A],
+) {
+    // SAFETY: the caller's contract.
+    let x = unsafe {
+        let x = position_chain(st);
+        derivative_steps(st);
+        x
+    };
+    if let Some(px) = p.get_mut(K) {
+        *px = x;
+    }
+}
+
+/// Axis `K` of a piece switch: the sample values of the current state into `s`, then the
+/// next piece's state `*nx` copied over it (18 words in four transfers); both pointers move
+/// to the next axis.
+///
+/// # Safety
+/// As [`axis_sample`], and `*nx` points to a readable `AxisState<Q40>` not overlapping `*st`.
+#[inline(always)]
+unsafe fn axis_switch<const A: usize, const K: usize>(
+    (st, nx): (&mut *mut AxisState<Q40>, &mut *const AxisState<Q40>),
+    s: &mut Sample<I32F32, A>,
+) {
+    let (xlo, xhi, vlo, vhi, alo, ahi): (u32, u32, u32, u32, u32, u32);
+    // SAFETY: the caller's contract; the first asm reads 72 bytes at `*st`, the second
+    // copies 72 bytes from `*nx` to `*st`.
+    unsafe {
+        asm!(
+            "ldrd {xlo}, {xhi}, [{st}]",
+            "ldrd {vlo}, {vhi}, [{st}, #32]",
+            "ldrd {alo}, {ahi}, [{st}, #56]",
+            "adds {xlo}, {xlo}, #128",
+            "adc {xhi}, {xhi}, #0",
+            "lsr {xlo}, {xlo}, #8",
+            "orr {xlo}, {xlo}, {xhi}, lsl #24",
+            "asr {xhi}, {xhi}, #8",
+            "adds {vlo}, {vlo}, #128",
+            "adc {vhi}, {vhi}, #0",
+            "lsr {vlo}, {vlo}, #8",
+            "orr {vlo}, {vlo}, {vhi}, lsl #24",
+            "asr {vhi}, {vhi}, #8",
+            "adds {alo}, {alo}, #128",
+            "adc {ahi}, {ahi}, #0",
+            "lsr {alo}, {alo}, #8",
+            "orr {alo}, {alo}, {ahi}, lsl #24",
+            "asr {ahi}, {ahi}, #8",
+            st = in(reg) *st,
+            xlo = out(reg) xlo,
+            xhi = out(reg) xhi,
+            vlo = out(reg) vlo,
+            vhi = out(reg) vhi,
+            alo = out(reg) alo,
+            ahi = out(reg) ahi,
+            options(nostack, readonly),
+        );
+        asm!(
+            "ldmia {nx}!, {{r0, r1, r2, r3, r4, r5, r8, r9}}",
+            "stmia {st}!, {{r0, r1, r2, r3, r4, r5, r8, r9}}",
+            "ldmia {nx}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12, lr}}",
+            "stmia {st}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12, lr}}",
+            st = inout(reg) *st,
+            nx = inout(reg) *nx,
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _, out("r12") _, out("lr") _,
+            options(nostack),
+        );
+    }
+    if let (Some(px), Some(pv), Some(pa)) = (
+        s.position.get_mut(K),
+        s.velocity.get_mut(K),
+        s.acceleration.get_mut(K),
+    ) {
+        (*px, *pv, *pa) = (out(xlo, xhi), out(vlo, vhi), out(alo, ahi));
+    }
+}
+
+/// A sample at `tick` with every value zero (each is overwritten by the axis kernels; the
+/// compiler drops the zeroing, since the values come out of registers).
+#[inline(always)]
+fn blank<const A: usize>(tick: u64) -> Sample<I32F32, A> {
+    Sample {
+        tick,
+        position: [I32F32::ZERO; A],
+        velocity: [I32F32::ZERO; A],
+        acceleration: [I32F32::ZERO; A],
+    }
+}
+
+/// [`portable::tick_sample`] for `Q40`.
+#[inline(always)]
+pub(crate) fn tick_sample<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    tick: u64,
+) -> Sample<I32F32, A> {
+    if A > UNROLLED {
+        return portable::tick_sample(state, tick);
+    }
+    let mut s = blank(tick);
+    let mut st = state.as_mut_ptr();
+    // SAFETY: `st` walks the A states of `state` (exclusive borrow), one axis per call.
+    unsafe {
+        each_axis!(A, axis_sample, &mut st, &mut s);
+    }
+    s
+}
+
+/// [`portable::tick_position`] for `Q40`.
+#[inline(always)]
+pub(crate) fn tick_position<const A: usize>(state: &mut [AxisState<Q40>; A]) -> [I32F32; A] {
+    if A > UNROLLED {
+        return portable::tick_position(state);
+    }
+    let mut p = [I32F32::ZERO; A];
+    let mut st = state.as_mut_ptr();
+    // SAFETY: as in `tick_sample`.
+    unsafe {
+        each_axis!(A, axis_position, &mut st, &mut p);
+    }
+    p
+}
+
+/// [`portable::switch_sample`] for `Q40`.
+#[inline(always)]
+pub(crate) fn switch_sample<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    next: &[AxisState<Q40>; A],
+    tick: u64,
+) -> Sample<I32F32, A> {
+    if A > UNROLLED {
+        return portable::switch_sample(state, next, tick);
+    }
+    let mut s = blank(tick);
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr();
+    // SAFETY: as in `tick_sample`; `nx` walks `next` (a shared borrow, so it cannot overlap
+    // the exclusively borrowed `state`).
+    unsafe {
+        each_axis!(A, axis_switch, (&mut st, &mut nx), &mut s);
+    }
+    s
+}

@@ -1,0 +1,206 @@
+//! The tick kernels for `f32` on Cortex-M cores with a single-precision FPU (Armv7E-M and
+//! Armv8-M Mainline, hard-float ABI: `strak_vfp`, set by `build.rs`).
+//!
+//! Per axis: one `vldmia` of the nine state values ([`AxisState`] is `#[repr(C)]`, nine
+//! consecutive `f32`), the sample values stored straight from the registers, the six
+//! additions of [`portable::step_whole`](super::portable::step_whole) in its order, one
+//! `vstmia` of the nine values back (the three constant differences are rewritten
+//! unchanged). The axes are unrolled (up to [`UNROLLED`]; more axes use the portable
+//! kernel), so the tick has no loop and the sample's offsets are immediates.
+//!
+//! `vadd.f32` is the IEEE-754 single-precision addition the compiler emits for `+` on this
+//! target (round to nearest, the FPSCR left as the runtime set it), so these kernels give
+//! the portable kernel's bits; the firmware's bit-identity check against the host compares
+//! them on every sample.
+#![allow(unsafe_code)]
+
+use core::arch::asm;
+use core::mem::{MaybeUninit, offset_of, size_of};
+
+use super::portable;
+use crate::path::AxisState;
+use crate::sampler::Sample;
+
+/// Axes handled by the unrolled kernels.
+const UNROLLED: usize = 8;
+
+/// Calls `$f::<A, K>(args)` for `K = 0 .. A` (A ≤ [`UNROLLED`]), unrolled: the conditions are
+/// constants.
+macro_rules! each_axis {
+    ($A:ident, $f:ident, $($arg:expr),*) => {
+        if $A > 0 { $f::<$A, 0>($($arg),*); }
+        if $A > 1 { $f::<$A, 1>($($arg),*); }
+        if $A > 2 { $f::<$A, 2>($($arg),*); }
+        if $A > 3 { $f::<$A, 3>($($arg),*); }
+        if $A > 4 { $f::<$A, 4>($($arg),*); }
+        if $A > 5 { $f::<$A, 5>($($arg),*); }
+        if $A > 6 { $f::<$A, 6>($($arg),*); }
+        if $A > 7 { $f::<$A, 7>($($arg),*); }
+    };
+}
+
+/// Byte offset of axis `K`'s value in one of the sample's arrays starting at `array`.
+const fn at<const K: usize>(array: usize) -> usize {
+    array + K * size_of::<f32>()
+}
+
+/// Axis `K` of a full tick: sample values to `o`, step, state pointer `st` to the next axis.
+///
+/// # Safety
+/// `*st` points to a readable and writable `AxisState<f32>`; `o` to a writable
+/// `Sample<f32, A>`, `K < A`.
+#[inline(always)]
+unsafe fn axis_sample<const A: usize, const K: usize>(
+    st: &mut *mut AxisState<f32>,
+    o: *mut Sample<f32, A>,
+) {
+    // SAFETY: the caller's contract; the asm touches only the 36 bytes at `*st`, the three
+    // sample slots of axis K, and s0–s8 (declared clobbered).
+    unsafe {
+        asm!(
+            "vldmia {st}, {{s0-s8}}",
+            "vstr s0, [{o}, #{x}]",
+            "vstr s4, [{o}, #{v}]",
+            "vstr s7, [{o}, #{a}]",
+            "vadd.f32 s0, s0, s1",
+            "vadd.f32 s1, s1, s2",
+            "vadd.f32 s2, s2, s3",
+            "vadd.f32 s4, s4, s5",
+            "vadd.f32 s5, s5, s6",
+            "vadd.f32 s7, s7, s8",
+            "vstmia {st}!, {{s0-s8}}",
+            st = inout(reg) *st,
+            o = in(reg) o,
+            x = const at::<K>(offset_of!(Sample<f32, A>, position)),
+            v = const at::<K>(offset_of!(Sample<f32, A>, velocity)),
+            a = const at::<K>(offset_of!(Sample<f32, A>, acceleration)),
+            out("s0") _, out("s1") _, out("s2") _, out("s3") _, out("s4") _,
+            out("s5") _, out("s6") _, out("s7") _, out("s8") _,
+            options(nostack),
+        );
+    }
+}
+
+/// Axis `K` of a position-only tick (the same step as [`axis_sample`]).
+///
+/// # Safety
+/// As [`axis_sample`], with `o` a writable `[f32; A]`.
+#[inline(always)]
+unsafe fn axis_position<const A: usize, const K: usize>(
+    st: &mut *mut AxisState<f32>,
+    o: *mut [f32; A],
+) {
+    // SAFETY: as in `axis_sample`.
+    unsafe {
+        asm!(
+            "vldmia {st}, {{s0-s8}}",
+            "vstr s0, [{o}, #{x}]",
+            "vadd.f32 s0, s0, s1",
+            "vadd.f32 s1, s1, s2",
+            "vadd.f32 s2, s2, s3",
+            "vadd.f32 s4, s4, s5",
+            "vadd.f32 s5, s5, s6",
+            "vadd.f32 s7, s7, s8",
+            "vstmia {st}!, {{s0-s8}}",
+            st = inout(reg) *st,
+            o = in(reg) o,
+            x = const at::<K>(0),
+            out("s0") _, out("s1") _, out("s2") _, out("s3") _, out("s4") _,
+            out("s5") _, out("s6") _, out("s7") _, out("s8") _,
+            options(nostack),
+        );
+    }
+}
+
+/// Axis `K` of a piece switch: sample values of the current state to `o`, then the next
+/// piece's state `*nx` copied over it; both pointers move to the next axis.
+///
+/// # Safety
+/// As [`axis_sample`], and `*nx` points to a readable `AxisState<f32>` not overlapping `*st`.
+#[inline(always)]
+unsafe fn axis_switch<const A: usize, const K: usize>(
+    (st, nx): (&mut *mut AxisState<f32>, &mut *const AxisState<f32>),
+    o: *mut Sample<f32, A>,
+) {
+    // SAFETY: as in `axis_sample`; the second load reads the 36 bytes at `*nx`.
+    unsafe {
+        asm!(
+            "vldmia {st}, {{s0-s8}}",
+            "vstr s0, [{o}, #{x}]",
+            "vstr s4, [{o}, #{v}]",
+            "vstr s7, [{o}, #{a}]",
+            "vldmia {nx}!, {{s0-s8}}",
+            "vstmia {st}!, {{s0-s8}}",
+            st = inout(reg) *st,
+            nx = inout(reg) *nx,
+            o = in(reg) o,
+            x = const at::<K>(offset_of!(Sample<f32, A>, position)),
+            v = const at::<K>(offset_of!(Sample<f32, A>, velocity)),
+            a = const at::<K>(offset_of!(Sample<f32, A>, acceleration)),
+            out("s0") _, out("s1") _, out("s2") _, out("s3") _, out("s4") _,
+            out("s5") _, out("s6") _, out("s7") _, out("s8") _,
+            options(nostack),
+        );
+    }
+}
+
+/// [`portable::tick_sample`] for `f32`.
+#[inline(always)]
+pub(crate) fn tick_sample<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    tick: u64,
+) -> Sample<f32, A> {
+    if A > UNROLLED {
+        return portable::tick_sample(state, tick);
+    }
+    let mut out = MaybeUninit::<Sample<f32, A>>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    // SAFETY: `st` walks the A states of `state` (exclusive borrow); `o` is the sample being
+    // built. Every field is written: `tick` here, the three arrays' A values by the A axis
+    // kernels (A ≤ UNROLLED), so `assume_init` is sound.
+    unsafe {
+        (&raw mut (*o).tick).write(tick);
+        each_axis!(A, axis_sample, &mut st, o);
+        out.assume_init()
+    }
+}
+
+/// [`portable::tick_position`] for `f32`.
+#[inline(always)]
+pub(crate) fn tick_position<const A: usize>(state: &mut [AxisState<f32>; A]) -> [f32; A] {
+    if A > UNROLLED {
+        return portable::tick_position(state);
+    }
+    let mut out = MaybeUninit::<[f32; A]>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    // SAFETY: as in `tick_sample`; the A axis kernels write all A positions.
+    unsafe {
+        each_axis!(A, axis_position, &mut st, o);
+        out.assume_init()
+    }
+}
+
+/// [`portable::switch_sample`] for `f32`.
+#[inline(always)]
+pub(crate) fn switch_sample<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    next: &[AxisState<f32>; A],
+    tick: u64,
+) -> Sample<f32, A> {
+    if A > UNROLLED {
+        return portable::switch_sample(state, next, tick);
+    }
+    let mut out = MaybeUninit::<Sample<f32, A>>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr();
+    // SAFETY: as in `tick_sample`; `nx` walks `next` (a shared borrow, so it cannot overlap
+    // the exclusively borrowed `state`).
+    unsafe {
+        (&raw mut (*o).tick).write(tick);
+        each_axis!(A, axis_switch, (&mut st, &mut nx), o);
+        out.assume_init()
+    }
+}
