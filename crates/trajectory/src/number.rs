@@ -253,6 +253,11 @@ pub trait Number:
     /// callers keep it in range), rounded once in floats.
     fn mul_int(self, k: i64) -> Self;
 
+    /// Crate-internal (the trait is sealed): the accumulator value whose sample value is `v`
+    /// (exact: `from_out(v).to_out() == v` for every `v` in range; the path checks it).
+    #[doc(hidden)]
+    fn from_out(v: Self::Out) -> Self;
+
     /// Crate-internal (the trait is sealed): the sampler's tick kernel, the sample of
     /// `state` at `tick`, then one forward-differencing step of every axis. Portable Rust
     /// unless the format has a faster kernel on the target (`sampler::kernel`).
@@ -346,6 +351,9 @@ impl Number for f32 {
     fn to_out(self) -> f32 {
         self
     }
+    fn from_out(v: f32) -> f32 {
+        v
+    }
     fn rounding_error(magnitude: f64) -> f64 {
         0.5 * f64::from(f32::EPSILON) * magnitude.abs()
     }
@@ -402,6 +410,9 @@ impl Number for f64 {
     #[inline]
     fn to_out(self) -> f64 {
         self
+    }
+    fn from_out(v: f64) -> f64 {
+        v
     }
     fn rounding_error(magnitude: f64) -> f64 {
         0.5 * f64::EPSILON * magnitude.abs()
@@ -490,6 +501,9 @@ impl Number for Q40 {
     #[inline]
     fn to_out(self) -> I32F32 {
         I32F32::from_bits(self.0.wrapping_add(1 << 7) >> 8)
+    }
+    fn from_out(v: I32F32) -> Q40 {
+        Q40(v.to_bits().wrapping_shl(8))
     }
     fn rounding_error(_magnitude: f64) -> f64 {
         0.5 / Q40_SCALE

@@ -406,8 +406,45 @@ pub struct Path<N: Number, const A: usize, const P: usize> {
     pub(crate) ticks: u32,
     pub(crate) meta: PathMeta,
     pub(crate) end: PathEnd<N::Out, A>,
+    /// The end as two pieces without motion, for the sampler's fast path: `[0]` the end
+    /// sample (the end's position, velocity and acceleration, zero differences), `[1]` the
+    /// standstill after it (the end position, everything else zero). Derived from `end`.
+    pub(crate) end_states: [[AxisState<N>; A]; 2],
     pub(crate) ramp: FeedRampLimits<N>,
     pub(crate) playback_bound: f64,
+}
+
+/// [`Path::end_states`] from the end's sample values.
+///
+/// # Errors
+/// [`Error::OutOfRange`] when a sample value has no exact accumulator value.
+#[allow(clippy::type_complexity)]
+fn end_states<N: Number, const A: usize>(
+    end: &PathEnd<N::Out, A>,
+) -> Result<[[AxisState<N>; A]; 2], Error> {
+    let exact = |v: N::Out| {
+        let n = N::from_out(v);
+        if n.to_out() == v {
+            Ok(n)
+        } else {
+            Err(Error::OutOfRange)
+        }
+    };
+    let mut sample = [AxisState::default(); A];
+    let mut rest = [AxisState::default(); A];
+    for (a, (e, r)) in sample.iter_mut().zip(rest.iter_mut()).enumerate() {
+        if let (Some(&x), Some(&v), Some(&acc)) = (
+            end.position.get(a),
+            end.velocity.get(a),
+            end.acceleration.get(a),
+        ) {
+            e.position = exact(x)?;
+            e.velocity = exact(v)?;
+            e.acceleration = exact(acc)?;
+            r.position = e.position;
+        }
+    }
+    Ok([sample, rest])
 }
 
 fn positive(x: f64) -> bool {
@@ -498,11 +535,13 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
         if pieces.is_empty() {
             return Err(Error::EmptyPath);
         }
+        let end_states = end_states(&end)?;
         Ok(Path {
             pieces,
             ticks: next_start,
             meta,
             end,
+            end_states,
             ramp,
             playback_bound,
         })

@@ -271,53 +271,54 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         }
     }
 
-    /// A tick off the fast path: the last tick of a piece at full feed (its sample, then the
-    /// next piece loaded), or [`next_other`](Self::next_other).
+    /// A tick off the fast path: the last tick of a piece at full feed
+    /// ([`switch`](Self::switch)), or [`next_other`](Self::next_other).
     #[inline(never)]
     fn next_edge(&mut self) -> Sample<N::Out, A> {
-        self.sync();
         if self.left == 1 && self.shift == N::ZERO {
-            let tick = self.tick;
-            self.tick = tick.wrapping_add(1);
-            let next = self.piece + 1;
-            return match self.path.pieces.get(next) {
-                Some(p) => {
-                    // Still at full feed: the new piece is played on the fast path.
-                    let s = N::switch_sample(&mut self.state, &p.axes, tick);
-                    self.piece = next;
-                    self.local = 0;
-                    self.piece_ticks = p.ticks;
-                    self.left = p.ticks;
-                    self.synced = p.ticks;
-                    s
-                }
-                None => {
-                    // The path's last tick; `load` marks the end (and clears `left`).
-                    let s = N::tick_sample(&mut self.state, tick);
-                    self.advance_index();
-                    s
-                }
-            };
+            return self.switch();
         }
-        if self.at_end && self.mode == SamplerState::Running && self.feed.phi == N::ONE {
-            // The end sample at full feed (what `next_checked` returns here, without its
-            // case analysis: the final tick stays within a normal tick's cost).
-            let tick = self.tick;
-            self.tick = tick.wrapping_add(1);
-            self.mode = SamplerState::Finished;
-            let end = &self.path.end;
-            let sample = Sample {
-                tick,
-                position: end.position,
-                velocity: end.velocity,
-                acceleration: end.acceleration,
-            };
-            // From the local copy: a copy from the path would be a `memmove` call (the
-            // compiler cannot tell that the path and the sampler do not overlap).
-            self.rest = sample.position;
-            return sample;
-        }
+        self.sync();
         self.next_other()
+    }
+
+    /// The last tick of a piece at full feed: its sample, then the next piece's state in
+    /// place of the step. After the last piece come the path's two end states
+    /// ([`Path`]'s `end_states`): the end sample (one tick; the sampler is at the end) and
+    /// the standstill (finished), so that every tick at full feed, the final one included,
+    /// stays on the fast path.
+    #[inline(always)]
+    fn switch(&mut self) -> Sample<N::Out, A> {
+        let path = self.path;
+        // `left == 1`: `synced − 1` ticks since the last sync.
+        let tick = self
+            .tick
+            .wrapping_add(u64::from(self.synced.wrapping_sub(1)));
+        let next = self.piece.saturating_add(1);
+        let (src, ticks) = match path.pieces.get(next) {
+            Some(p) => (&p.axes, p.ticks),
+            None if next == path.pieces.len() => {
+                self.at_end = true;
+                (&path.end_states[0], 1)
+            }
+            None => {
+                self.mode = SamplerState::Finished;
+                (&path.end_states[1], u32::MAX)
+            }
+        };
+        let sample = N::switch_sample(&mut self.state, src, tick);
+        if self.mode == SamplerState::Finished {
+            // The end position, copied from the sample (a copy from the path would be a
+            // `memmove` call: the compiler cannot tell that path and sampler do not overlap).
+            self.rest = sample.position;
+        }
+        self.tick = tick.wrapping_add(1);
+        self.piece = next;
+        self.local = 0;
+        self.piece_ticks = ticks;
+        self.left = ticks;
+        self.synced = ticks;
+        sample
     }
 
     /// Every tick that is not a plain forward-differencing step: the end sample, standing
