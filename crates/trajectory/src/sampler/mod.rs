@@ -155,6 +155,10 @@ pub struct Sampler<'a, N: Number, const A: usize, const P: usize> {
     /// outputs and loads the next piece); 0 otherwise. Set by [`Sampler::refresh`] after
     /// every change other than the forward-differencing tick itself.
     left: u32,
+    /// `left` when the velocity and acceleration chains were last stepped: position-only
+    /// ticks ([`Sampler::next_position`]) count down `left` alone, so the chains lag the
+    /// position by `chains − left` ticks until [`catch_up`](Sampler::catch_up).
+    chains: u32,
     /// `left` when `local` was last brought up to date: the fast path counts down `left`
     /// only, so the tick within the piece is `local + synced − left` (see
     /// [`Sampler::sync`]).
@@ -179,6 +183,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             tick: 0,
             rest: path.end.position,
             left: 0,
+            chains: 0,
             synced: 0,
         };
         s.load(0);
@@ -200,6 +205,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             Some(p) => {
                 self.piece_ticks = p.ticks;
                 self.state = p.axes;
+                self.chains = self.left;
                 if self.shift != N::ZERO {
                     let c = Newton::at(self.shift);
                     for s in &mut self.state {
@@ -209,7 +215,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             }
             None => {
                 self.at_end = true;
-                self.left = 0;
+                self.set_left(0);
                 self.synced = 0;
             }
         }
@@ -222,6 +228,14 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         if self.local >= self.piece_ticks {
             self.load(self.piece + 1);
         }
+    }
+
+    /// Sets `left`, keeping the chains' lag (`chains − left`).
+    #[inline]
+    fn set_left(&mut self, left: u32) {
+        let lag = self.chains.wrapping_sub(self.left);
+        self.left = left;
+        self.chains = left.wrapping_add(lag);
     }
 
     /// Brings `local` and `tick` up to date with the ticks the fast path has counted down in
@@ -243,11 +257,11 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             && self.feed.phi == N::ONE
             && self.theta == N::ZERO
             && self.feed.is_idle();
-        self.left = if fast {
+        self.set_left(if fast {
             self.piece_ticks.saturating_sub(self.local)
         } else {
             0
-        };
+        });
         self.synced = self.left;
     }
 
@@ -258,13 +272,14 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     #[allow(clippy::should_implement_trait)]
     #[inline]
     pub fn next(&mut self) -> Sample<N::Out, A> {
-        if self.left > 1 {
+        if self.left > 1 && self.chains == self.left {
             // A plain forward-differencing tick inside a piece: one counter and the format's
             // tick kernel.
             let tick = self
                 .tick
                 .wrapping_add(u64::from(self.synced.wrapping_sub(self.left)));
             self.left -= 1;
+            self.chains = self.left;
             N::tick_sample(&mut self.state, tick)
         } else {
             self.next_edge()
@@ -275,11 +290,47 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     /// ([`switch`](Self::switch)), or [`next_other`](Self::next_other).
     #[inline(never)]
     fn next_edge(&mut self) -> Sample<N::Out, A> {
+        self.catch_up();
         if self.left == 1 && self.shift == N::ZERO {
             return self.switch();
         }
         self.sync();
         self.next_other()
+    }
+
+    /// [`next_edge`](Self::next_edge) for [`next_position`](Self::next_position): a piece
+    /// switch loads fresh chains, so the lagging ones need no catching up.
+    #[inline(never)]
+    fn next_edge_position(&mut self) -> [N::Out; A] {
+        if self.left == 1 && self.shift == N::ZERO {
+            self.chains = self.left;
+            return self.switch().position;
+        }
+        self.catch_up();
+        self.sync();
+        self.next_other().position
+    }
+
+    /// Steps the velocity and acceleration chains over the `chains − left` ticks that
+    /// position-only ticks left out, in closed form (Newton's forward formula at the integer
+    /// offset `m`: `v += m·Δv¹ + C(m,2)·Δv²`, `Δv¹ += m·Δv²`, `a += m·Δa`): exact in `Q40`
+    /// (integer products, the same bits as `m` steps), within rounding in floats. Constant
+    /// time.
+    #[inline]
+    fn catch_up(&mut self) {
+        let lag = self.chains.wrapping_sub(self.left);
+        self.chains = self.left;
+        if lag == 0 {
+            return;
+        }
+        let m = i64::from(lag);
+        let pairs = m.wrapping_mul(m - 1) / 2;
+        for s in &mut self.state {
+            s.velocity =
+                s.velocity + s.velocity_delta1.mul_int(m) + s.velocity_delta2.mul_int(pairs);
+            s.velocity_delta1 = s.velocity_delta1 + s.velocity_delta2.mul_int(m);
+            s.acceleration = s.acceleration + s.acceleration_delta.mul_int(m);
+        }
     }
 
     /// The last tick of a piece at full feed: its sample, then the next piece's state in
@@ -317,6 +368,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         self.local = 0;
         self.piece_ticks = ticks;
         self.left = ticks;
+        self.chains = ticks;
         self.synced = ticks;
         sample
     }
@@ -380,11 +432,14 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     }
 
     /// The next setpoint's positions only: exactly [`next`](Self::next)`().position`, bit for
-    /// bit, and the sampler advances exactly as with [`next`](Self::next) (the two may be
-    /// mixed freely).
+    /// bit, and the sampler advances as with [`next`](Self::next) (the two may be mixed
+    /// freely).
     ///
-    /// For firmware that only commands positions: the velocities and accelerations are not
-    /// converted or written out. Constant time and no panic path, like
+    /// For firmware that only commands positions: an ordinary tick steps only the position
+    /// chains (three additions per axis instead of six) and writes only the positions. The
+    /// velocity and acceleration chains catch up in closed form when [`next`](Self::next)
+    /// follows (at most once per piece; exact in `Q40`, within a few roundings in floats)
+    /// or at the next piece, which loads them afresh. Constant time and no panic path, like
     /// [`next`](Self::next).
     ///
     /// ```
@@ -408,11 +463,12 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     #[inline]
     pub fn next_position(&mut self) -> [N::Out; A] {
         if self.left > 1 {
-            // `next`'s fast path without the velocity and acceleration outputs.
+            // `next`'s fast path, stepping the position chains only (the others catch up
+            // when they are next needed).
             self.left -= 1;
             N::tick_position(&mut self.state)
         } else {
-            self.next_edge().position
+            self.next_edge_position()
         }
     }
 
@@ -692,6 +748,48 @@ mod tests {
             k > u64::from(path.ticks()) + 1000,
             "the hold took time: {k}"
         );
+    }
+
+    /// After position-only ticks the velocity and acceleration chains catch up: mixing
+    /// `next_position` and `next` gives `next`'s velocities and accelerations, bit for bit in
+    /// `Q40` (integer closed form), within a few roundings in floats.
+    fn catch_up_after_positions<N: Number>(rel: f64) {
+        let path = helix_path::<N>();
+        let mut full = Sampler::new(&path);
+        let mut mixed = Sampler::new(&path);
+        let (v_peak, a_peak) = (path.peak_velocity(), path.peak_acceleration());
+        let (mut checked, mut k) = (0, 0_u64);
+        while !full.is_finished() {
+            let want = full.next();
+            // runs of 1..=12 position-only ticks between full ones, across piece switches
+            if (k * 7 + k / 13) % 13 < 9 {
+                assert_eq!(mixed.next_position(), want.position, "tick {k}");
+            } else {
+                let got = mixed.next();
+                assert_eq!(got.position, want.position, "tick {k}");
+                for a in 0..3 {
+                    let (gv, wv) = (got.velocity[a].to_f64(), want.velocity[a].to_f64());
+                    let (ga, wa) = (got.acceleration[a].to_f64(), want.acceleration[a].to_f64());
+                    if N::IS_FIXED {
+                        assert_eq!(got.velocity, want.velocity, "tick {k}");
+                        assert_eq!(got.acceleration, want.acceleration, "tick {k}");
+                    }
+                    assert!((gv - wv).abs() <= rel * v_peak, "tick {k}: v {gv} vs {wv}");
+                    assert!((ga - wa).abs() <= rel * a_peak, "tick {k}: a {ga} vs {wa}");
+                }
+                checked += 1;
+            }
+            k += 1;
+        }
+        assert!(mixed.is_finished());
+        assert!(checked > 500, "{checked}");
+    }
+
+    #[test]
+    fn velocities_catch_up_after_position_only_ticks() {
+        big_stack(|| catch_up_after_positions::<Q40>(0.0));
+        big_stack(|| catch_up_after_positions::<f64>(1e-11));
+        big_stack(|| catch_up_after_positions::<f32>(1e-4));
     }
 
     #[test]

@@ -56,8 +56,9 @@ pub(crate) fn tick_sample<N: Number, const A: usize>(
     sample
 }
 
-/// The positions of the current state, then one step of every axis (the same step as
-/// [`tick_sample`]).
+/// The positions of the current state, then one step of every axis's position chain
+/// (`p += Δ¹; Δ¹ += Δ²; Δ² += Δ³`, the additions of [`step_whole`]); the velocity and
+/// acceleration chains are left for the sampler to catch up.
 #[inline(always)]
 pub(crate) fn tick_position<N: Number, const A: usize>(
     state: &mut [AxisState<N>; A],
@@ -65,7 +66,10 @@ pub(crate) fn tick_position<N: Number, const A: usize>(
     let mut position = [N::Out::ZERO; A];
     for (s, x) in state.iter_mut().zip(position.iter_mut()) {
         *x = s.position.to_out();
-        step_whole(s);
+        let (p, d1, d2, d3) = (s.position, s.delta1, s.delta2, s.delta3);
+        s.position = p + d1;
+        s.delta1 = d1 + d2;
+        s.delta2 = d2 + d3;
     }
     position
 }

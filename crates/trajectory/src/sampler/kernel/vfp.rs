@@ -81,7 +81,8 @@ unsafe fn axis_sample<const A: usize, const K: usize>(
     }
 }
 
-/// Axis `K` of a position-only tick (the same step as [`axis_sample`]).
+/// Axis `K` of a position-only tick: the position to `o`, the position chain stepped (the
+/// first three additions of [`axis_sample`]), `st` to the next axis.
 ///
 /// # Safety
 /// As [`axis_sample`], with `o` a writable `[f32; A]`.
@@ -90,23 +91,21 @@ unsafe fn axis_position<const A: usize, const K: usize>(
     st: &mut *mut AxisState<f32>,
     o: *mut [f32; A],
 ) {
-    // SAFETY: as in `axis_sample`.
+    // SAFETY: as in `axis_sample` (the first 16 bytes of the state).
     unsafe {
         asm!(
-            "vldmia {st}, {{s0-s8}}",
+            "vldmia {st}, {{s0-s3}}",
             "vstr s0, [{o}, #{x}]",
             "vadd.f32 s0, s0, s1",
             "vadd.f32 s1, s1, s2",
             "vadd.f32 s2, s2, s3",
-            "vadd.f32 s4, s4, s5",
-            "vadd.f32 s5, s5, s6",
-            "vadd.f32 s7, s7, s8",
-            "vstmia {st}!, {{s0-s8}}",
+            "vstmia {st}, {{s0-s2}}",
+            "add {st}, {st}, #{axis}",
             st = inout(reg) *st,
             o = in(reg) o,
             x = const at::<K>(0),
-            out("s0") _, out("s1") _, out("s2") _, out("s3") _, out("s4") _,
-            out("s5") _, out("s6") _, out("s7") _, out("s8") _,
+            axis = const size_of::<AxisState<f32>>(),
+            out("s0") _, out("s1") _, out("s2") _, out("s3") _,
             options(nostack),
         );
     }
