@@ -32,12 +32,16 @@ use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-/// One polynomial piece: the power-basis coefficients in the normalised parameter and the
-/// reciprocal `r = 1/(u_{s+1} − u_s)` of the span's length.
+/// One polynomial piece: its knot span `[start, end)`, the reciprocal
+/// `scale = r = 1/(end − start)` and the power-basis coefficients in the normalised parameter
+/// (in this order: span lookup and Horner read one record, the lookup fields first).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 struct Piece<P: Point, const K: usize> {
-    coef: [P; K],
+    start: P::Scalar,
+    end: P::Scalar,
     scale: P::Scalar,
+    coef: [P; K],
 }
 
 /// A B-spline as piecewise polynomials in the power (monomial) basis, evaluated with the
@@ -89,8 +93,7 @@ struct Piece<P: Point, const K: usize> {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct PowerSpline<P: Point, const K: usize, const N: usize> {
-    /// The start `u_s` of every piece, strictly increasing.
-    starts: Vec<P::Scalar, N>,
+    /// The pieces in order (`start` strictly increasing, `end` = the next `start`).
     pieces: Vec<Piece<P, K>, N>,
     /// The domain `[u_g, u_K]`.
     lo: P::Scalar,
@@ -150,7 +153,6 @@ impl<P: Point, const K: usize, const N: usize> PowerSpline<P, K, N> {
             required: count,
         };
         let (lo, hi) = kv.domain();
-        let mut starts: Vec<P::Scalar, N> = Vec::new();
         let mut pieces: Vec<Piece<P, K>, N> = Vec::new();
         for s in g..kv.control_point_count() {
             let (a, b) = (kv.knot(s), kv.knot(s + 1));
@@ -158,17 +160,15 @@ impl<P: Point, const K: usize, const N: usize> PowerSpline<P, K, N> {
                 continue;
             }
             let piece = convert_span(curve, s)?;
-            check_piece_range(&piece, g, b - a)?;
-            starts.push(a).map_err(|_| capacity())?;
+            check_piece_range(&piece, g)?;
             pieces.push(piece).map_err(|_| capacity())?;
         }
         if pieces.is_empty() {
             // A validated knot vector has a non-empty domain: never reached.
             return Err(Error::ZeroLengthInterval { index: g });
         }
-        let inv_spacing = uniform_guess(&starts, lo, hi);
+        let inv_spacing = uniform_guess(&pieces, lo, hi);
         Ok(PowerSpline {
-            starts,
             pieces,
             lo,
             hi,
@@ -181,13 +181,6 @@ impl<P: Point, const K: usize, const N: usize> PowerSpline<P, K, N> {
     #[inline]
     pub fn degree(&self) -> usize {
         self.degree
-    }
-
-    /// The start `u_s` of every piece (strictly increasing; the domain ends at
-    /// [`ParamCurve::domain`]'s upper bound).
-    #[inline]
-    pub fn piece_starts(&self) -> &[P::Scalar] {
-        &self.starts
     }
 
     /// The power-basis coefficients `[a_0, …, a_{K−1}]` of piece `i` in the normalised
@@ -214,35 +207,36 @@ impl<P: Point, const K: usize, const N: usize> PowerSpline<P, K, N> {
         self.inv_spacing.is_some()
     }
 
-    /// The piece of `u` (already clamped to the domain): `starts[i] ≤ u < starts[i + 1]`, the
-    /// last piece at the right end.
-    #[inline]
-    fn locate(&self, u: P::Scalar) -> usize {
-        let starts = self.starts.as_slice();
-        let last = starts.len().saturating_sub(1);
-        if let Some(inv) = self.inv_spacing {
-            // `as` saturates (NaN → 0); the guess is within one piece (checked at construction).
-            let i = (((u - self.lo) * inv).to_f64() as usize).min(last);
-            match (starts.get(i), starts.get(i + 1)) {
-                (Some(&a), _) if u < a => i.saturating_sub(1),
-                (_, Some(&b)) if u >= b => i + 1,
-                _ => i,
+    /// The piece of `u` (already clamped to the domain): `start ≤ u < end`, the last piece
+    /// at the right end. `None` only for a curve without pieces (never constructed).
+    #[inline(always)]
+    fn piece_of(&self, u: P::Scalar) -> Option<&Piece<P, K>> {
+        let pieces = self.pieces.as_slice();
+        let last = pieces.len().saturating_sub(1);
+        let i = if let Some(inv) = self.inv_spacing {
+            // Within one piece of the right one (checked at construction).
+            let i = guess(u, self.lo, inv, last);
+            let p = pieces.get(i)?;
+            if u < p.start {
+                i.saturating_sub(1)
+            } else if u >= p.end && i < last {
+                i + 1
+            } else {
+                return Some(p);
             }
         } else {
-            starts.partition_point(|&a| a <= u).saturating_sub(1)
-        }
+            pieces.partition_point(|p| p.start <= u).saturating_sub(1)
+        };
+        pieces.get(i)
     }
 
-    /// `c^{(k)}` on piece `i` at `u` (any `u`; callers clamp).
-    fn deriv_in_piece(&self, i: usize, u: P::Scalar, k: usize) -> P {
-        let (Some(piece), Some(&start)) = (self.pieces.get(i), self.starts.get(i)) else {
+    /// `c^{(k)}` on `piece` at `u` (any `u`; callers clamp).
+    fn deriv_in_piece(&self, piece: Option<&Piece<P, K>>, u: P::Scalar, k: usize) -> P {
+        let g = self.degree;
+        let Some(piece) = piece.filter(|_| k <= g) else {
             return P::zero();
         };
-        let g = self.degree;
-        if k > g {
-            return P::zero();
-        }
-        let t = (u - start) * piece.scale;
+        let t = (u - piece.start) * piece.scale;
         if k == 0 {
             return horner(&piece.coef, t);
         }
@@ -289,7 +283,7 @@ fn convert_span<P: Point, const K: usize, const NB: usize, const MB: usize>(
     let kv = curve.knot_vector();
     let g = kv.degree().min(BSPLINE_MAX_DEGREE);
     let (a, b) = (kv.knot(s), kv.knot(s + 1));
-    let h = b.to_f64() - a.to_f64();
+    let h = (b - a).to_f64();
     let scale = P::Scalar::from_f64(1.0 / h).ok_or(Error::OutOfRange)?;
     if scale <= P::Scalar::ZERO {
         return Err(Error::OutOfRange);
@@ -312,7 +306,12 @@ fn convert_span<P: Point, const K: usize, const NB: usize, const MB: usize>(
             *o = P::from_coords(|d| if d == c { x } else { old.coord(d) });
         }
     }
-    Ok(Piece { coef, scale })
+    Ok(Piece {
+        start: a,
+        end: b,
+        scale,
+        coef,
+    })
 }
 
 /// The blossom `f(u_s^{na}, u_{s+1}^{g−na})` of one coordinate of the piece on span `s`
@@ -362,12 +361,9 @@ fn apply<const G1: usize>(b: &[f64; LOCAL]) -> Result<[f64; LOCAL], Error> {
     Ok(a)
 }
 
-/// The fixed-point range rule of [`PowerSpline`] for one piece of length `len`.
-fn check_piece_range<P: Point, const K: usize>(
-    piece: &Piece<P, K>,
-    g: usize,
-    len: P::Scalar,
-) -> Result<(), Error> {
+/// The fixed-point range rule of [`PowerSpline`] for one piece.
+fn check_piece_range<P: Point, const K: usize>(piece: &Piece<P, K>, g: usize) -> Result<(), Error> {
+    let len = piece.end - piece.start;
     let eps = <P::Scalar as Scalar>::EPSILON;
     let r = piece.scale.to_f64();
     // t = (u − u_s)·r with 0 ≤ u − u_s ≤ len (exact or rounded by ≤ ε relative), one rounding.
@@ -401,21 +397,35 @@ fn check_piece_range<P: Point, const K: usize>(
     Ok(())
 }
 
+/// The O(1) span guess `min(⌊(u − lo)·inv⌋, last)` (monotone in `u`). The conversion goes
+/// through `u32` (cheaper than `usize` from `f64`) and saturates (NaN → 0), so it cannot
+/// overflow; beyond `u32::MAX` pieces the construction-time check rejects the guess.
+#[inline(always)]
+fn guess<S: Scalar>(u: S, lo: S, inv: S, last: usize) -> usize {
+    let g = ((u - lo) * inv).to_f64() as u32;
+    (g as usize).min(last)
+}
+
 /// `Some(n/(hi − lo))` when, in the scalar's arithmetic, the clamped guess
 /// `⌊(u − lo)·inv⌋` is within one piece of the right one for every `u` of every piece (the
 /// guess is monotone in `u`, so the ends of each piece suffice); `None` otherwise.
-fn uniform_guess<S: Scalar>(starts: &[S], lo: S, hi: S) -> Option<S> {
-    let n = starts.len();
+fn uniform_guess<P: Point, const K: usize>(
+    pieces: &[Piece<P, K>],
+    lo: P::Scalar,
+    hi: P::Scalar,
+) -> Option<P::Scalar> {
+    let n = pieces.len();
     let width = hi.to_f64() - lo.to_f64();
-    let inv = S::from_f64(n as f64 / width)?;
-    if inv <= S::ZERO || !S::fits(width * inv.to_f64() * (1.0 + 4.0 * S::EPSILON) + 2.0) {
+    let inv = P::Scalar::from_f64(n as f64 / width)?;
+    let eps = <P::Scalar as Scalar>::EPSILON;
+    if inv <= P::Scalar::ZERO
+        || !<P::Scalar as Scalar>::fits(width * inv.to_f64() * (1.0 + 4.0 * eps) + 2.0)
+    {
         return None;
     }
     let last = n.saturating_sub(1);
-    let guess = |u: S| (((u - lo) * inv).to_f64() as usize).min(last);
-    for (i, &a) in starts.iter().enumerate() {
-        let b = starts.get(i + 1).copied().unwrap_or(hi);
-        if guess(a) + 1 < i || guess(b) > i + 1 {
+    for (i, p) in pieces.iter().enumerate() {
+        if guess(p.start, lo, inv, last) + 1 < i || guess(p.end, lo, inv, last) > i + 1 {
             return None;
         }
     }
@@ -433,11 +443,10 @@ impl<P: Point, const K: usize, const N: usize> ParamCurve for PowerSpline<P, K, 
     #[inline]
     fn eval(&self, u: P::Scalar) -> P {
         let u = u.clamp_to(self.lo, self.hi);
-        let i = self.locate(u);
-        let (Some(piece), Some(&start)) = (self.pieces.get(i), self.starts.get(i)) else {
-            return P::zero();
-        };
-        horner(&piece.coef, (u - start) * piece.scale)
+        match self.piece_of(u) {
+            Some(p) => horner(&p.coef, (u - p.start) * p.scale),
+            None => P::zero(),
+        }
     }
 
     fn piece_count(&self) -> usize {
@@ -446,8 +455,9 @@ impl<P: Point, const K: usize, const N: usize> ParamCurve for PowerSpline<P, K, 
 
     fn piece_domain(&self, i: usize) -> (P::Scalar, P::Scalar) {
         let i = i.min(self.pieces.len().saturating_sub(1));
-        let a = self.starts.get(i).copied().unwrap_or(self.lo);
-        (a, self.starts.get(i + 1).copied().unwrap_or(self.hi))
+        self.pieces
+            .get(i)
+            .map_or((self.lo, self.hi), |p| (p.start, p.end))
     }
 }
 
@@ -456,7 +466,7 @@ impl<P: Point, const K: usize, const N: usize> ParamCurveDeriv for PowerSpline<P
     #[inline]
     fn deriv(&self, u: P::Scalar, k: usize) -> P {
         let u = u.clamp_to(self.lo, self.hi);
-        self.deriv_in_piece(self.locate(u), u, k)
+        self.deriv_in_piece(self.piece_of(u), u, k)
     }
 }
 
@@ -464,9 +474,11 @@ impl<P: Point, const K: usize, const N: usize> ParamCurveDeriv for PowerSpline<P
 /// its domain.
 impl<P: Point, const K: usize, const N: usize> PieceDeriv for PowerSpline<P, K, N> {
     fn piece_deriv(&self, piece: usize, u: P::Scalar, k: usize) -> P {
-        let i = piece.min(self.pieces.len().saturating_sub(1));
-        let (a, b) = self.piece_domain(i);
-        self.deriv_in_piece(i, u.clamp_to(a, b), k)
+        let p = self
+            .pieces
+            .get(piece.min(self.pieces.len().saturating_sub(1)));
+        let u = p.map_or(u, |p| u.clamp_to(p.start, p.end));
+        self.deriv_in_piece(p, u, k)
     }
 }
 
@@ -568,7 +580,7 @@ mod tests {
         let b = B2::new(3, &d, &t).unwrap();
         let p = P2::from_bspline(&b).unwrap();
         assert_eq!(p.piece_count(), 3);
-        assert_eq!(p.piece_starts(), &[0.0, 1.0, 2.0]);
+        assert_eq!(p.piece_domain(0), (0.0, 1.0));
         assert_eq!(p.piece_domain(1), (1.0, 2.0));
         assert_eq!(p.piece_domain(9), (2.0, 3.0));
         assert!(p.is_uniform());
@@ -597,10 +609,11 @@ mod tests {
                 // deriv at an inner knot: the piece starting there; at the end: the last.
                 let want = b.deriv(u, 1);
                 assert_eq!(p.deriv(u, 1), want, "u = {u}");
-                assert_eq!(p.locate(u), (s - 1).min(3));
+                let start = |u: f64| p.piece_of(u).map(|q| q.start);
+                assert_eq!(start(u), Some(knots[s.min(4)]));
                 if s > 1 {
                     let below = f64::from_bits(u.to_bits() - 1);
-                    assert_eq!(p.locate(below), s - 2);
+                    assert_eq!(start(below), Some(knots[s - 1]));
                 }
             }
             assert_eq!(p.eval(4.0), [10.0]);
