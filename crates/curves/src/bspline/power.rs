@@ -3,9 +3,9 @@
 //!
 //! The route is the textbook one: each non-empty knot span `[u_s, u_{s+1})` of a B-spline of
 //! degree `g` is one polynomial piece. Its Bézier points are the blossom values
-//! `b_j = f(u_s^{g−j}, u_{s+1}^j)` (Bézier extraction by knot insertion, seeds/000 and 004 "B-Splines";
-//! the same triangle as [`BSpline::to_bezier_segments`]), and the Bernstein → monomial
-//! matrix `T_{M←B}` (seeds/000 "Basistransformation",
+//! `b_j = f(u_s^{g−j}, u_{s+1}^j)` (Bézier extraction by knot insertion, seeds/000 and
+//! seeds/004 "B-Splines"; the same triangle as [`BSpline::to_bezier_segments`]), and the
+//! Bernstein → monomial matrix `T_{M←B}` (seeds/000 "Basistransformation",
 //! [`bernstein_to_monomial_matrix`](crate::basis::bernstein_to_monomial_matrix)) turns them
 //! into the coefficients of
 //!
@@ -56,8 +56,8 @@ struct Piece<P: Point, const K: usize> {
 ///
 /// **Span lookup** (no panic path): when the pieces are (nearly) equally long — checked at
 /// construction, in the scalar's own arithmetic, for every piece — the index is
-/// `⌊(u − u_first)·(1/h)⌋`, clamped, corrected by at most one step against the stored piece
-/// starts: O(1). Otherwise a binary search over the starts. Parameters outside the domain are
+/// `⌊(u − u_first)·(1/h)⌋`, clamped, then corrected by at most one step against the stored
+/// start and end of that piece: O(1). Otherwise a binary search over the piece starts. Parameters outside the domain are
 /// clamped to it; at an inner knot the piece starting there is used, at the right end the last
 /// piece (the convention of [`BSpline`] and [`KnotVector::span`]). Zero-length spans (knots
 /// of multiplicity > 1) are no pieces.
