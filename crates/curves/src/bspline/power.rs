@@ -35,8 +35,13 @@ use crate::scalar::Scalar;
 /// One polynomial piece: its knot span `[start, end)`, the reciprocal
 /// `scale = r = 1/(end − start)` and the power-basis coefficients in the normalised parameter
 /// (in this order: span lookup and Horner read one record, the lookup fields first).
+///
+/// Aligned to a 64-byte cache line: a cubic 3-D piece (`f32`: 60 bytes, `f64`/`I32F32`:
+/// 120 bytes) then occupies exactly one or two lines and no load straddles two lines, which
+/// measurably speeds up random access; small pieces (e.g. 2-D `I16F16` cubics, 44 bytes) pay
+/// with padding.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C)]
+#[repr(C, align(64))]
 struct Piece<P: Point, const K: usize> {
     start: P::Scalar,
     end: P::Scalar,
