@@ -3,7 +3,9 @@
 //! Groups (criterion ids `group/function/parameter`; the report reads them back):
 //! - `eval_even`, `eval_random`: random-access evaluation of the 3-D clamped uniform cubic
 //!   B-spline of `n` helix points at [`TABLE_LEN`] evenly spaced / pseudo-random parameters
-//!   (one iteration evaluates the whole table; throughput = table length).
+//!   (one iteration evaluates the whole table; throughput = table length). strak twice:
+//!   `strak_<format>` is de Boor's algorithm (`BSpline::eval`, the exact evaluator),
+//!   `strak_power_<format>` the power-basis pieces (`PowerSpline::eval`, Horner).
 //! - `playback`: one `Sampler::next()` per iteration over the whole compiled path (the sampler
 //!   restarts when finished), f32, f64 and Q40, per `n`.
 //! - `flatness_<format>`: one `next()` at chosen ticks of the 1024-point path, on a clone of a
@@ -17,7 +19,7 @@ use std::time::Duration;
 use criterion::{BatchSize, BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
 use strak_bench::fixture::{
     DEGREE, PIECES, SIZES, TABLE_LEN, clamped_knots, domain, even_params, helix_points,
-    random_params, sampler_at, strak_curve, strak_paths,
+    random_params, sampler_at, strak_curve, strak_paths, strak_power,
 };
 use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar};
 use strak_trajectory::{Number, Path, Sampler};
@@ -212,6 +214,33 @@ fn strak_eval<P: Point>(
     });
 }
 
+/// strak's power-basis evaluator ([`strak_curves::PowerSpline`]: span lookup and Horner),
+/// checked against the same reference table before timing.
+fn strak_power_eval<P: Point>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    n: usize,
+    params: &[f64],
+    reference: &[[f64; 3]],
+    tolerance: f64,
+) {
+    let curve = strak_power::<P>(n);
+    let us: Vec<P::Scalar> = params
+        .iter()
+        .map(|&u| P::Scalar::from_f64(u).expect("parameter in range"))
+        .collect();
+    let got = strak_bench::fixture::eval_table(&*curve, params);
+    let d = max_diff(&got, reference);
+    assert!(d <= tolerance, "strak power {name} n={n}: off by {d}");
+    g.bench_function(format!("strak_power_{name}/{n}"), |b| {
+        b.iter(|| {
+            for &u in &us {
+                black_box(curve.eval(black_box(u)));
+            }
+        });
+    });
+}
+
 fn enterpolation_eval<F: PeerFloat + num_traits::Float + num_traits::FromPrimitive>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     n: usize,
@@ -352,6 +381,10 @@ fn evaluation(c: &mut Criterion) {
             strak_eval::<[f64; 3]>(&mut g, "f64", n, &params, &reference, 0.0);
             strak_eval::<[I32F32; 3]>(&mut g, "i32f32", n, &params, &reference, 1e-6);
             strak_eval::<[I16F16; 3]>(&mut g, "i16f16", n, &params, &reference, 2e-3);
+            strak_power_eval::<[f32; 3]>(&mut g, "f32", n, &params, &reference, tol32);
+            strak_power_eval::<[f64; 3]>(&mut g, "f64", n, &params, &reference, 1e-11);
+            strak_power_eval::<[I32F32; 3]>(&mut g, "i32f32", n, &params, &reference, 1e-6);
+            strak_power_eval::<[I16F16; 3]>(&mut g, "i16f16", n, &params, &reference, 2e-3);
             enterpolation_eval::<f32>(&mut g, n, &params, &reference, tol32);
             enterpolation_eval::<f64>(&mut g, n, &params, &reference, 1e-9);
             bspline_eval::<f32>(&mut g, n, &params, &reference, tol32);

@@ -4,7 +4,7 @@
 use std::boxed::Box;
 use std::thread;
 
-use strak_curves::{BSpline, ParamCurve};
+use strak_curves::{BSpline, ParamCurve, PowerSpline};
 use strak_trajectory::{CompileOptions, Limits, Number, Path, PathTiming, Q40, Sampler, compile};
 
 /// The control-point counts measured: 8, 64, 1024 and 8192.
@@ -96,6 +96,15 @@ pub fn strak_curve<P: strak_curves::Point>(n: usize) -> Box<BSpline<P, MAX_POINT
     let (lo, hi) = domain(n);
     let s = |v: f64| <P::Scalar as strak_curves::Scalar>::from_f64(v).expect("knot in range");
     Box::new(BSpline::clamped_uniform(DEGREE, &points, s(lo), s(hi)).expect("valid curve"))
+}
+
+/// strak's fast random-access evaluator of the same curve as [`strak_curve`]: the B-spline
+/// converted into per-span power-basis polynomials ([`PowerSpline`], order 4).
+///
+/// # Panics
+/// When the curve cannot be converted (a bug of the fixture).
+pub fn strak_power<P: strak_curves::Point>(n: usize) -> Box<PowerSpline<P, 4, MAX_POINTS>> {
+    Box::new(PowerSpline::from_bspline(&*strak_curve::<P>(n)).expect("valid power spline"))
 }
 
 /// The limits the paths are planned with (mm, s): v 500 mm/s, a 5000 mm/s², j 100 000 mm/s³.

@@ -8,10 +8,12 @@ mod curve;
 mod derivative;
 mod insert;
 mod knots;
+mod power;
 
 pub use basis::{basis_function, bspline_basis, bspline_basis_derivs};
 pub use curve::BSpline;
 pub use knots::{BSPLINE_MAX_DEGREE, KnotVector};
+pub use power::PowerSpline;
 
 pub(crate) use derivative::{local_coords, span_coord_bounds};
 pub(crate) use knots::{LOCAL, ratio};
