@@ -11,6 +11,8 @@
 //! - `flatness_<format>`: one `next()` at chosen ticks of the 1024-point path, on a clone of a
 //!   sampler advanced to just before that tick (`iter_batched_ref`), and the same harness with
 //!   an empty routine (`baseline`) to subtract.
+//! - `floor`: the forward-differencing step alone on a state kept in memory (what any
+//!   per-call tick must pay; no sampler around it), f32, f64 and Q40.
 
 use std::hint::black_box;
 use std::ops::{Add, Div, Mul, Sub};
@@ -426,6 +428,40 @@ fn playback(c: &mut Criterion) {
     g.finish();
 }
 
+/// The floor of any forward-differencing tick that keeps its state in memory between calls
+/// (as a sampler must: an interrupt handler returns between ticks): the six additions per
+/// axis of `AxisState::step` on the three states of the path's first piece, the state passed
+/// through `black_box` every tick so that it is stored and reloaded, the positions returned.
+/// No sampler bookkeeping, no sample construction: what is left is the chain
+/// `p(k+1) = p(k) + Δ¹(k)` through a store and a load per tick.
+fn floor_one<N: Number>(g: &mut BenchmarkGroup<'_, WallTime>, path: &Path<N, 3, PIECES>) {
+    let Some(first) = path.pieces().first() else {
+        return;
+    };
+    let mut state = *first.axes();
+    g.bench_function(format!("strak_{}", N::NAME.to_lowercase()), |b| {
+        b.iter(|| {
+            let s = black_box(&mut state);
+            let position = [s[0].position, s[1].position, s[2].position];
+            for axis in s.iter_mut() {
+                axis.step();
+            }
+            black_box(position)
+        });
+    });
+}
+
+fn floor(c: &mut Criterion) {
+    let mut g = c.benchmark_group("floor");
+    configure(&mut g);
+    g.throughput(Throughput::Elements(1));
+    let paths = strak_paths(FLATNESS_N);
+    floor_one(&mut g, &*paths.f32);
+    floor_one(&mut g, &*paths.f64);
+    floor_one(&mut g, &*paths.q40);
+    g.finish();
+}
+
 /// The size whose path the flatness benches play.
 const FLATNESS_N: usize = 1024;
 
@@ -475,6 +511,7 @@ fn main() {
     let mut c = Criterion::default().without_plots().configure_from_args();
     evaluation(&mut c);
     playback(&mut c);
+    floor(&mut c);
     let paths = strak_paths(FLATNESS_N);
     flatness_one(&mut c, &*paths.f32);
     flatness_one(&mut c, &*paths.f64);

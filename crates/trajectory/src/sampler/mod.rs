@@ -65,8 +65,11 @@ pub enum SamplerState {
 ///
 /// # Two modes, both constant time
 /// * **Forward differencing** (feed 1, no ramp running): per tick and axis six additions
-///   ([`AxisState::step`](crate::AxisState::step)); at a piece boundary a load of the next
-///   piece's state (copy).
+///   ([`AxisState::step`](crate::AxisState::step)); on the last tick of a piece a load of the
+///   next piece's state (copy) instead. The end sample and the standstill after it are
+///   played the same way (two pieces without motion). On Cortex-M cores with Thumb-2 the
+///   tick is a hand-scheduled kernel (`vldm`/`vstm` per axis in `f32`, `ldm`/`stm` and
+///   `adds`/`adc` in `Q40`) with the same additions in the same order, so the same bits.
 /// * **Interpolation** (feed ≠ 1 or a ramp running): the playback point advances by the feed
 ///   factor `φ` per tick, so it lies at a fractional offset `θ` (`|θ| < 1`) from the current
 ///   forward-difference state, inside the current tick interval of the current piece; the sample is Newton's forward-difference formula at `θ`
@@ -82,7 +85,9 @@ pub enum SamplerState {
 /// | tick                                        | additions      | multiplications |
 /// |---------------------------------------------|----------------|-----------------|
 /// | forward differencing                        | 6A             | 0               |
-/// | … at a piece switch (load: copy of 9A values)| 6A             | 0               |
+/// | … positions only ([`Sampler::next_position`])| 3A            | 0               |
+/// | … at a piece switch (load: copy of 9A values)| 0              | 0               |
+/// | … first [`next`](Sampler::next) after positions only (catch-up) | 6A | 4A by an integer |
 /// | … at a piece switch after an override (shifted load) | 16A + 3 | 10A + 4        |
 /// | interpolation (incl. ramp and a step)       | ≤ 13A + 14     | ≤ 9A + 6, and 4 by an integer |
 /// | … with a shifted piece load in the same tick| ≤ 23A + 17     | ≤ 19A + 10, and 4 by an integer |
@@ -90,8 +95,9 @@ pub enum SamplerState {
 /// plus comparisons and the conversion into the sample type (free for floats, an addition
 /// and a shift per value for `Q40`). A `Q40` multiplication is an `i64 × i64 → i128`
 /// product (a library call on Cortex-M0/M3); a multiplication by an integer is an `i64`
-/// product. On the host (x86-64, release, 3 axes) a sample takes about 6–13 ns with forward
-/// differencing and 14–25 ns in interpolation. The counts do not depend on the path; there is
+/// product. On the host (x86-64, release, 3 axes) a forward-differencing sample takes about
+/// 8–10 ns (BENCHMARKS.md); on a Cortex-M4F 56 instructions in `f32` (32 positions only), on a
+/// Cortex-M3 173 in `Q40` (58 positions only; firmware-sim/qemu/ICOUNT.md). The counts do not depend on the path; there is
 /// no search and no loop other than over the axes. The interpolation mode sets the
 /// worst-case budget of an interrupt.
 ///
