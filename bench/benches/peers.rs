@@ -23,7 +23,7 @@ use strak_bench::fixture::{
     DEGREE, PIECES, SIZES, TABLE_LEN, clamped_knots, domain, even_params, helix_points,
     random_params, sampler_at, strak_curve, strak_paths, strak_power,
 };
-use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar};
+use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar, ScalarOf};
 use strak_trajectory::{Number, Path, Sampler};
 
 /// A 3-D point for the peers (they take any type with `+` and `* scalar`).
@@ -191,6 +191,36 @@ fn max_diff(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Times `curve.eval` over `params` as benchmark `id`, after checking it against the
+/// reference table within `tolerance`.
+fn strak_timed<C>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    id: String,
+    curve: &C,
+    params: &[f64],
+    reference: &[[f64; 3]],
+    tolerance: f64,
+) where
+    C: ParamCurve,
+    C::Point: Point,
+{
+    let us: Vec<ScalarOf<C>> = params
+        .iter()
+        .map(|&u| ScalarOf::<C>::from_f64(u).expect("parameter in range"))
+        .collect();
+    let got = strak_bench::fixture::eval_table(curve, params);
+    let d = max_diff(&got, reference);
+    assert!(d <= tolerance, "{id}: off by {d}");
+    g.bench_function(id, |b| {
+        b.iter(|| {
+            for &u in &us {
+                black_box(curve.eval(black_box(u)));
+            }
+        });
+    });
+}
+
+/// strak's de Boor evaluator (`BSpline::eval`, the exact one).
 fn strak_eval<P: Point>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
@@ -200,24 +230,17 @@ fn strak_eval<P: Point>(
     tolerance: f64,
 ) {
     let curve = strak_curve::<P>(n);
-    let us: Vec<P::Scalar> = params
-        .iter()
-        .map(|&u| P::Scalar::from_f64(u).expect("parameter in range"))
-        .collect();
-    let got = strak_bench::fixture::eval_table(&*curve, params);
-    let d = max_diff(&got, reference);
-    assert!(d <= tolerance, "strak {name} n={n}: off by {d}");
-    g.bench_function(format!("strak_{name}/{n}"), |b| {
-        b.iter(|| {
-            for &u in &us {
-                black_box(curve.eval(black_box(u)));
-            }
-        });
-    });
+    strak_timed(
+        g,
+        format!("strak_{name}/{n}"),
+        &*curve,
+        params,
+        reference,
+        tolerance,
+    );
 }
 
-/// strak's power-basis evaluator ([`strak_curves::PowerSpline`]: span lookup and Horner),
-/// checked against the same reference table before timing.
+/// strak's power-basis evaluator ([`strak_curves::PowerSpline`]: span lookup and Horner).
 fn strak_power_eval<P: Point>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
@@ -227,20 +250,14 @@ fn strak_power_eval<P: Point>(
     tolerance: f64,
 ) {
     let curve = strak_power::<P>(n);
-    let us: Vec<P::Scalar> = params
-        .iter()
-        .map(|&u| P::Scalar::from_f64(u).expect("parameter in range"))
-        .collect();
-    let got = strak_bench::fixture::eval_table(&*curve, params);
-    let d = max_diff(&got, reference);
-    assert!(d <= tolerance, "strak power {name} n={n}: off by {d}");
-    g.bench_function(format!("strak_power_{name}/{n}"), |b| {
-        b.iter(|| {
-            for &u in &us {
-                black_box(curve.eval(black_box(u)));
-            }
-        });
-    });
+    strak_timed(
+        g,
+        format!("strak_power_{name}/{n}"),
+        &*curve,
+        params,
+        reference,
+        tolerance,
+    );
 }
 
 fn enterpolation_eval<F: PeerFloat + num_traits::Float + num_traits::FromPrimitive>(

@@ -36,12 +36,16 @@ use crate::scalar::Scalar;
 /// `scale = r = 1/(end − start)` and the power-basis coefficients in the normalised parameter
 /// (in this order: span lookup and Horner read one record, the lookup fields first).
 ///
-/// Aligned to a 64-byte cache line: a cubic 3-D piece (`f32`: 60 bytes, `f64`/`I32F32`:
-/// 120 bytes) then occupies exactly one or two lines and no load straddles two lines, which
-/// measurably speeds up random access; small pieces (e.g. 2-D `I16F16` cubics, 44 bytes) pay
-/// with padding.
+/// On x86-64 and AArch64 hosts aligned to a 64-byte cache line: a cubic 3-D piece (`f32`:
+/// 60 bytes, `f64`/`I32F32`: 120 bytes) then occupies exactly one or two lines and no load
+/// straddles two lines, which measurably speeds up random access there. Microcontrollers
+/// (no such cache) keep the pieces packed: no padding in their RAM or flash.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(64))]
+#[cfg_attr(
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    repr(C, align(64))
+)]
+#[cfg_attr(not(any(target_arch = "x86_64", target_arch = "aarch64")), repr(C))]
 struct Piece<P: Point, const K: usize> {
     start: P::Scalar,
     end: P::Scalar,

@@ -11,6 +11,26 @@
 //! Armv7-M moves a whole axis in one `vldm`/`vstm` (measured: firmware-sim/qemu/ICOUNT.md).
 //! Which kernel a format uses is chosen by [`Number`]'s hidden `tick_*` methods.
 
+/// Axes the assembly kernels handle unrolled (more axes use the portable kernel).
+#[cfg(strak_thumb2)]
+const UNROLLED: usize = 8;
+
+/// Calls `$f::<A, K>(args)` for `K = 0 .. A` (A ≤ [`UNROLLED`]), unrolled: the conditions are
+/// constants, so the kernels have no loop and their offsets are immediates.
+#[cfg(strak_thumb2)]
+macro_rules! each_axis {
+    ($A:ident, $f:ident, $($arg:expr),*) => {
+        if $A > 0 { $f::<$A, 0>($($arg),*); }
+        if $A > 1 { $f::<$A, 1>($($arg),*); }
+        if $A > 2 { $f::<$A, 2>($($arg),*); }
+        if $A > 3 { $f::<$A, 3>($($arg),*); }
+        if $A > 4 { $f::<$A, 4>($($arg),*); }
+        if $A > 5 { $f::<$A, 5>($($arg),*); }
+        if $A > 6 { $f::<$A, 6>($($arg),*); }
+        if $A > 7 { $f::<$A, 7>($($arg),*); }
+    };
+}
+
 pub(crate) mod portable;
 #[cfg(strak_thumb2)]
 pub(crate) mod thumb2;

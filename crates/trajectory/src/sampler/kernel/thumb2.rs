@@ -6,7 +6,8 @@
 //! velocity chain in one, the acceleration chain in two `ldrd`; each 64-bit addition of
 //! [`portable::step_whole`](super::portable::step_whole) is an `adds`/`adc` pair (exact, like
 //! `Q40`'s wrapping `+`); the sample values are `Number::to_out`'s rounding
-//! `(x + 2⁷) >> 8` into [`I32F32`]: five instructions and one `strd`. The axes are unrolled
+//! `(x + 2⁷) >> 8` into [`I32F32`]: five instructions and one `strd`. A position-only tick
+//! steps the position chain alone (the sampler catches the others up). The axes are unrolled
 //! (up to [`UNROLLED`]; more axes use the portable kernel). Integer arithmetic: the same bits
 //! as the portable kernel by construction (checked on every sample by the firmware's
 //! bit-identity run).
@@ -17,31 +18,13 @@ use core::mem::{MaybeUninit, size_of};
 
 use strak_curves::I32F32;
 
-use super::portable;
+use super::{UNROLLED, portable};
 use crate::number::Q40;
 use crate::path::AxisState;
 use crate::sampler::Sample;
 
-/// Axes handled by the unrolled kernels.
-const UNROLLED: usize = 8;
-
 /// Bytes from an axis's state to its velocity (after `p`, `Δ¹`, `Δ²`, `Δ³`).
 const POSITION_CHAIN: usize = 4 * size_of::<Q40>();
-
-/// Calls `$f::<A, K>(args)` for `K = 0 .. A` (A ≤ [`UNROLLED`]), unrolled: the conditions are
-/// constants.
-macro_rules! each_axis {
-    ($A:ident, $f:ident, $($arg:expr),*) => {
-        if $A > 0 { $f::<$A, 0>($($arg),*); }
-        if $A > 1 { $f::<$A, 1>($($arg),*); }
-        if $A > 2 { $f::<$A, 2>($($arg),*); }
-        if $A > 3 { $f::<$A, 3>($($arg),*); }
-        if $A > 4 { $f::<$A, 4>($($arg),*); }
-        if $A > 5 { $f::<$A, 5>($($arg),*); }
-        if $A > 6 { $f::<$A, 6>($($arg),*); }
-        if $A > 7 { $f::<$A, 7>($($arg),*); }
-    };
-}
 
 /// `I32F32` from its two words (`lo`, `hi`).
 #[inline(always)]

@@ -5,7 +5,8 @@
 //! consecutive `f32`), the sample values stored straight from the registers, the six
 //! additions of [`portable::step_whole`](super::portable::step_whole) in its order, one
 //! `vstmia` of the nine values back (the three constant differences are rewritten
-//! unchanged). The axes are unrolled (up to [`UNROLLED`]; more axes use the portable
+//! unchanged). A position-only tick loads, steps and stores the position chain alone (four
+//! values; the sampler catches the others up). The axes are unrolled (up to [`UNROLLED`]; more axes use the portable
 //! kernel), so the tick has no loop and the sample's offsets are immediates.
 //!
 //! `vadd.f32` is the IEEE-754 single-precision addition the compiler emits for `+` on this
@@ -17,27 +18,9 @@
 use core::arch::asm;
 use core::mem::{MaybeUninit, offset_of, size_of};
 
-use super::portable;
+use super::{UNROLLED, portable};
 use crate::path::AxisState;
 use crate::sampler::Sample;
-
-/// Axes handled by the unrolled kernels.
-const UNROLLED: usize = 8;
-
-/// Calls `$f::<A, K>(args)` for `K = 0 .. A` (A ≤ [`UNROLLED`]), unrolled: the conditions are
-/// constants.
-macro_rules! each_axis {
-    ($A:ident, $f:ident, $($arg:expr),*) => {
-        if $A > 0 { $f::<$A, 0>($($arg),*); }
-        if $A > 1 { $f::<$A, 1>($($arg),*); }
-        if $A > 2 { $f::<$A, 2>($($arg),*); }
-        if $A > 3 { $f::<$A, 3>($($arg),*); }
-        if $A > 4 { $f::<$A, 4>($($arg),*); }
-        if $A > 5 { $f::<$A, 5>($($arg),*); }
-        if $A > 6 { $f::<$A, 6>($($arg),*); }
-        if $A > 7 { $f::<$A, 7>($($arg),*); }
-    };
-}
 
 /// Byte offset of axis `K`'s value in one of the sample's arrays starting at `array`.
 const fn at<const K: usize>(array: usize) -> usize {
