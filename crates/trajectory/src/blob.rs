@@ -427,6 +427,12 @@ mod tests {
         b[first_piece + 4..first_piece + 12].copy_from_slice(&i64::MAX.to_le_bytes());
         reseal(&mut b);
         assert_eq!(Path::<Q40, 3, 64>::from_bytes(&b), Err(Error::OutOfRange));
+        // a valid CRC over an end position the accumulator cannot hold (the sampler plays
+        // the end as a piece of `Q40` values: `I32F32` beyond ±2²³ has none)
+        let mut b = good.clone();
+        b[HEADER..HEADER + 8].copy_from_slice(&(i64::MAX - 5).to_le_bytes());
+        reseal(&mut b);
+        assert_eq!(Path::<Q40, 3, 64>::from_bytes(&b), Err(Error::OutOfRange));
     }
 
     #[test]
