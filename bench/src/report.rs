@@ -302,11 +302,15 @@ with velocities and accelerations costs about 40 instructions per axis: six 64-b
 (12), the multiple-register transfers (≈ 6), and the conversion of each of the three sample
 values from the `Q40` accumulator to the `I32F32` sample type, `(x + 2⁷) >> 8` on a 64-bit
 value (5 instructions and a store each, 18 per axis). Three axes are ≈ 120 before the call,
-the fast-path test, the tick number and writing the 80-byte sample out: 110 is
-out of reach while samples are `I32F32`. Samples in the accumulator's own format (`I24F40`,
-no conversion: ≈ 24 per axis, ≈ 90 for 3 axes) would meet it; that changes the public sample
-type of fixed-point paths and is left for a decision. Positions alone (58) meet their target:
-a position-only tick steps and converts the position chain only.
+the fast-path test, the tick number and writing the 80-byte sample out (the kernels return
+the values in registers, and the compiler keeps them until the sample is written at the end:
+the 3-axis listing has 29 stack accesses of spilled values; letting the kernels store into a
+stack copy instead makes an 80-byte `__aeabi_memcpy8` call at `opt-level = \"s\"`, as the
+6-axis f32 listing shows): 110 is out of reach while samples are `I32F32` and are returned by value. It would take both
+samples in the accumulator's own format (`I24F40`, no conversion: ≈ 24 per axis) and an
+interface that writes the sample in place (e.g. `next_into(&mut Sample)`), two changes of the
+public API left for a decision. Positions alone (58) meet their target: a position-only
+tick steps and converts the position chain only.
 ";
 
 /// Where the evaluation parameters lie.
