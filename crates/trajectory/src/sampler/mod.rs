@@ -300,7 +300,6 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         if self.left == 1 && self.shift == N::ZERO {
             return self.switch();
         }
-        self.sync();
         self.next_other()
     }
 
@@ -309,11 +308,9 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     #[inline(never)]
     fn next_edge_position(&mut self) -> [N::Out; A] {
         if self.left == 1 && self.shift == N::ZERO {
-            self.chains = self.left;
             return self.switch().position;
         }
         self.catch_up();
-        self.sync();
         self.next_other().position
     }
 

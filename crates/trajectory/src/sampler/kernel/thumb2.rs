@@ -32,6 +32,43 @@ fn out(lo: u32, hi: u32) -> I32F32 {
     I32F32::from_bits((i64::from(hi.cast_signed()) << 32) | i64::from(lo))
 }
 
+/// `Number::to_out` for `Q40` in assembly: the 64-bit value in `$slo`/`$shi` rounded to
+/// `I32F32`, `(x + 2⁷) >> 8` (arithmetic), into `$lo`/`$hi` (five instructions; source and
+/// destination may be the same registers).
+macro_rules! round_asm {
+    ($lo:literal, $hi:literal, $slo:literal, $shi:literal) => {
+        concat!(
+            "adds ",
+            $lo,
+            ", ",
+            $slo,
+            ", #128\n",
+            "adc ",
+            $hi,
+            ", ",
+            $shi,
+            ", #0\n",
+            "lsr ",
+            $lo,
+            ", ",
+            $lo,
+            ", #8\n",
+            "orr ",
+            $lo,
+            ", ",
+            $lo,
+            ", ",
+            $hi,
+            ", lsl #24\n",
+            "asr ",
+            $hi,
+            ", ",
+            $hi,
+            ", #8\n",
+        )
+    };
+}
+
 /// The position chain of the axis at `{st}`: `p += Δ¹; Δ¹ += Δ²; Δ² += Δ³` (computed from
 /// the last difference up, so each sum still reads the old values), then the old `p`
 /// rounded to `I32F32` in `r0` (low word) and `r1`, the registers that held it: the kernel
@@ -47,11 +84,7 @@ macro_rules! position_chain_asm {
             "adds r2, r0, r2\n",
             "adc r3, r1, r3\n",
             "stm {st}, {{r2, r3, r4, r5, r8, r9}}\n",
-            "adds r0, r0, #128\n",
-            "adc r1, r1, #0\n",
-            "lsr r0, r0, #8\n",
-            "orr r0, r0, r1, lsl #24\n",
-            "asr r1, r1, #8\n",
+            round_asm!("r0", "r1", "r0", "r1"),
         )
     };
 }
@@ -91,11 +124,7 @@ unsafe fn derivative_chains(st: &mut *mut AxisState<Q40>) -> (I32F32, I32F32) {
     unsafe {
         asm!(
             "ldm {st}, {{r0, r1, r2, r3, r4, r5}}",
-            "adds {vlo}, r0, #128",
-            "adc {vhi}, r1, #0",
-            "lsr {vlo}, {vlo}, #8",
-            "orr {vlo}, {vlo}, {vhi}, lsl #24",
-            "asr {vhi}, {vhi}, #8",
+            round_asm!("{vlo}", "{vhi}", "r0", "r1"),
             "adds r0, r0, r2",
             "adc r1, r1, r3",
             "adds r2, r2, r4",
@@ -103,11 +132,7 @@ unsafe fn derivative_chains(st: &mut *mut AxisState<Q40>) -> (I32F32, I32F32) {
             "stmia {st}!, {{r0, r1, r2, r3}}",
             "ldrd r0, r1, [{st}, #8]",
             "ldrd r2, r3, [{st}, #16]",
-            "adds {alo}, r0, #128",
-            "adc {ahi}, r1, #0",
-            "lsr {alo}, {alo}, #8",
-            "orr {alo}, {alo}, {ahi}, lsl #24",
-            "asr {ahi}, {ahi}, #8",
+            round_asm!("{alo}", "{ahi}", "r0", "r1"),
             "adds r0, r0, r2",
             "adc r1, r1, r3",
             "strd r0, r1, [{st}, #8]",
@@ -195,21 +220,9 @@ unsafe fn axis_switch<const A: usize, const K: usize>(
             "ldrd {xlo}, {xhi}, [{st}]",
             "ldrd {vlo}, {vhi}, [{st}, #32]",
             "ldrd {alo}, {ahi}, [{st}, #56]",
-            "adds {xlo}, {xlo}, #128",
-            "adc {xhi}, {xhi}, #0",
-            "lsr {xlo}, {xlo}, #8",
-            "orr {xlo}, {xlo}, {xhi}, lsl #24",
-            "asr {xhi}, {xhi}, #8",
-            "adds {vlo}, {vlo}, #128",
-            "adc {vhi}, {vhi}, #0",
-            "lsr {vlo}, {vlo}, #8",
-            "orr {vlo}, {vlo}, {vhi}, lsl #24",
-            "asr {vhi}, {vhi}, #8",
-            "adds {alo}, {alo}, #128",
-            "adc {ahi}, {ahi}, #0",
-            "lsr {alo}, {alo}, #8",
-            "orr {alo}, {alo}, {ahi}, lsl #24",
-            "asr {ahi}, {ahi}, #8",
+            round_asm!("{xlo}", "{xhi}", "{xlo}", "{xhi}"),
+            round_asm!("{vlo}", "{vhi}", "{vlo}", "{vhi}"),
+            round_asm!("{alo}", "{ahi}", "{alo}", "{ahi}"),
             st = in(reg) *st,
             xlo = out(reg) xlo,
             xhi = out(reg) xhi,

@@ -27,6 +27,19 @@ const fn at<const K: usize>(array: usize) -> usize {
     array + K * size_of::<f32>()
 }
 
+/// Loads the axis state at `{st}` into `s0`–`s8` (`p, Δ¹, Δ², Δ³, v, Δv¹, Δv², a, Δa`) and
+/// stores its sample values `p`, `v`, `a` at `{o}` + `{x}`, `{v}`, `{a}`.
+macro_rules! sample_asm {
+    () => {
+        concat!(
+            "vldmia {st}, {{s0-s8}}\n",
+            "vstr s0, [{o}, #{x}]\n",
+            "vstr s4, [{o}, #{v}]\n",
+            "vstr s7, [{o}, #{a}]\n",
+        )
+    };
+}
+
 /// Axis `K` of a full tick: sample values to `o`, step, state pointer `st` to the next axis.
 ///
 /// # Safety
@@ -41,10 +54,7 @@ unsafe fn axis_sample<const A: usize, const K: usize>(
     // sample slots of axis K, and s0–s8 (declared clobbered).
     unsafe {
         asm!(
-            "vldmia {st}, {{s0-s8}}",
-            "vstr s0, [{o}, #{x}]",
-            "vstr s4, [{o}, #{v}]",
-            "vstr s7, [{o}, #{a}]",
+            sample_asm!(),
             "vadd.f32 s0, s0, s1",
             "vadd.f32 s1, s1, s2",
             "vadd.f32 s2, s2, s3",
@@ -107,10 +117,7 @@ unsafe fn axis_switch<const A: usize, const K: usize>(
     // SAFETY: as in `axis_sample`; the second load reads the 36 bytes at `*nx`.
     unsafe {
         asm!(
-            "vldmia {st}, {{s0-s8}}",
-            "vstr s0, [{o}, #{x}]",
-            "vstr s4, [{o}, #{v}]",
-            "vstr s7, [{o}, #{a}]",
+            sample_asm!(),
             "vldmia {nx}!, {{s0-s8}}",
             "vstmia {st}!, {{s0-s8}}",
             st = inout(reg) *st,
