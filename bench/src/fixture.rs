@@ -157,7 +157,7 @@ pub fn strak_paths(n: usize) -> Paths {
 pub fn sampler_at<N: Number, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
     ticks: u64,
-) -> Sampler<'_, N, A, P> {
+) -> Sampler<'_, N, A> {
     let mut s = Sampler::new(path);
     for _ in 0..ticks {
         s.next();

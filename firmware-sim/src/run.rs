@@ -195,8 +195,8 @@ fn dispatch(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
 /// Applies the events due before the sample of tick `tick` (`events` sorted by tick,
 /// `next` the first not yet applied); `true` when one of them was an abort. The one place
 /// that defines how `strak-sim run` (and the firmware comparison) apply `[[events]]`.
-pub fn apply_due_events<N: Number, const D: usize, const P: usize>(
-    sampler: &mut Sampler<'_, N, D, P>,
+pub fn apply_due_events<N: Number, const D: usize>(
+    sampler: &mut Sampler<'_, N, D>,
     events: &[(u64, Action)],
     next: &mut usize,
     tick: u64,

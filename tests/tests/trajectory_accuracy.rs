@@ -122,7 +122,7 @@ fn out_rounding<N: Number>(m: f64) -> f64 {
 /// Tracks one number format's samples against the exact motion.
 struct Tracker<'a, N: Number, const A: usize, const P: usize> {
     path: &'a Path<N, A, P>,
-    sampler: Sampler<'a, N, A, P>,
+    sampler: Sampler<'a, N, A>,
     piece: usize,
     /// Largest errors, and largest errors relative to their bounds.
     err: [f64; 3],

@@ -10,7 +10,7 @@ use proptest::test_runner::{Config, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    BLOB_MAGIC, BLOB_VERSION, CompileOptions, Error, Limits, MotionProfile, Number,
+    BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Limits, MotionProfile, Number,
     ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler, SamplerState,
     Timing, compile, crc32,
 };
@@ -776,47 +776,56 @@ fn format_mismatch() {
     let f32_blob = blob(&small_path::<f32, 2>());
     let f64_blob = blob(&small_path::<f64, 2>());
     let q40_blob = blob(&small_path::<Q40, 2>());
+    let mismatch = |expected: BlobFormat, number: u8, axes: usize| {
+        Some(Error::FormatMismatch {
+            expected,
+            found: BlobFormat { number, axes },
+        })
+    };
+    let of = BlobFormat::of::<f32>;
     assert_eq!(
-        Path::<Q40, 2, 16>::from_bytes(&f32_blob),
-        Err(Error::FormatMismatch)
+        Path::<Q40, 2, 16>::from_bytes(&f32_blob).err(),
+        mismatch(BlobFormat::of::<Q40>(2), 1, 2)
     );
     assert_eq!(
-        Path::<f64, 2, 16>::from_bytes(&f32_blob),
-        Err(Error::FormatMismatch)
+        Path::<f64, 2, 16>::from_bytes(&f32_blob).err(),
+        mismatch(BlobFormat::of::<f64>(2), 1, 2)
     );
     // same value width (8 bytes), other format
     assert_eq!(
-        Path::<Q40, 2, 16>::from_bytes(&f64_blob),
-        Err(Error::FormatMismatch)
+        Path::<Q40, 2, 16>::from_bytes(&f64_blob).err(),
+        mismatch(BlobFormat::of::<Q40>(2), 2, 2)
     );
     assert_eq!(
-        Path::<f64, 2, 16>::from_bytes(&q40_blob),
-        Err(Error::FormatMismatch)
+        Path::<f64, 2, 16>::from_bytes(&q40_blob).err(),
+        mismatch(BlobFormat::of::<f64>(2), 3, 2)
     );
     assert_eq!(
-        Path::<f32, 2, 16>::from_bytes(&q40_blob),
-        Err(Error::FormatMismatch)
+        Path::<f32, 2, 16>::from_bytes(&q40_blob).err(),
+        mismatch(of(2), 3, 2)
     );
     // wrong axis count
     assert_eq!(
-        Path::<f32, 3, 16>::from_bytes(&f32_blob),
-        Err(Error::FormatMismatch)
+        Path::<f32, 3, 16>::from_bytes(&f32_blob).err(),
+        mismatch(of(3), 1, 2)
     );
     assert_eq!(
-        Path::<f32, 1, 16>::from_bytes(&f32_blob),
-        Err(Error::FormatMismatch)
+        Path::<f32, 1, 16>::from_bytes(&f32_blob).err(),
+        mismatch(of(1), 1, 2)
     );
     assert_eq!(
-        Path::<Q40, 6, 16>::from_bytes(&q40_blob),
-        Err(Error::FormatMismatch)
+        Path::<Q40, 6, 16>::from_bytes(&q40_blob).err(),
+        mismatch(BlobFormat::of::<Q40>(6), 3, 2)
     );
     // a format id that no format has
     let mut bad = f32_blob.clone();
     bad[6] = 9;
     fix_crc(&mut bad);
+    let err = Path::<f32, 2, 16>::from_bytes(&bad).err();
+    assert_eq!(err, mismatch(of(2), 9, 2));
     assert_eq!(
-        Path::<f32, 2, 16>::from_bytes(&bad),
-        Err(Error::FormatMismatch)
+        err.unwrap().to_string(),
+        "serialized path is for number format 9 with 2 axes, expected f32 with 2 axes"
     );
 }
 
@@ -835,7 +844,10 @@ fn errors_display() {
         Error::TooLong,
         Error::CorruptBlob,
         Error::UnsupportedVersion { found: 7 },
-        Error::FormatMismatch,
+        Error::FormatMismatch {
+            expected: BlobFormat::of::<f32>(3),
+            found: BlobFormat::of::<Q40>(3),
+        },
         Error::Curve(strak_curves::Error::NonFinite),
     ] {
         assert!(!e.to_string().is_empty(), "{e:?}");

@@ -132,7 +132,7 @@ fn run<N: Number>(
     plan: &Plan<'_>,
     path: &Path<N, 3, PIECES>,
     max_ticks: u64,
-    mut control: impl FnMut(u64, &mut Sampler<'_, N, 3, PIECES>),
+    mut control: impl FnMut(u64, &mut Sampler<'_, N, 3>),
 ) -> (Seen, Option<Sample<N::Out, 3>>, SamplerState) {
     let m = machine();
     let t = path.period();

@@ -270,7 +270,7 @@ fn jobs_source(jobs: &[HostJob]) -> String {
             Playback::Fixed => "Format::Fixed",
         };
         s += &format!(
-            "    BlobJob {{ name: {:?}, format: {format}, axes: {}, blob: include_bytes!({:?}), events: {} }},\n",
+            "    BlobJob {{ name: {:?}, format: {format}, axes: {}, blob: &strak_trajectory::AlignedBlob(*include_bytes!({:?})).0, events: {} }},\n",
             j.name,
             j.export.axes,
             j.blob_path.to_string_lossy(),

@@ -2,6 +2,8 @@
 
 use core::fmt;
 
+use crate::number::Number;
+
 /// Why a path could not be planned, compiled or loaded.
 ///
 /// Everything is checked when a path is built; afterwards the sampler's `next()`
@@ -50,7 +52,51 @@ pub enum Error {
         found: u16,
     },
     /// A serialized path was made for another number format or axis count.
-    FormatMismatch,
+    FormatMismatch {
+        /// The format the reader asked for.
+        expected: BlobFormat,
+        /// The format the blob holds.
+        found: BlobFormat,
+    },
+}
+
+/// The number format and axis count of a serialized path.
+///
+/// ```
+/// use strak_trajectory::{BlobFormat, Q40};
+/// let f = BlobFormat::of::<Q40>(3);
+/// assert_eq!((f.number, f.axes), (3, 3));
+/// assert_eq!(f.to_string(), "Q40 with 3 axes");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BlobFormat {
+    /// The number format id ([`Number::FORMAT_ID`]: 1 `f32`, 2 `f64`, 3 `Q40`).
+    pub number: u8,
+    /// The number of axes.
+    pub axes: usize,
+}
+
+impl BlobFormat {
+    /// The format of paths in `N` with `axes` axes.
+    pub fn of<N: Number>(axes: usize) -> Self {
+        BlobFormat {
+            number: N::FORMAT_ID,
+            axes,
+        }
+    }
+}
+
+impl fmt::Display for BlobFormat {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let name = match self.number {
+            1 => "f32",
+            2 => "f64",
+            3 => "Q40",
+            _ => return write!(f, "number format {} with {} axes", self.number, self.axes),
+        };
+        write!(f, "{name} with {} axes", self.axes)
+    }
 }
 
 impl From<strak_curves::Error> for Error {
@@ -81,8 +127,8 @@ impl fmt::Display for Error {
             Error::UnsupportedVersion { found } => {
                 write!(f, "serialized path has unsupported format version {found}")
             }
-            Error::FormatMismatch => {
-                f.write_str("serialized path is for another number format or axis count")
+            Error::FormatMismatch { expected, found } => {
+                write!(f, "serialized path is for {found}, expected {expected}")
             }
         }
     }

@@ -3,7 +3,6 @@
 // Unsafe code only in the Cortex-M tick kernels (`sampler/kernel/vfp.rs`, inline assembly).
 #![deny(unsafe_code)]
 
-mod blob;
 mod compile;
 mod error;
 mod limits;
@@ -13,12 +12,14 @@ mod profile;
 mod sampler;
 mod timing;
 
-pub use blob::{BLOB_MAGIC, BLOB_VERSION, crc32};
 pub use compile::{CompileOptions, Tolerance, compile};
-pub use error::Error;
+pub use error::{BlobFormat, Error};
 pub use limits::Limits;
 pub use number::{Number, Q40};
-pub use path::{AxisState, Path, Piece};
+pub use path::{
+    AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, Path, PathBlob, PathHeader, PathView, Piece,
+    Sample, crc32,
+};
 pub use profile::*;
-pub use sampler::{Sample, Sampler, SamplerState};
+pub use sampler::{Sampler, SamplerState};
 pub use timing::Timing;

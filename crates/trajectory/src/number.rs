@@ -6,8 +6,7 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use strak_curves::{I32F32, Scalar};
 
-use crate::path::AxisState;
-use crate::sampler::Sample;
+use crate::path::{AxisState, Sample};
 use crate::sampler::kernel::portable;
 
 mod sealed {
@@ -288,6 +287,18 @@ pub trait Number:
     ) -> Sample<Self::Out, A> {
         portable::switch_sample(state, next, tick)
     }
+
+    /// Crate-internal: the sample of `state` at `tick`, then `state` read from the `9·A`
+    /// little-endian values of a blob's piece record (a piece switch from a blob).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_sample_bytes<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[u8],
+        tick: u64,
+    ) -> Sample<Self::Out, A> {
+        portable::switch_sample_bytes(state, next, tick)
+    }
 }
 
 fn write_bytes(src: &[u8], out: &mut [u8]) {
@@ -324,6 +335,15 @@ impl Number for f32 {
         tick: u64,
     ) -> Sample<f32, A> {
         crate::sampler::kernel::vfp::switch_sample(state, next, tick)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_sample_bytes<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[u8],
+        tick: u64,
+    ) -> Sample<f32, A> {
+        crate::sampler::kernel::vfp::switch_sample_bytes(state, next, tick)
     }
     const FORMAT_ID: u8 = 1;
     const NAME: &'static str = "f32";
@@ -467,6 +487,15 @@ impl Number for Q40 {
         tick: u64,
     ) -> Sample<I32F32, A> {
         crate::sampler::kernel::thumb2::switch_sample(state, next, tick)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_sample_bytes<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[u8],
+        tick: u64,
+    ) -> Sample<I32F32, A> {
+        crate::sampler::kernel::thumb2::switch_sample_bytes(state, next, tick)
     }
     const FORMAT_ID: u8 = 3;
     const NAME: &'static str = "Q40";

@@ -18,7 +18,7 @@ use strak_qemu::device::{compile_job, first_difference};
 use strak_qemu::jobs::{BLOB_JOBS, BlobJob, DEVICE_JOBS, DeviceJob, Format};
 use strak_qemu::play::{OutBits, play_and_log};
 use strak_qemu::{PIECES, counter::Counter, exit_failure, exit_success};
-use strak_trajectory::{Number, Path, Q40};
+use strak_trajectory::{Number, PathBlob, Q40};
 
 /// The largest blob the device compiles (`PIECES` pieces of 3 axes in `f64`-sized values, and
 /// the header).
@@ -74,9 +74,10 @@ fn blob<N: Number, const A: usize>(job: &BlobJob)
 where
     N::Out: OutBits,
 {
-    match Path::<N, A, PIECES>::from_bytes(job.blob) {
-        Ok(path) => {
-            play_and_log(job.name, job.format, "blob", &path, job.events);
+    // Validated once, then played from the bytes in flash: no copy of the pieces in RAM.
+    match PathBlob::<N, A>::from_bytes(job.blob) {
+        Ok(blob) => {
+            play_and_log(job.name, job.format, "blob", &blob, job.events);
         }
         Err(e) => {
             defmt::error!(

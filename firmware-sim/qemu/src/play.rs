@@ -2,7 +2,7 @@
 //! every sample.
 
 use strak_curves::I32F32;
-use strak_trajectory::{Number, Path, Sample, Sampler};
+use strak_trajectory::{Number, PathView, Sample, Sampler};
 
 use crate::jobs::{Event, Format, TimedEvent};
 
@@ -29,17 +29,18 @@ impl OutBits for I32F32 {
 /// when the sampler is finished, or after `10·(ticks + 1) + last event tick + 1` samples
 /// (a hold without resume).
 #[derive(Debug)]
-pub struct Player<'a, N: Number, const A: usize, const P: usize> {
-    sampler: Sampler<'a, N, A, P>,
+pub struct Player<'a, N: Number, const A: usize> {
+    sampler: Sampler<'a, N, A>,
     events: &'a [TimedEvent],
     next_event: usize,
     tick: u64,
     guard: u64,
 }
 
-impl<'a, N: Number, const A: usize, const P: usize> Player<'a, N, A, P> {
-    /// A player at tick 0 of `path`.
-    pub fn new(path: &'a Path<N, A, P>, events: &'a [TimedEvent]) -> Self {
+impl<'a, N: Number, const A: usize> Player<'a, N, A> {
+    /// A player at tick 0 of `path` (a `&Path` or a view of a blob in flash).
+    pub fn new(path: impl Into<PathView<'a, N, A>>, events: &'a [TimedEvent]) -> Self {
+        let path = path.into();
         let last_event = events.last().map_or(0, |e| e.tick);
         Player {
             sampler: Sampler::new(path),
@@ -78,12 +79,12 @@ impl<'a, N: Number, const A: usize, const P: usize> Player<'a, N, A, P> {
 
 /// Plays `path` with `events` and logs the stream (`J`, one `S` per tick, `E`); returns the
 /// number of samples.
-pub fn play_and_log<N, const A: usize, const P: usize>(
+pub fn play_and_log<'a, N, const A: usize>(
     name: &str,
     format: Format,
     source: &str,
-    path: &Path<N, A, P>,
-    events: &[TimedEvent],
+    path: impl Into<PathView<'a, N, A>>,
+    events: &'a [TimedEvent],
 ) -> u32
 where
     N: Number,

@@ -7,29 +7,9 @@ pub(crate) mod kernel;
 use strak_curves::Scalar;
 
 use crate::number::Number;
-use crate::path::{AxisState, Newton, Path};
+use crate::path::view::Source;
+use crate::path::{AxisState, Newton, PathView, Sample};
 use feed::FeedRamp;
-
-/// One setpoint: position (units), velocity (units/s) and acceleration (units/s²) of every
-/// axis at wall-clock tick `tick` (counted from the sampler's start, including ticks held).
-///
-/// ```
-/// use strak_trajectory::Sample;
-/// let s = Sample { tick: 3, position: [1.0_f32], velocity: [0.0], acceleration: [0.0] };
-/// assert_eq!(s.position[0], 1.0);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Sample<T, const A: usize> {
-    /// Wall-clock tick of this sample (0 for the first).
-    pub tick: u64,
-    /// Position of each axis.
-    pub position: [T; A],
-    /// Velocity of each axis.
-    pub velocity: [T; A],
-    /// Acceleration of each axis.
-    pub acceleration: [T; A],
-}
 
 /// What the sampler is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,11 +26,13 @@ pub enum SamplerState {
     Finished,
 }
 
-/// Plays a [`Path`] back, one [`Sample`] per call of [`Sampler::next`] (a timer interrupt).
+/// Plays a path back, one [`Sample`] per call of [`Sampler::next`] (a timer interrupt).
 ///
-/// The sampler borrows the path (firmware keeps the path in a `static`, the sampler in the
-/// interrupt's state) and holds only the current forward-difference states and the feed
-/// ramp: `O(A)` memory. [`Sampler::next`] has no panic path and a constant cost (see below).
+/// The sampler plays a [`PathView`]: a [`Path`](crate::Path) in RAM or a
+/// [`PathBlob`](crate::PathBlob) read in place from flash, the same way and with the same
+/// samples (`Sampler::new(&path)`, `Sampler::new(blob.view())`). It borrows the path
+/// (firmware keeps the path in a `static`, the sampler in the interrupt's state) and holds
+/// only the view, the current forward-difference states and the feed ramp: `O(A)` memory. [`Sampler::next`] has no panic path and a constant cost (see below).
 ///
 /// The first sample is tick 0 of the path, the sample at path tick [`Path::ticks`] is the
 /// end point exactly ([`Path::end_position`], bit for bit in every number format), with the
@@ -133,8 +115,8 @@ pub enum SamplerState {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Sampler<'a, N: Number, const A: usize, const P: usize> {
-    path: &'a Path<N, A, P>,
+pub struct Sampler<'a, N: Number, const A: usize> {
+    path: PathView<'a, N, A>,
     /// Current piece and tick within it; the state is at `local + shift` of that piece.
     piece: usize,
     local: u32,
@@ -171,9 +153,11 @@ pub struct Sampler<'a, N: Number, const A: usize, const P: usize> {
     synced: u32,
 }
 
-impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
-    /// A sampler at tick 0 of `path`, at full feed.
-    pub fn new(path: &'a Path<N, A, P>) -> Self {
+impl<'a, N: Number, const A: usize> Sampler<'a, N, A> {
+    /// A sampler at tick 0 of `path` (a `&Path`, a [`PathView`], or a `&PathBlob`), at full
+    /// feed.
+    pub fn new(path: impl Into<PathView<'a, N, A>>) -> Self {
+        let path = path.into();
         let mut s = Sampler {
             path,
             piece: 0,
@@ -187,7 +171,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             mode: SamplerState::Running,
             at_end: false,
             tick: 0,
-            rest: path.end.position,
+            rest: path.end_position(),
             left: 0,
             chains: 0,
             synced: 0,
@@ -198,7 +182,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     }
 
     /// The path played.
-    pub fn path(&self) -> &'a Path<N, A, P> {
+    pub fn path(&self) -> PathView<'a, N, A> {
         self.path
     }
 
@@ -207,10 +191,9 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     fn load(&mut self, j: usize) {
         self.piece = j;
         self.local = 0;
-        match self.path.pieces.get(j) {
-            Some(p) => {
-                self.piece_ticks = p.ticks;
-                self.state = p.axes;
+        match self.path.load(j, &mut self.state) {
+            Some(ticks) => {
+                self.piece_ticks = ticks;
                 self.chains = self.left;
                 if self.shift != N::ZERO {
                     let c = Newton::at(self.shift);
@@ -343,24 +326,34 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     /// stays on the fast path.
     #[inline(always)]
     fn switch(&mut self) -> Sample<N::Out, A> {
-        let path = self.path;
+        let path = &self.path;
         // `left == 1`: `synced − 1` ticks since the last sync.
         let tick = self
             .tick
             .wrapping_add(u64::from(self.synced.wrapping_sub(1)));
         let next = self.piece.saturating_add(1);
-        let (src, ticks) = match path.pieces.get(next) {
-            Some(p) => (&p.axes, p.ticks),
-            None if next == path.pieces.len() => {
+        let count = path.piece_count();
+        // Past the last piece no lookup is made (a path in RAM has no records to look in).
+        let found = if next < count {
+            path.source(next)
+        } else {
+            None
+        };
+        let (src, ticks) = match found {
+            Some(source) => source,
+            None if next == count => {
                 self.at_end = true;
-                (&path.end_states[0], 1)
+                (Source::State(&path.header().end_states[0]), 1)
             }
             None => {
                 self.mode = SamplerState::Finished;
-                (&path.end_states[1], u32::MAX)
+                (Source::State(&path.header().end_states[1]), u32::MAX)
             }
         };
-        let sample = N::switch_sample(&mut self.state, src, tick);
+        let sample = match src {
+            Source::State(next) => N::switch_sample(&mut self.state, next, tick),
+            Source::Record(bytes) => N::switch_sample_bytes(&mut self.state, bytes, tick),
+        };
         if self.mode == SamplerState::Finished {
             // The end position, copied from the sample (a copy from the path would be a
             // `memmove` call: the compiler cannot tell that path and sampler do not overlap).
@@ -404,19 +397,20 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             let tick = self.tick;
             self.tick = self.tick.wrapping_add(1);
             self.mode = SamplerState::Finished;
-            self.rest = self.path.end.position;
+            let end = &self.path.header().end;
+            self.rest = end.position;
             let (velocity, acceleration) = if self.feed.phi == N::ONE {
-                (self.path.end.velocity, self.path.end.acceleration)
+                (end.velocity, end.acceleration)
             } else {
                 let phi = self.feed.phi.to_out();
                 (
-                    self.path.end.velocity.map(|v| v * phi),
-                    self.path.end.acceleration.map(|a| a * phi * phi),
+                    end.velocity.map(|v| v * phi),
+                    end.acceleration.map(|a| a * phi * phi),
                 )
             };
             return Sample {
                 tick,
-                position: self.path.end.position,
+                position: end.position,
                 velocity,
                 acceleration,
             };
@@ -480,7 +474,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
         let c = Newton::at(self.theta);
         let phi = self.feed.phi;
         let phi2 = phi * phi;
-        let phi_dot = self.feed.omega * self.path.ramp.rate;
+        let phi_dot = self.feed.omega * self.path.header().ramp.rate;
         let mut sample = Sample {
             tick,
             position: [N::Out::ZERO; A],
@@ -508,7 +502,7 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
             return sample;
         }
         // Advance: the ramp, then the playback point by φ.
-        self.feed.step(&self.path.ramp);
+        self.feed.step(&self.path.header().ramp);
         // Invariant: shift + θ ∈ [0, 1), so the playback point stays inside the current
         // tick interval of the current piece (θ may be negative after a step).
         self.theta = self.theta + self.feed.phi;
@@ -603,14 +597,10 @@ impl<'a, N: Number, const A: usize, const P: usize> Sampler<'a, N, A, P> {
     /// The playback point in (fractional) path ticks: where the next sample is taken
     /// (`Path::eval(progress())` is that sample's exact position). For tests and simulation.
     pub fn progress(&self) -> f64 {
-        let start = self
-            .path
-            .pieces
-            .get(self.piece)
-            .map_or(f64::from(self.path.ticks), |p| f64::from(p.start));
-        if self.at_end {
-            return f64::from(self.path.ticks);
+        if self.at_end || self.piece >= self.path.piece_count() {
+            return f64::from(self.path.ticks());
         }
+        let start = f64::from(self.path.piece_start(self.piece));
         let local = self.local.wrapping_add(self.synced.wrapping_sub(self.left));
         start + f64::from(local) + self.shift.to_f64() + self.theta.to_f64()
     }
@@ -623,6 +613,7 @@ mod tests {
     use crate::compile::testing::{Quintic, Smoothstep, Wave, big_stack, exact, helix};
     use crate::compile::{CompileOptions, compile};
     use crate::number::Q40;
+    use crate::path::Path;
     use strak_curves::ParamCurveDeriv;
 
     fn f<T: Scalar, const A: usize>(x: [T; A]) -> [f64; A] {
@@ -866,8 +857,8 @@ mod tests {
     /// first standstill (feed 0), if any.
     fn run_checked<N: Number>(
         path: &Path<N, 3, 512>,
-        mut control: impl FnMut(u64, &mut Sampler<'_, N, 3, 512>),
-    ) -> (u64, Sampler<'_, N, 3, 512>) {
+        mut control: impl FnMut(u64, &mut Sampler<'_, N, 3>),
+    ) -> (u64, Sampler<'_, N, 3>) {
         let mut sampler = Sampler::new(path);
         let t = path.period();
         // a discrete slack: the jerk of feed changes and of the path over one tick, and the

@@ -78,13 +78,13 @@ where
 
 /// One tick: one `next()` call, as a tick handler makes it.
 #[inline(never)]
-fn tick<N: Number, const A: usize>(s: &mut Sampler<'_, N, A, PIECES>) -> Sample<N::Out, A> {
+fn tick<N: Number, const A: usize>(s: &mut Sampler<'_, N, A>) -> Sample<N::Out, A> {
     s.next()
 }
 
 /// One tick, positions only.
 #[inline(never)]
-fn tick_position<N: Number, const A: usize>(s: &mut Sampler<'_, N, A, PIECES>) -> [N::Out; A] {
+fn tick_position<N: Number, const A: usize>(s: &mut Sampler<'_, N, A>) -> [N::Out; A] {
     s.next_position()
 }
 
@@ -121,7 +121,7 @@ fn playback<N: Number, const A: usize, R>(
     name: &str,
     counter: &Counter,
     cal: &Calibration,
-    mut f: impl FnMut(&mut Sampler<'_, N, A, PIECES>) -> R,
+    mut f: impl FnMut(&mut Sampler<'_, N, A>) -> R,
 ) {
     let Some(curve) = bspline::<f64, A>() else {
         defmt::error!("{=str}: the B-spline does not build", name);

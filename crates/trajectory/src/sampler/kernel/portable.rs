@@ -3,8 +3,8 @@
 use strak_curves::Scalar;
 
 use crate::number::Number;
-use crate::path::AxisState;
-use crate::sampler::Sample;
+use crate::path::view::decode_states;
+use crate::path::{AxisState, Sample};
 
 /// [`AxisState::step`] written as one read of the old state and one write of the new: the
 /// same six additions of the same operands (every sum uses the old values, as `step` does),
@@ -82,12 +82,32 @@ pub(crate) fn switch_sample<N: Number, const A: usize>(
     next: &[AxisState<N>; A],
     tick: u64,
 ) -> Sample<N::Out, A> {
-    let sample = Sample {
+    let sample = sample_of(state, tick);
+    *state = *next;
+    sample
+}
+
+/// The sample of the current state, then the state replaced by the `9·A` little-endian
+/// values in `next` (a piece switch from a blob's record; values missing from a short
+/// slice read as 0, which validation rules out).
+#[inline(always)]
+pub(crate) fn switch_sample_bytes<N: Number, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    next: &[u8],
+    tick: u64,
+) -> Sample<N::Out, A> {
+    let sample = sample_of(state, tick);
+    decode_states(next, state);
+    sample
+}
+
+/// The sample of the current state at `tick`.
+#[inline(always)]
+fn sample_of<N: Number, const A: usize>(state: &[AxisState<N>; A], tick: u64) -> Sample<N::Out, A> {
+    Sample {
         tick,
         position: state.map(|s| s.position.to_out()),
         velocity: state.map(|s| s.velocity.to_out()),
         acceleration: state.map(|s| s.acceleration.to_out()),
-    };
-    *state = *next;
-    sample
+    }
 }

@@ -20,8 +20,7 @@ use strak_curves::I32F32;
 
 use super::{UNROLLED, portable};
 use crate::number::Q40;
-use crate::path::AxisState;
-use crate::sampler::Sample;
+use crate::path::{AxisState, Sample};
 
 /// Bytes from an axis's state to its velocity (after `p`, `Δ¹`, `Δ²`, `Δ³`).
 const POSITION_CHAIN: usize = 4 * size_of::<Q40>();
@@ -315,6 +314,33 @@ pub(crate) fn switch_sample<const A: usize>(
     let mut nx = next.as_ptr();
     // SAFETY: as in `tick_sample`; `nx` walks `next` (a shared borrow, so it cannot overlap
     // the exclusively borrowed `state`).
+    unsafe {
+        each_axis!(A, axis_switch, (&mut st, &mut nx), &mut s);
+    }
+    s
+}
+
+/// [`portable::switch_sample_bytes`] for `Q40`: a record whose values are 4-byte aligned is
+/// copied with the `ldm`/`stm` of [`switch_sample`] (the record holds the nine `i64` of each
+/// axis in [`AxisState`]'s order, little-endian, as the state does in memory); any other
+/// record is decoded by the portable kernel.
+#[inline(always)]
+pub(crate) fn switch_sample_bytes<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    next: &[u8],
+    tick: u64,
+) -> Sample<I32F32, A> {
+    if A > UNROLLED || next.len() < A * size_of::<AxisState<Q40>>() || next.as_ptr().addr() % 4 != 0
+    {
+        return portable::switch_sample_bytes(state, next, tick);
+    }
+    let mut s = blank(tick);
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr().cast::<AxisState<Q40>>();
+    // SAFETY: as in `switch_sample`; `nx` points to at least `A · 72` readable bytes (the
+    // length check), word-aligned as `ldmia` requires (it is only read by `ldmia`, never
+    // dereferenced as an `AxisState`), in a shared borrow that cannot overlap `state`. Any
+    // bits are a valid `Q40`.
     unsafe {
         each_axis!(A, axis_switch, (&mut st, &mut nx), &mut s);
     }

@@ -19,8 +19,7 @@ use core::arch::asm;
 use core::mem::{MaybeUninit, offset_of, size_of};
 
 use super::{UNROLLED, portable};
-use crate::path::AxisState;
-use crate::sampler::Sample;
+use crate::path::{AxisState, Sample};
 
 /// Byte offset of axis `K`'s value in one of the sample's arrays starting at `array`.
 const fn at<const K: usize>(array: usize) -> usize {
@@ -187,6 +186,34 @@ pub(crate) fn switch_sample<const A: usize>(
     let mut nx = next.as_ptr();
     // SAFETY: as in `tick_sample`; `nx` walks `next` (a shared borrow, so it cannot overlap
     // the exclusively borrowed `state`).
+    unsafe {
+        (&raw mut (*o).tick).write(tick);
+        each_axis!(A, axis_switch, (&mut st, &mut nx), o);
+        out.assume_init()
+    }
+}
+
+/// [`portable::switch_sample_bytes`] for `f32`: a record whose values are 4-byte aligned
+/// is loaded with the word loads of [`switch_sample`] (the record holds the nine `f32` of
+/// each axis in [`AxisState`]'s order, little-endian, as the state does in memory); any
+/// other record is decoded by the portable kernel.
+#[inline(always)]
+pub(crate) fn switch_sample_bytes<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    next: &[u8],
+    tick: u64,
+) -> Sample<f32, A> {
+    if A > UNROLLED || next.len() < A * size_of::<AxisState<f32>>() || next.as_ptr().addr() % 4 != 0
+    {
+        return portable::switch_sample_bytes(state, next, tick);
+    }
+    let mut out = MaybeUninit::<Sample<f32, A>>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr().cast::<AxisState<f32>>();
+    // SAFETY: as in `switch_sample`; `nx` points to at least `A · 36` readable bytes (the
+    // length check), word-aligned as `vldmia` requires, in a shared borrow that cannot
+    // overlap `state`. Any bits are a valid `f32`.
     unsafe {
         (&raw mut (*o).tick).write(tick);
         each_axis!(A, axis_switch, (&mut st, &mut nx), o);

@@ -1,0 +1,600 @@
+//! What a path is besides its pieces: rate, timing, end, feed-ramp constants and bounds, and
+//! the validation every path passes (compiled, or loaded from a blob).
+
+use strak_curves::Scalar;
+
+use super::sample::Sample;
+use super::state::{AxisState, Newton};
+use crate::error::Error;
+use crate::number::Number;
+
+/// Where a path ends: the exact end point (as the curve computes it, converted once) and
+/// the end velocity and acceleration, in the sample type.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PathEnd<T, const A: usize> {
+    pub(crate) position: [T; A],
+    pub(crate) velocity: [T; A],
+    pub(crate) acceleration: [T; A],
+}
+
+/// The scalar description of a path (all `f64`): rate, timing, tolerance and the kinematic
+/// peaks and limits the feed ramps are derived from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PathMeta {
+    pub(crate) rate: f64,
+    pub(crate) plan_duration: f64,
+    pub(crate) tolerance: f64,
+    pub(crate) peak_velocity: f64,
+    pub(crate) peak_acceleration: f64,
+    pub(crate) peak_jerk: f64,
+    pub(crate) acceleration_limit: f64,
+    pub(crate) jerk_limit: f64,
+    pub(crate) feed_share: f64,
+}
+
+/// The feed-ramp constants of a path in its number format, per tick.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FeedRampLimits<N> {
+    /// Largest change of the feed factor's rate `ω` per tick; `ω` is a whole multiple of it.
+    pub(crate) alpha: N,
+    /// Largest `|ω|` in multiples of `α` (1 ..= 2²⁰).
+    pub(crate) k_max: i64,
+    /// The rate in ticks per second (`φ̇ = ω · rate`).
+    pub(crate) rate: N,
+    /// Within this distance of its target, at a rate at most this, the feed factor snaps onto
+    /// the target: `max(α, ε)` (ε: the format's spacing at 1, below which a float `φ` near 1
+    /// cannot move).
+    pub(crate) snap: N,
+}
+
+/// The smallest change of the feed rate per tick: 2⁻⁴⁰ (one `Q40` ulp).
+const MIN_ALPHA: f64 = 1.0 / (1_u64 << 40) as f64;
+
+/// The lowest and highest control rates in Hz.
+pub(crate) const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);
+
+/// `max |C(x, k)|` for `x ∈ [0, n]`, `k ≤ 3` (the Newton coefficients of an offset `x`).
+fn binomial_bound(n: f64, k: u32) -> f64 {
+    match k {
+        0 => 1.0,
+        1 => n,
+        2 => (n * (n - 1.0) / 2.0).max(0.125),
+        // |θ(θ−1)(θ−2)/6| ≤ 0.0642 on [0, 2]
+        _ => (n * (n - 1.0) * (n - 2.0) / 6.0).max(0.065),
+    }
+}
+
+/// `C(n, k)` for the error propagation of forward differencing (`n ≥ 0`).
+fn binomial(n: f64, k: u32) -> f64 {
+    match k {
+        0 => 1.0,
+        1 => n,
+        2 => n * (n - 1.0) / 2.0,
+        _ => n * (n - 1.0) * (n - 2.0) / 6.0,
+    }
+}
+
+/// Range and error bounds of one axis of one piece.
+pub(crate) struct PieceBounds {
+    /// Bound on the magnitude of every position-related value and partial sum.
+    position_sum: f64,
+    /// Bound on every velocity-related value and partial sum.
+    velocity_sum: f64,
+    /// Bound on every acceleration-related value and partial sum (before the `φ̇·v` term).
+    acceleration_sum: f64,
+    /// Bound on the playback error of the position at any tick of the piece.
+    playback_error: f64,
+}
+
+pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> PieceBounds {
+    let s = state.to_f64();
+    let n = f64::from(ticks);
+    let (c1, c2, c3) = (
+        binomial_bound(n, 1),
+        binomial_bound(n, 2),
+        binomial_bound(n, 3),
+    );
+    let m3 = s.delta3.abs();
+    let m2 = s.delta2.abs() + c1 * m3;
+    let m1 = s.delta1.abs() + c1 * s.delta2.abs() + c2 * m3;
+    let mf = s.position.abs() + c1 * s.delta1.abs() + c2 * s.delta2.abs() + c3 * m3;
+    let v2 = s.velocity_delta2.abs();
+    let v1 = s.velocity_delta1.abs() + c1 * v2;
+    let v0 = s.velocity.abs() + c1 * s.velocity_delta1.abs() + c2 * v2;
+    let a1 = s.acceleration_delta.abs();
+    let a0 = s.acceleration.abs() + c1 * a1;
+    // Error after i ≤ n ticks: r_f + i·r₁ + C(i,2)·r₂ + C(i,3)·(r₃ + add₂) + C(i,2)·add₁ + i·add_f
+    // (r: rounding of the stored value, add: rounding of an addition; 0 in fixed-point).
+    let r = N::rounding_error;
+    let add = N::addition_error;
+    let playback_error = r(mf)
+        + n * (r(m1) + add(mf))
+        + binomial(n, 2) * (r(m2) + add(m1))
+        + binomial(n, 3) * (r(m3) + add(m2))
+        + N::OUT_ERROR;
+    PieceBounds {
+        position_sum: mf + m1 + m2 + m3,
+        velocity_sum: v0 + v1 + v2,
+        acceleration_sum: a0 + a1,
+        playback_error,
+    }
+}
+
+/// The feed-ramp constants (per tick) from the path's kinematic description.
+///
+/// The feed factor `φ` may change by at most `ω_max = a_ramp / (v_peak · f)` per tick, and
+/// `ω` by at most `α = j_ramp / (v_peak · f²)` per tick, with the acceleration and jerk
+/// available to the ramp `a_ramp = max(a_max − a_peak, share · a_max)`,
+/// `j_ramp = max(j_max − j_peak, share · j_max)`. `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in
+/// every format), `ω_max ≤ min(½, √α)` (a ramp of `φ` over at most 1 cannot reach a larger
+/// `ω` anyway).
+pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
+    let a_ramp = (meta.acceleration_limit - meta.peak_acceleration)
+        .max(meta.feed_share * meta.acceleration_limit);
+    let j_ramp = (meta.jerk_limit - meta.peak_jerk).max(meta.feed_share * meta.jerk_limit);
+    let (omega, alpha) = if meta.peak_velocity > 0.0 {
+        (
+            a_ramp / (meta.peak_velocity * meta.rate),
+            j_ramp / (meta.peak_velocity * meta.rate * meta.rate),
+        )
+    } else {
+        (0.5, 0.25)
+    };
+    let alpha = alpha.clamp(MIN_ALPHA, 0.25);
+    let omega = omega.min(0.5).min(libm::sqrt(alpha));
+    (omega, alpha)
+}
+
+/// [`PathHeader::end_states`] from the end's sample values.
+///
+/// # Errors
+/// [`Error::OutOfRange`] when a sample value has no exact accumulator value.
+#[allow(clippy::type_complexity)]
+fn end_states<N: Number, const A: usize>(
+    end: &PathEnd<N::Out, A>,
+) -> Result<[[AxisState<N>; A]; 2], Error> {
+    let exact = |v: N::Out| {
+        let n = N::from_out(v);
+        if n.to_out() == v {
+            Ok(n)
+        } else {
+            Err(Error::OutOfRange)
+        }
+    };
+    let mut sample = [AxisState::default(); A];
+    let mut rest = [AxisState::default(); A];
+    for (a, (e, r)) in sample.iter_mut().zip(rest.iter_mut()).enumerate() {
+        if let (Some(&x), Some(&v), Some(&acc)) = (
+            end.position.get(a),
+            end.velocity.get(a),
+            end.acceleration.get(a),
+        ) {
+            e.position = exact(x)?;
+            e.velocity = exact(v)?;
+            e.acceleration = exact(acc)?;
+            r.position = e.position;
+        }
+    }
+    Ok([sample, rest])
+}
+
+fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+/// Everything about a path except its pieces: rate, duration, tolerance, the end, the feed
+/// ramp constants and the playback bound. [`Path`](crate::Path),
+/// [`PathBlob`](crate::PathBlob) and [`PathView`](crate::PathView) dereference to it, so
+/// these accessors are the same on all three.
+///
+/// ```
+/// use strak_trajectory::{compile, CompileOptions, Path, Timing};
+/// use strak_curves::Bezier;
+/// struct Ramp;
+/// impl Timing for Ramp {
+///     fn duration(&self) -> f64 { 0.1 }
+///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
+/// }
+/// let line = Bezier::new([[0.0_f64], [2.0]])?;
+/// let path: Path<f64, 1, 4> = compile(&line, &Ramp, 1_000.0, &CompileOptions::new())?;
+/// let header = &*path; // the `PathHeader` of the path
+/// assert_eq!((header.ticks(), header.rate()), (100, 1_000.0));
+/// assert_eq!(path.end_position(), [2.0]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathHeader<N: Number, const A: usize> {
+    pub(crate) ticks: u32,
+    pub(crate) meta: PathMeta,
+    pub(crate) end: PathEnd<N::Out, A>,
+    /// The end as two pieces without motion, for the sampler's fast path: `[0]` the end
+    /// sample (the end's position, velocity and acceleration, zero differences), `[1]` the
+    /// standstill after it (the end position, everything else zero). Derived from `end`.
+    pub(crate) end_states: [[AxisState<N>; A]; 2],
+    pub(crate) ramp: FeedRampLimits<N>,
+    pub(crate) playback_bound: f64,
+}
+
+impl<N: Number, const A: usize> PathHeader<N, A> {
+    /// The header of a path without pieces: no ticks, at rest at the origin.
+    pub(crate) const EMPTY: Self = PathHeader {
+        ticks: 0,
+        meta: PathMeta {
+            rate: RATE_RANGE.0,
+            plan_duration: 0.0,
+            tolerance: 0.0,
+            peak_velocity: 0.0,
+            peak_acceleration: 0.0,
+            peak_jerk: 0.0,
+            acceleration_limit: 0.0,
+            jerk_limit: 0.0,
+            feed_share: 0.0,
+        },
+        end: PathEnd {
+            position: [<N::Out as Scalar>::ZERO; A],
+            velocity: [<N::Out as Scalar>::ZERO; A],
+            acceleration: [<N::Out as Scalar>::ZERO; A],
+        },
+        end_states: [[AxisState::ZERO; A]; 2],
+        ramp: FeedRampLimits {
+            alpha: N::ZERO,
+            k_max: 1,
+            rate: N::ZERO,
+            snap: N::ZERO,
+        },
+        playback_bound: 0.0,
+    };
+
+    /// The number of ticks `N`: samples are at ticks `0 ..= N`, the last one is the end point.
+    pub fn ticks(&self) -> u32 {
+        self.ticks
+    }
+
+    /// The control rate in Hz.
+    pub fn rate(&self) -> f64 {
+        self.meta.rate
+    }
+
+    /// The tick period `T = 1/rate` in seconds.
+    pub fn period(&self) -> f64 {
+        1.0 / self.meta.rate
+    }
+
+    /// The duration of the compiled motion, `ticks · T` seconds.
+    pub fn duration(&self) -> f64 {
+        f64::from(self.ticks) / self.meta.rate
+    }
+
+    /// The duration of the time law the path was compiled from (≤ [`duration`](Self::duration)).
+    pub fn plan_duration(&self) -> f64 {
+        self.meta.plan_duration
+    }
+
+    /// The time stretch `plan_duration / duration` (≤ 1 up to a relative 10⁻¹²): path time
+    /// `t` is time `t · time_scale` of the time law, velocities are scaled by it.
+    pub fn time_scale(&self) -> f64 {
+        self.meta.plan_duration / self.duration()
+    }
+
+    /// The time of the time law at (possibly fractional) tick `k`: `k · plan_duration / ticks`
+    /// (the mapping the compiler used).
+    pub fn plan_time(&self, tick: f64) -> f64 {
+        tick * (self.meta.plan_duration / f64::from(self.ticks))
+    }
+
+    /// The position tolerance the spline was fitted to, in units.
+    pub fn tolerance(&self) -> f64 {
+        self.meta.tolerance
+    }
+
+    /// A bound on the error that playback in the number format adds to the compiled
+    /// polynomial's position, at feed 1 (rounding of the stored states, propagated by
+    /// forward differencing; float additions; conversion to the sample type). See
+    /// [`Number`].
+    pub fn playback_bound(&self) -> f64 {
+        self.playback_bound
+    }
+
+    /// The exact end point, as the curve computed it, converted once into the sample type.
+    pub fn end_position(&self) -> [N::Out; A] {
+        self.end.position
+    }
+
+    /// The velocity at the end (zero for rest-to-rest time laws; the time law's end
+    /// velocity otherwise).
+    pub fn end_velocity(&self) -> [N::Out; A] {
+        self.end.velocity
+    }
+
+    /// The acceleration at the end (the compiled spline's end value).
+    pub fn end_acceleration(&self) -> [N::Out; A] {
+        self.end.acceleration
+    }
+
+    /// An upper bound of the speed `|ẋ|` (Euclidean norm over the axes) along the path.
+    pub fn peak_velocity(&self) -> f64 {
+        self.meta.peak_velocity
+    }
+
+    /// The largest acceleration `|ẍ|` along the path.
+    pub fn peak_acceleration(&self) -> f64 {
+        self.meta.peak_acceleration
+    }
+
+    /// The largest jerk `|x⃛|` along the path.
+    pub fn peak_jerk(&self) -> f64 {
+        self.meta.peak_jerk
+    }
+
+    /// The acceleration limit feed changes respect (given, or derived; see
+    /// [`CompileOptions`](crate::CompileOptions)).
+    pub fn acceleration_limit(&self) -> f64 {
+        self.meta.acceleration_limit
+    }
+
+    /// The jerk limit of feed changes.
+    pub fn jerk_limit(&self) -> f64 {
+        self.meta.jerk_limit
+    }
+
+    /// The share of the limits reserved for feed changes.
+    pub fn feed_share(&self) -> f64 {
+        self.meta.feed_share
+    }
+
+    /// The end as a sample in `f64` (at tick `⌊tick⌋`).
+    pub(crate) fn end_sample(&self, tick: u64) -> Sample<f64, A> {
+        Sample {
+            tick,
+            position: self.end.position.map(Scalar::to_f64),
+            velocity: self.end.velocity.map(Scalar::to_f64),
+            acceleration: self.end.acceleration.map(Scalar::to_f64),
+        }
+    }
+}
+
+/// Checks a path piece by piece, the same way for a freshly compiled path and a loaded blob:
+/// [`begin`](Self::begin) with the path's description, [`piece`](Self::piece) for every piece
+/// in order, [`finish`](Self::finish) with the end.
+pub(crate) struct Validator<N: Number> {
+    meta: PathMeta,
+    ramp: FeedRampLimits<N>,
+    /// `φ̇ = ω·f` never exceeds this; the acceleration output adds `φ̇·v`.
+    phi_dot_max: f64,
+    next_start: u32,
+    playback_bound: f64,
+}
+
+impl<N: Number> Validator<N> {
+    /// Checks the path's description and derives the feed-ramp constants.
+    ///
+    /// # Errors
+    /// [`Error::InvalidRate`] for a rate outside 100 Hz ..= 100 kHz; [`Error::InvalidLimit`]
+    /// for bad kinematic data; [`Error::OutOfRange`] when the ramp constants do not fit `N`.
+    pub(crate) fn begin(meta: PathMeta) -> Result<Self, Error> {
+        if !(meta.rate >= RATE_RANGE.0 && meta.rate <= RATE_RANGE.1) {
+            return Err(Error::InvalidRate);
+        }
+        let nonneg = |x: f64| x.is_finite() && x >= 0.0;
+        if !(positive(meta.plan_duration)
+            && positive(meta.tolerance)
+            && nonneg(meta.peak_velocity)
+            && nonneg(meta.peak_acceleration)
+            && nonneg(meta.peak_jerk)
+            && positive(meta.acceleration_limit)
+            && positive(meta.jerk_limit)
+            && positive(meta.feed_share)
+            && meta.feed_share <= 1.0)
+        {
+            return Err(Error::InvalidLimit);
+        }
+        let (omega, alpha) = feed_ramp_f64(&meta);
+        let alpha = N::from_f64(alpha).ok_or(Error::OutOfRange)?;
+        // ω_max a whole multiple of α, so that ω stays one and the ramp's braking distance is
+        // exact: at most 2²⁰ steps, as ω_max ≤ √α and α ≥ 2⁻⁴⁰.
+        #[allow(clippy::cast_possible_truncation)]
+        let k_max = libm::floor(omega / alpha.to_f64()).clamp(1.0, f64::from(1_u32 << 20)) as i64;
+        let ramp = FeedRampLimits {
+            alpha,
+            k_max,
+            rate: N::from_f64(meta.rate).ok_or(Error::OutOfRange)?,
+            snap: if alpha > N::EPSILON {
+                alpha
+            } else {
+                N::EPSILON
+            },
+        };
+        #[allow(clippy::cast_precision_loss)]
+        let phi_dot_max = ramp.alpha.to_f64() * (ramp.k_max as f64) * meta.rate;
+        Ok(Validator {
+            meta,
+            ramp,
+            phi_dot_max,
+            next_start: 0,
+            playback_bound: 0.0,
+        })
+    }
+
+    /// The tick the next piece must start at.
+    pub(crate) fn next_start(&self) -> u32 {
+        self.next_start
+    }
+
+    /// Checks the next piece: its start and length, finite values, and the range of every
+    /// value and partial sum playback forms.
+    ///
+    /// # Errors
+    /// [`Error::CorruptBlob`] for a piece that does not follow on, has no ticks or holds a
+    /// non-finite value; [`Error::OutOfRange`] when a value could exceed [`Number::LIMIT`].
+    pub(crate) fn piece<const A: usize>(
+        &mut self,
+        start: u32,
+        ticks: u32,
+        axes: &[AxisState<N>; A],
+    ) -> Result<(), Error> {
+        if start != self.next_start || ticks == 0 {
+            return Err(Error::CorruptBlob);
+        }
+        self.next_start = start.checked_add(ticks).ok_or(Error::CorruptBlob)?;
+        for axis in axes {
+            if !axis.values().iter().all(|v| v.is_finite()) {
+                return Err(Error::CorruptBlob);
+            }
+            let b = piece_bounds(axis, ticks);
+            // Margin: the accumulated rounding error on top of the exact values.
+            let margin = 2.0 * b.playback_error;
+            let fits = |x: f64| x.is_finite() && x * (1.0 + 1e-9) + margin <= N::LIMIT;
+            if !(fits(b.position_sum)
+                && fits(b.velocity_sum)
+                && fits(b.acceleration_sum + self.phi_dot_max * b.velocity_sum))
+            {
+                return Err(Error::OutOfRange);
+            }
+            self.playback_bound = self.playback_bound.max(b.playback_error);
+        }
+        Ok(())
+    }
+
+    /// Checks the end (finite, in range, exactly representable by the accumulator, and
+    /// continuing the last piece within the path's bounds) and returns the header.
+    ///
+    /// # Errors
+    /// [`Error::EmptyPath`] without pieces; [`Error::CorruptBlob`] for a non-finite end or
+    /// one that does not continue the last piece; [`Error::OutOfRange`] for an end outside
+    /// the format's range.
+    pub(crate) fn finish<const A: usize>(
+        self,
+        end: PathEnd<N::Out, A>,
+        last: Option<(u32, &[AxisState<N>; A])>,
+    ) -> Result<PathHeader<N, A>, Error> {
+        let Some((ticks, last)) = last else {
+            return Err(Error::EmptyPath);
+        };
+        let values = || {
+            end.position
+                .iter()
+                .chain(&end.velocity)
+                .chain(&end.acceleration)
+        };
+        if !values().all(|x| Scalar::is_finite(*x)) {
+            return Err(Error::CorruptBlob);
+        }
+        if !values().all(|x| x.to_f64().abs() <= N::LIMIT) {
+            return Err(Error::OutOfRange);
+        }
+        self.check_continuation(&end, ticks, last)?;
+        let end_states = end_states(&end)?;
+        Ok(PathHeader {
+            ticks: self.next_start,
+            meta: self.meta,
+            end,
+            end_states,
+            ramp: self.ramp,
+            playback_bound: self.playback_bound,
+        })
+    }
+
+    /// The end continues the last piece: its position, velocity and acceleration at the
+    /// piece's last tick, evaluated in `f64` from the stored state (Newton's formula), agree
+    /// with the end within the rounding the stored values carry (the bound of
+    /// [`piece_bounds`] for each chain, doubled) plus the fit's position tolerance.
+    fn check_continuation<const A: usize>(
+        &self,
+        end: &PathEnd<N::Out, A>,
+        ticks: u32,
+        last: &[AxisState<N>; A],
+    ) -> Result<(), Error> {
+        let n = f64::from(ticks);
+        let c = Newton::at(n);
+        let r = N::rounding_error;
+        for (a, state) in last.iter().enumerate() {
+            let s = state.to_f64();
+            let at_end = s.shifted(&c);
+            let b = piece_bounds(state, ticks);
+            let (Some(x), Some(v), Some(acc)) = (
+                end.position.get(a),
+                end.velocity.get(a),
+                end.acceleration.get(a),
+            ) else {
+                return Err(Error::CorruptBlob);
+            };
+            let slack = |m: f64| 1e-12 * (1.0 + m);
+            let v_bound = r(s.velocity.abs())
+                + n * r(s.velocity_delta1.abs())
+                + binomial(n, 2) * r(s.velocity_delta2.abs())
+                + N::OUT_ERROR;
+            let a_bound =
+                r(s.acceleration.abs()) + n * r(s.acceleration_delta.abs()) + N::OUT_ERROR;
+            let near = |got: f64, want: f64, bound: f64| {
+                (got - want).abs() <= 2.0 * bound + slack(got.abs().max(want.abs()))
+            };
+            if !(near(
+                at_end.position,
+                x.to_f64(),
+                b.playback_error + self.meta.tolerance,
+            ) && near(at_end.velocity, v.to_f64(), v_bound)
+                && near(at_end.acceleration, acc.to_f64(), a_bound))
+            {
+                return Err(Error::CorruptBlob);
+            }
+        }
+        Ok(())
+    }
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::number::Q40;
+    #[test]
+    fn q40_error_bound_formula() {
+        // n = 256, dyadic values (exact in Q40): ½ulp·(1 + n + C(n,2) + C(n,3)) + output rounding
+        let q = |v: f64| Q40::from_f64(v).unwrap();
+        let (f, d1, d2, d3) = (1.0, 2f64.powi(-10), 2f64.powi(-20), 2f64.powi(-30));
+        let s = AxisState {
+            position: q(f),
+            delta1: q(d1),
+            delta2: q(d2),
+            delta3: q(d3),
+            ..AxisState::default()
+        };
+        let b = piece_bounds(&s, 256);
+        let want =
+            0.5 / (1u64 << 40) as f64 * (1.0 + 256.0 + 32_640.0 + 2_763_520.0) + Q40::OUT_ERROR;
+        assert!((b.playback_error - want).abs() < 1e-20);
+        assert!(b.playback_error < 1.3e-6);
+        let (n, c2, c3) = (256.0, 32_640.0, 2_763_520.0);
+        let mf = f + n * d1 + c2 * d2 + c3 * d3;
+        let m1 = d1 + n * d2 + c2 * d3;
+        let m2 = d2 + n * d3;
+        assert_eq!(b.position_sum, mf + m1 + m2 + d3);
+    }
+
+    #[test]
+    fn feed_ramp_constants() {
+        let meta = PathMeta {
+            rate: 1000.0,
+            plan_duration: 1.0,
+            tolerance: 1e-3,
+            peak_velocity: 100.0,
+            peak_acceleration: 600.0,
+            peak_jerk: 1000.0,
+            acceleration_limit: 1000.0,
+            jerk_limit: 10_000.0,
+            feed_share: 0.25,
+        };
+        let (omega, alpha) = feed_ramp_f64(&meta);
+        // a_ramp = max(400, 250) = 400 → ω = 400 / (100 · 1000)
+        assert!((omega - 4e-3).abs() < 1e-15);
+        // j_ramp = max(9000, 2500) → α = 9000 / (100 · 10⁶)
+        assert!((alpha - 9e-5).abs() < 1e-18);
+        // ω is capped by √α when the jerk is the tighter limit
+        let tight = PathMeta {
+            jerk_limit: 1.0,
+            peak_jerk: 0.0,
+            ..meta
+        };
+        let (omega, alpha) = feed_ramp_f64(&tight);
+        assert!((alpha - 1e-8).abs() < 1e-22);
+        assert!((omega - 1e-4).abs() < 1e-15);
+    }
+}
