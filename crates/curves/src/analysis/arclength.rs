@@ -7,7 +7,7 @@ use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-use super::{check_positive, greater, norm64, param};
+use super::{check_length_accuracy, greater, norm64, param};
 
 /// Nodes of the 8-point Gauss–Legendre rule on `[−1, 1]` (the positive half).
 const GL_X: [f64; 4] = [
@@ -27,8 +27,13 @@ const GL_W: [f64; 4] = [
 /// The deepest bisection of an interval (parameter widths down to `2⁻³²` of a piece).
 const MAX_DEPTH: u32 = 32;
 
-/// Iteration limit of the safeguarded Newton method in [`param_at_length`].
-const MAX_NEWTON: usize = 100;
+/// The most interval splits of one adaptive integral (each split evaluates two 8-point
+/// rules); beyond it the accuracy counts as unreachable.
+const MAX_SPLITS: usize = 1 << 16;
+
+/// Iteration limit of the safeguarded Newton method in [`param_at_length`]; bisection alone
+/// reaches the resolution of `f64` in fewer than 64 steps.
+const MAX_NEWTON: usize = 128;
 
 /// The speed `|c'(u)|` in `f64`, with `u` rounded to the scalar and clamped to `[lo, hi]`.
 fn speed<C: ParamCurveDeriv>(curve: &C, u: f64, lo: ScalarOf<C>, hi: ScalarOf<C>) -> f64 {
@@ -64,6 +69,7 @@ fn integrate<C: ParamCurveDeriv>(
 ) -> Result<f64, Error> {
     let parts = f64::from(INITIAL_PARTS);
     let mut total = 0.0;
+    let mut budget = MAX_SPLITS;
     for i in 0..INITIAL_PARTS {
         let x0 = a + (b - a) * (f64::from(i) / parts);
         let x1 = if i + 1 == INITIAL_PARTS {
@@ -71,26 +77,26 @@ fn integrate<C: ParamCurveDeriv>(
         } else {
             a + (b - a) * (f64::from(i + 1) / parts)
         };
-        total += integrate_part(curve, x0, x1, lo, hi, accuracy / parts)?;
+        total += integrate_part(curve, (x0, x1), (lo, hi), accuracy / parts, &mut budget)?;
     }
     Ok(total)
 }
 
-/// Adaptive Gauss–Legendre of `|c'|` over `[a, b]`, inside the piece `[lo, hi]`.
+/// Adaptive Gauss–Legendre of `|c'|` over `[a, b]`, inside the piece `[lo, hi]`, splitting
+/// at most `budget` intervals (shared with the caller's other parts).
 fn integrate_part<C: ParamCurveDeriv>(
     curve: &C,
-    a: f64,
-    b: f64,
-    lo: ScalarOf<C>,
-    hi: ScalarOf<C>,
+    (a, b): (f64, f64),
+    (lo, hi): (ScalarOf<C>, ScalarOf<C>),
     accuracy: f64,
+    budget: &mut usize,
 ) -> Result<f64, Error> {
     if !greater(b, a) {
         return Ok(0.0);
     }
     let eps = ScalarOf::<C>::EPSILON;
-    // Rounding noise of the sums: measured up to ~40 ε on fast curves; below this floor two
-    // estimates that agree to it are accepted whatever the accuracy asked for.
+    // The rounding noise of the sums reaches tens of ε on fast curves: two estimates that
+    // agree to this floor are accepted whatever the accuracy asked for.
     let rel_floor = 128.0 * f64::EPSILON.max(eps);
     // Depth-first stack of (a, b, estimate on [a, b], accuracy share, depth).
     let mut stack = [(0.0, 0.0, 0.0, 0.0, 0_u32); MAX_DEPTH as usize + 2];
@@ -117,8 +123,13 @@ fn integrate_part<C: ParamCurveDeriv>(
             continue;
         }
         if depth >= MAX_DEPTH {
-            return Err(Error::InvalidArgument);
+            return Err(Error::IterationLimit {
+                limit: MAX_DEPTH as usize,
+            });
         }
+        *budget = budget
+            .checked_sub(1)
+            .ok_or(Error::IterationLimit { limit: MAX_SPLITS })?;
         let half = 0.5 * share;
         for item in [
             (m, b, right, half, depth + 1),
@@ -126,7 +137,11 @@ fn integrate_part<C: ParamCurveDeriv>(
         ] {
             match stack.get_mut(top) {
                 Some(slot) => *slot = item,
-                None => return Err(Error::InvalidArgument),
+                None => {
+                    return Err(Error::IterationLimit {
+                        limit: MAX_DEPTH as usize,
+                    });
+                }
             }
             top += 1;
         }
@@ -225,7 +240,7 @@ fn piece_bounds<C: ParamCurve>(
 /// # Ok::<(), strak_curves::Error>(())
 /// ```
 pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, Error> {
-    check_positive(accuracy)?;
+    check_length_accuracy::<C, ScalarOf<C>>(curve, accuracy)?;
     let (start, end) = curve.domain();
     length_between(curve, start.to_f64(), end.to_f64(), accuracy)
 }
@@ -262,7 +277,7 @@ pub fn arc_length_between<C: ParamCurveDeriv>(
     u1: ScalarOf<C>,
     accuracy: f64,
 ) -> Result<f64, Error> {
-    check_positive(accuracy)?;
+    check_length_accuracy::<C, ScalarOf<C>>(curve, accuracy)?;
     let (start, end) = curve.domain();
     let x0 = u0.clamp_to(start, end).to_f64();
     let x1 = u1.clamp_to(start, end).to_f64();
@@ -313,7 +328,7 @@ pub fn param_at_length<C: ParamCurveDeriv>(
     s: f64,
     accuracy: f64,
 ) -> Result<ScalarOf<C>, Error> {
-    check_positive(accuracy)?;
+    check_length_accuracy::<C, ScalarOf<C>>(curve, accuracy)?;
     if s.is_nan() {
         return Err(Error::NonFinite);
     }
@@ -366,7 +381,7 @@ fn solve_in_piece<C: ParamCurveDeriv>(
     for _ in 0..MAX_NEWTON {
         let f = integrate(curve, a, u, lo, hi, half)? - r;
         if f.abs() <= half {
-            break;
+            return Ok(param(u, lo, hi));
         }
         if f < 0.0 {
             x0 = u;
@@ -374,8 +389,10 @@ fn solve_in_piece<C: ParamCurveDeriv>(
             x1 = u;
         }
         if x1 - x0 <= resolution {
-            break;
+            return Ok(param(u, lo, hi));
         }
+        // Newton inside the bracket, bisection otherwise (a safeguarded Newton method,
+        // Numerical Recipes, 3rd ed., §9.4).
         let v = speed(curve, u, lo, hi);
         let newton = u - f / v;
         u = if v > 0.0 && newton > x0 && newton < x1 {
@@ -384,7 +401,7 @@ fn solve_in_piece<C: ParamCurveDeriv>(
             0.5 * (x0 + x1)
         };
     }
-    Ok(param(u, lo, hi))
+    Err(Error::IterationLimit { limit: MAX_NEWTON })
 }
 
 /// A table of arc length against parameter for a time law: `N` samples `(u_i, s_i)` with
@@ -651,7 +668,7 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
         if N < 2 {
             return Err(Error::InvalidArgument);
         }
-        check_positive(accuracy)?;
+        check_length_accuracy::<C, S>(curve, accuracy)?;
         #[allow(clippy::cast_precision_loss)]
         let last = (N - 1) as f64;
         let (u, knot) = nodes::<C, N>(curve);
@@ -875,6 +892,7 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
+    use crate::analysis::length_resolution;
     use crate::analysis::testcurves::{FnCurve, PolyCurve, arc};
     use crate::scalar::{I16F16, I32F32};
     use core::f64::consts::PI;
@@ -1034,6 +1052,34 @@ mod tests {
     }
 
     #[test]
+    fn unresolvable_speed_stops_at_the_split_budget() {
+        // (t, sin(ωt)/ω) with ω = 10⁷ on [0, 1]: the speed √(1 + cos²(ωt)) oscillates 1.6·10⁶
+        // times; no rule resolves it within 2¹⁶ splits. The error comes after at most
+        // 16 + 2·(2·2¹⁶ + 16) Gauss rules of 16 speed evaluations, counted here (no timing),
+        // plus the 3 points of the resolution check.
+        let calls = core::cell::Cell::new(0_usize);
+        let w = 1.0e7;
+        let c = FnCurve {
+            f: |t: f64, k: usize| {
+                calls.set(calls.get() + 1);
+                match k {
+                    0 => [t, libm::sin(w * t) / w],
+                    1 => [1.0, libm::cos(w * t)],
+                    _ => [0.0, -w * libm::sin(w * t)],
+                }
+            },
+            a: 0.0,
+            b: 1.0,
+        };
+        assert_eq!(
+            arc_length(&c, 1e-9),
+            Err(Error::IterationLimit { limit: MAX_SPLITS })
+        );
+        let bound = 16 * (16 + 2 * (2 * MAX_SPLITS + 16)) + 3;
+        assert!(calls.get() <= bound, "{} > {bound}", calls.get());
+    }
+
+    #[test]
     fn fixed_point_and_f32_lengths() {
         let c = PolyCurve::<I32F32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
         let l = arc_length(&c, 1e-8).unwrap();
@@ -1041,8 +1087,13 @@ mod tests {
         let u = param_at_length(&c, parabola_s(1.25), 1e-8).unwrap();
         assert!((u.to_f64() - 1.25).abs() <= 1e-8);
         let c = PolyCurve::<f32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
-        // An accuracy below f32 resolution is raised to it: still converges.
-        let l = arc_length(&c, 1e-15).unwrap();
+        // An accuracy below f32's resolution at the curve's length is rejected at once; one
+        // just above it converges.
+        assert_eq!(
+            arc_length(&c, 1e-15),
+            Err(Error::ToleranceBelowResolution { scalar: "f32" })
+        );
+        let l = arc_length(&c, 2.0 * length_resolution(&c)).unwrap();
         assert!((l - parabola_s(2.0)).abs() <= 1e-5);
     }
 

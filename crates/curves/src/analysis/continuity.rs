@@ -23,10 +23,23 @@ use crate::curve::{ParamCurveDeriv, PieceDeriv, ScalarOf};
 use crate::error::Error;
 use crate::point::Point;
 
-use super::{c64, check_positive, greater, norm64};
+use super::{c64, check_resolvable, greater, norm64};
+use crate::scalar::Scalar;
 
 /// The highest derivative order compared by the classification.
 const MAX_ORDER: u8 = 3;
+
+/// A comparison tolerance for values of `S`: finite, positive and not below the finest
+/// relative spacing of `S` (`ε_S` for floats, `ε_S / LIMIT` for fixed-point, whose values
+/// are equally spaced up to [`Scalar::LIMIT`]; never below `f64`'s `ε`).
+fn check_tolerance<S: Scalar>(tolerance: f64) -> Result<(), Error> {
+    let floor = if S::IS_FIXED {
+        (S::EPSILON / S::LIMIT).max(f64::EPSILON)
+    } else {
+        S::EPSILON
+    };
+    check_resolvable::<S>(tolerance, floor)
+}
 
 /// How smoothly two curve segments join: the highest parametric (`C^k`) and geometric
 /// (`G^k`) order that holds, up to order 3 (seeds/002, seeds/003).
@@ -227,7 +240,7 @@ pub fn classify_derivatives<P: Point>(
     right: &[P; 4],
     tolerance: f64,
 ) -> Result<Continuity, Error> {
-    check_positive(tolerance)?;
+    check_tolerance::<P::Scalar>(tolerance)?;
     let dim = P::DIM;
     let same = |k: usize| close(dim, |i| c64(&left[k], i), |i| c64(&right[k], i), tolerance);
     if !same(0) {
@@ -316,7 +329,7 @@ where
     A: ParamCurveDeriv,
     B: ParamCurveDeriv<Point = A::Point>,
 {
-    check_positive(tolerance)?;
+    check_tolerance::<ScalarOf<A>>(tolerance)?;
     let left = jet(a, a.domain().1);
     let right = jet(b, b.domain().0);
     classify_derivatives(&left, &right, tolerance)
@@ -367,7 +380,7 @@ where
 /// # Ok::<(), strak_curves::Error>(())
 /// ```
 pub fn classify_breaks<C: PieceDeriv>(curve: &C, tolerance: f64) -> Result<Continuity, Error> {
-    check_positive(tolerance)?;
+    check_tolerance::<ScalarOf<C>>(tolerance)?;
     let mut worst = Continuity::SMOOTH;
     for i in 1..curve.piece_count() {
         let (_, end) = curve.piece_domain(i - 1);
@@ -714,6 +727,27 @@ mod tests {
             assert_eq!(classify_join(&a, &a, tol), Err(Error::InvalidArgument));
             assert_eq!(classify_breaks(&a, tol), Err(Error::InvalidArgument));
         }
+    }
+
+    #[test]
+    fn tolerance_below_the_scalar_spacing_is_an_error() {
+        use crate::scalar::I16F16;
+        let jet = [[0.0, 0.0], [1.0, 0.0], [0.0, 0.0], [0.0, 0.0]];
+        let below = Err(Error::ToleranceBelowResolution { scalar: "f64" });
+        assert_eq!(classify_derivatives(&jet, &jet, 1e-17), below);
+        assert!(classify_derivatives(&jet, &jet, 4e-16).unwrap().is_c(3));
+        let jet32 = jet.map(|p| p.map(|x| x as f32));
+        let below = Err(Error::ToleranceBelowResolution { scalar: "f32" });
+        assert_eq!(classify_derivatives(&jet32, &jet32, 1e-8), below);
+        assert!(classify_derivatives(&jet32, &jet32, 2e-7).unwrap().is_c(3));
+        // I16F16 values are 2⁻¹⁶ apart up to 16 383: relative spacing down to 9.3·10⁻¹⁰.
+        let fixed = jet.map(|p| p.map(I16F16::from_num));
+        let below = Err(Error::ToleranceBelowResolution { scalar: "I16F16" });
+        assert_eq!(classify_derivatives(&fixed, &fixed, 1e-10), below);
+        assert!(classify_derivatives(&fixed, &fixed, 1e-9).unwrap().is_c(3));
+        let a = cusp(-1.0, 0.0);
+        assert!(classify_join(&a, &a, 1e-17).is_err());
+        assert!(classify_breaks(&a, 1e-17).is_err());
     }
 
     #[test]
