@@ -240,7 +240,7 @@ fn piece_bounds<C: ParamCurve>(
 /// # Ok::<(), strak_curves::Error>(())
 /// ```
 pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, Error> {
-    check_length_accuracy::<C, ScalarOf<C>>(curve, accuracy)?;
+    check_length_accuracy(curve, accuracy)?;
     let (start, end) = curve.domain();
     length_between(curve, start.to_f64(), end.to_f64(), accuracy)
 }
@@ -277,7 +277,7 @@ pub fn arc_length_between<C: ParamCurveDeriv>(
     u1: ScalarOf<C>,
     accuracy: f64,
 ) -> Result<f64, Error> {
-    check_length_accuracy::<C, ScalarOf<C>>(curve, accuracy)?;
+    check_length_accuracy(curve, accuracy)?;
     let (start, end) = curve.domain();
     let x0 = u0.clamp_to(start, end).to_f64();
     let x1 = u1.clamp_to(start, end).to_f64();
@@ -328,7 +328,7 @@ pub fn param_at_length<C: ParamCurveDeriv>(
     s: f64,
     accuracy: f64,
 ) -> Result<ScalarOf<C>, Error> {
-    check_length_accuracy::<C, ScalarOf<C>>(curve, accuracy)?;
+    check_length_accuracy(curve, accuracy)?;
     if s.is_nan() {
         return Err(Error::NonFinite);
     }
@@ -668,7 +668,7 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
         if N < 2 {
             return Err(Error::InvalidArgument);
         }
-        check_length_accuracy::<C, S>(curve, accuracy)?;
+        check_length_accuracy(curve, accuracy)?;
         #[allow(clippy::cast_precision_loss)]
         let last = (N - 1) as f64;
         let (u, knot) = nodes::<C, N>(curve);

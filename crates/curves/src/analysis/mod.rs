@@ -32,7 +32,7 @@
 //! | [`ArcLengthTable::new`] | `2(N − 1)` arc-length integrals and `3N` speed evaluations |
 //!
 //! Before any of this, [`resolution`] and [`length_resolution`] evaluate the curve at every
-//! piece boundary and piece midpoint (`2·piece_count + 1` evaluations).
+//! piece boundary and piece midpoint (`2·piece_count + 2` evaluations).
 
 mod arclength;
 mod continuity;
@@ -162,8 +162,7 @@ pub fn resolution<C: ParamCurve>(curve: &C) -> f64 {
 /// boundary and piece midpoint (a lower bound of the arc length).
 ///
 /// [`arc_length`], [`arc_length_between`], [`param_at_length`] and [`ArcLengthTable::new`]
-/// (with the coarser of the curve's and the table's number type) reject an accuracy below
-/// it with [`Error::ToleranceBelowResolution`].
+/// reject an accuracy below it with [`Error::ToleranceBelowResolution`].
 ///
 /// ```
 /// use strak_curves::{length_resolution, Bezier};
@@ -175,18 +174,11 @@ pub fn length_resolution<C: ParamCurve>(curve: &C) -> f64 {
     spacing::<ScalarOf<C>>(size(curve).1)
 }
 
-/// An arc-length `accuracy` for `curve` whose lengths are held in `S` (the curve's own
-/// scalar for the free functions, the table's for [`ArcLengthTable`]): finite, positive and
-/// at least the spacing of the length in the coarser of the two number types.
-fn check_length_accuracy<C: ParamCurve, S: Scalar>(curve: &C, accuracy: f64) -> Result<(), Error> {
+/// An arc-length `accuracy` for `curve`: finite, positive and at least
+/// [`length_resolution`].
+fn check_length_accuracy<C: ParamCurve>(curve: &C, accuracy: f64) -> Result<(), Error> {
     check_positive(accuracy)?;
-    let length = size(curve).1;
-    let (own, held) = (spacing::<ScalarOf<C>>(length), spacing::<S>(length));
-    if own >= held {
-        check_resolvable::<ScalarOf<C>>(accuracy, own)
-    } else {
-        check_resolvable::<S>(accuracy, held)
-    }
+    check_resolvable::<ScalarOf<C>>(accuracy, length_resolution(curve))
 }
 
 /// `tolerance` finite, positive and at least `floor`; the error names the scalar `S`.
