@@ -1,6 +1,9 @@
-//! Arc length `s(u) = ∫ |c'(u)| du`, its inverse `u(s)`, and an arc-length table for time laws.
+//! Arc length `s(u) = ∫ |c'(u)| du`, its inverse `u(s)`, and an arc-length table for time laws
+//! (adaptive Gaussian quadrature and a table inverted by interpolation, as in Guenter &
+//! Parent, "Computing the Arc Length of Parametric Curves", *IEEE Computer Graphics and
+//! Applications* 10(3), 1990).
 //!
-//! The quadrature and its accuracy are documented at [`arc_length`].
+//! The quadrature, its accuracy and its work bound are documented at [`arc_length`].
 
 use crate::curve::{ParamCurve, ParamCurveDeriv, ScalarOf};
 use crate::error::Error;
@@ -9,7 +12,8 @@ use crate::scalar::Scalar;
 
 use super::{check_length_accuracy, greater, norm64, param};
 
-/// Nodes of the 8-point Gauss–Legendre rule on `[−1, 1]` (the positive half).
+/// Nodes of the 8-point Gauss–Legendre rule on `[−1, 1]` (the positive half; Abramowitz &
+/// Stegun, *Handbook of Mathematical Functions*, Table 25.4).
 const GL_X: [f64; 4] = [
     0.183_434_642_495_649_8,
     0.525_532_409_916_329,
@@ -197,16 +201,28 @@ fn piece_bounds<C: ParamCurve>(
 ///
 /// The integral is computed per piece (the speed `|c'|` is smooth inside a piece, but may jump
 /// at piece boundaries) with the 8-point Gauss–Legendre rule, exact for polynomials of degree
-/// 15, and adaptive bisection: an interval is accepted when the rule on the whole interval
+/// 15 (Burden & Faires, *Numerical Analysis*, §4.7), and adaptive bisection (Burden & Faires
+/// §4.6): an interval is accepted when the rule on the whole interval
 /// and the sum over its two halves agree within the interval's share of the accuracy
 /// (proportional to its parameter length); otherwise both halves are refined with half the
 /// share each. The shares add up to the requested accuracy, and the accepted (finer) value is
 /// far more accurate than the difference that is tested for smooth speeds, so the result is
 /// within the accuracy — a standard error estimate, not a proof. Each piece starts from 16
 /// equal parts, so that a feature between the nodes of one rule (a near-cusp) is not missed
-/// by two estimates that agree on a wrong value. Accuracies below the rounding noise are
-/// raised to `128 · max(ε_f64, ε_S) · length` per interval, since the derivative values and
-/// the sums themselves carry that rounding.
+/// by two estimates that agree on a wrong value; a zero of the speed (a cusp) within about
+/// 2% of an interval's width from its end lies outside every node, and both estimates can
+/// still agree on the smooth continuation of the speed there. Two estimates that agree to the
+/// rounding noise of the sums, `128 · max(ε_f64, ε_S)` of the interval's length, are accepted
+/// whatever the accuracy, since the derivative values and the sums themselves carry that
+/// rounding.
+///
+/// # Work bound
+///
+/// The accuracy is checked against [`length_resolution`](crate::length_resolution) first
+/// (`2·piece_count + 2` evaluations). Per piece the quadrature bisects at most 32 levels deep
+/// and splits at most 2¹⁶ intervals, so it evaluates the speed at most
+/// `16·(16 + 2·(2·2¹⁶ + 16))` times; a piece that needs more is
+/// [`Error::IterationLimit`].
 ///
 /// Everything is computed in `f64` from the curve's derivatives ([`Scalar::to_f64`]) and
 /// lengths are returned as `f64`: the quadrature sums many terms, fixed-point scalars lack
@@ -215,9 +231,11 @@ fn piece_bounds<C: ParamCurve>(
 /// the curve's scalar (checking the range) for use in firmware.
 ///
 /// # Errors
-/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive (or, for
-/// pathological speeds, cannot be reached within 32 bisections); [`Error::NonFinite`] when a
-/// derivative is not finite.
+/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive;
+/// [`Error::ToleranceBelowResolution`] when it is below
+/// [`length_resolution`](crate::length_resolution); [`Error::IterationLimit`] when a piece
+/// needs more than 32 bisection levels or 2¹⁶ splits (pathological speeds);
+/// [`Error::NonFinite`] when a derivative is not finite.
 ///
 /// ```
 /// use strak_curves::{arc_length, ParamCurve, ParamCurveDeriv};
@@ -248,7 +266,7 @@ pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, E
 /// The arc length between the parameters `u0` and `u1` (both clamped to the domain) within
 /// `accuracy`: `s(u1) − s(u0)`, negative when `u1 < u0`.
 ///
-/// Errors as for [`arc_length`].
+/// Errors and work bound as for [`arc_length`].
 ///
 /// ```
 /// use strak_curves::{arc_length_between, ParamCurve, ParamCurveDeriv};
@@ -295,11 +313,19 @@ pub fn arc_length_between<C: ParamCurveDeriv>(
 /// The piece containing `s` is found by summing piece lengths (with half the accuracy);
 /// inside it a safeguarded Newton method solves `s(u) = s` (`ds/du = |c'(u)|`), falling back
 /// to bisection of the bracketing interval when a Newton step leaves the bracket or the speed
-/// is zero (cusps).
+/// is zero (cusps) (Press et al., *Numerical Recipes*, 3rd ed., §9.4).
+///
+/// # Work bound
+///
+/// One arc-length integral per piece up to the piece containing `s` (each bounded as in
+/// [`arc_length`]), then at most 128 Newton or bisection steps of one integral each.
 ///
 /// # Errors
 /// [`Error::NonFinite`] when `s` is NaN or a derivative is not finite;
-/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive.
+/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive;
+/// [`Error::ToleranceBelowResolution`] when it is below
+/// [`length_resolution`](crate::length_resolution); [`Error::IterationLimit`] when an
+/// integral exceeds its bound or the steps do not converge within 128.
 ///
 /// ```
 /// use strak_curves::{param_at_length, ParamCurve, ParamCurveDeriv};
@@ -406,8 +432,8 @@ fn solve_in_piece<C: ParamCurveDeriv>(
 
 /// A table of arc length against parameter for a time law: `N` samples `(u_i, s_i)` with
 /// `u(s)` and `s(u)` interpolated by C¹ piecewise cubic Hermite (never linearly: linear
-/// interpolation of `u(s)` makes the speed jump at every sample and the jerk chatter, see
-/// DESIGN.md).
+/// interpolation of `u(s)` makes the speed `ds/dt · du/ds` jump at every sample, and the
+/// acceleration and jerk of a time law built on it spike there).
 ///
 /// # Samples
 ///
@@ -430,7 +456,8 @@ fn solve_in_piece<C: ParamCurveDeriv>(
 /// two units of the scalar's resolution below the knot (an `O(ε·|c''|)` error; where `S` is
 /// finer than the curve's own scalar, as for an `f64` table of an `f32` curve, that point may
 /// round back onto the knot and the right speed is used). The tangents are
-/// limited as by Fritsch–Carlson to `m_i ≤ 3·min(Δu/Δs)` of the two adjacent intervals: this
+/// limited as by Fritsch & Carlson ("Monotone Piecewise Cubic Interpolation", *SIAM J. Numer.
+/// Anal.* 17(2), 1980) to `m_i ≤ 3·min(Δu/Δs)` of the two adjacent intervals: this
 /// keeps `u(s)` monotone and finite at zero speed (cusps), and leaves smooth curves with
 /// sampled speed ratios below 3 untouched. `s(u)` is interpolated the same way with slopes
 /// `ds/du = |c'(u_i)|`. The tangents are stored pre-multiplied by the interval width, which
@@ -631,8 +658,16 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
     /// `N − 1` pieces), the arc lengths computed within `accuracy / 2` (see the
     /// [type documentation](Self)).
     ///
+    /// # Work bound
+    ///
+    /// `2(N − 1)` arc-length integrals (each bounded as in [`arc_length`]) and `3N` speed
+    /// evaluations, after the resolution check.
+    ///
     /// # Errors
     /// - [`Error::InvalidArgument`]: `N < 2`, or `accuracy` not finite and positive.
+    /// - [`Error::ToleranceBelowResolution`]: `accuracy` is below
+    ///   [`length_resolution`](crate::length_resolution).
+    /// - [`Error::IterationLimit`]: an integral exceeds the bound of [`arc_length`].
     /// - [`Error::ZeroLengthInterval`]: two samples have the same parameter or the same arc
     ///   length in `S` (a curve standing still over a whole interval, or a domain too short
     ///   for the scalar's resolution); `index` is the interval.
@@ -957,7 +992,7 @@ mod tests {
 
     #[test]
     fn cusp_with_a_kink_in_the_speed() {
-        // The seeds' (t³, t²): |c'| = |t|·√(9t² + 4) has a kink at t = 0 (not a dyadic point
+        // The cusp (t³, t²): |c'| = |t|·√(9t² + 4) has a kink at t = 0 (not a dyadic point
         // of [−1, 2]). ∫₀ᵃ t√(9t²+4) dt = ((9a²+4)^{3/2} − 8)/27.
         let c =
             PolyCurve::<f64>::single(-1.0, 2.0, &[[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]);

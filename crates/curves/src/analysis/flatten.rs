@@ -514,7 +514,7 @@ mod tests {
             let ar = arc(2.0, 0.0, 3.0);
             let p = flatten_vec(&ar, tol);
             assert!(max_deviation(&ar, &p) <= tol, "arc {tol}");
-            // The seeds' cusp (t³, t²) and the circle c1(t) = (2cos t − 2, −2 sin t).
+            // The cusp (t³, t²).
             let cusp = PolyCurve::<f64>::single(
                 -1.0,
                 1.0,
