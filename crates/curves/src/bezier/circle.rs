@@ -75,12 +75,12 @@ impl<P: Point> Bezier<P, 4> {
     ///
     /// ```
     /// use strak_curves::{Bezier, I16F16, ParamCurve};
-    /// let c = Bezier::<[I16F16; 2], 4>::quarter_circle_common()?;
+    /// let c = Bezier::<[I16F16; 2], 4>::quarter_circle_seed()?;
     /// let p = c.eval(I16F16::from_num(0.5));
     /// assert!((p[0].to_num::<f64>() - 0.706961).abs() < 1e-4);
     /// # Ok::<(), strak_curves::Error>(())
     /// ```
-    pub fn quarter_circle_common() -> Result<Self, Error> {
+    pub fn quarter_circle_seed() -> Result<Self, Error> {
         let kappa = P::Scalar::from_f64(QUARTER_CIRCLE_KAPPA).ok_or(Error::OutOfRange)?;
         Self::quarter_circle(kappa)
     }
@@ -172,7 +172,7 @@ mod tests {
 
     #[test]
     fn control_points_and_end_conditions() {
-        let c = Bezier::<DVec2, 4>::quarter_circle_common().unwrap();
+        let c = Bezier::<DVec2, 4>::quarter_circle_seed().unwrap();
         assert_eq!(
             c.control_points(),
             &[
@@ -243,10 +243,10 @@ mod tests {
 
     #[test]
     fn f32_and_fixed_point_agree_with_f64() {
-        let cf = Bezier::<DVec2, 4>::quarter_circle_common().unwrap();
-        let c32 = Bezier::<Vec2, 4>::quarter_circle_common().unwrap();
-        let cx = Bezier::<[I16F16; 2], 4>::quarter_circle_common().unwrap();
-        let cy = Bezier::<[I32F32; 2], 4>::quarter_circle_common().unwrap();
+        let cf = Bezier::<DVec2, 4>::quarter_circle_seed().unwrap();
+        let c32 = Bezier::<Vec2, 4>::quarter_circle_seed().unwrap();
+        let cx = Bezier::<[I16F16; 2], 4>::quarter_circle_seed().unwrap();
+        let cy = Bezier::<[I32F32; 2], 4>::quarter_circle_seed().unwrap();
         for step in 0..=16 {
             let t = step as f64 / 16.0;
             let r = cf.eval(t);
