@@ -512,3 +512,48 @@ fn the_power_form_is_the_same_curve() {
         assert!(dist(p.piece_deriv(i, end, 1), c.piece_deriv(i, end, 1)) < 1e-11);
     }
 }
+
+/// The cells not covered above: Bézier chains follow their polygon at the ends and map
+/// affinely; a Lagrange curve neither follows its polygon at the ends nor has local control;
+/// a Hermite spline with long tangents leaves the hull of its points; NURBS map
+/// projectively: `x ↦ (A x + b)/(c·x + d)` takes the curve of the points `P_i`, weights `w_i`
+/// to the curve of the points `f(P_i)`, weights `w_i·(c·P_i + d)`.
+#[test]
+fn remaining_cells() {
+    let ch = chain();
+    assert!(dist(ch.deriv(0.0, 1), [2.0 * 1.0, 2.0 * 2.0]) < 1e-12);
+    assert!(dist(ch.deriv(2.0, 1), [2.0 * 1.5, 2.0 * -0.5]) < 1e-12);
+    let img: Vec<P2> = [PTS[0], PTS[1], PTS[2], PTS[3], PTS[4]]
+        .iter()
+        .map(|&p| affine(p))
+        .collect();
+    let ch2 = BezierChain::<P2, 3, 4>::new(&img).unwrap();
+    assert!(image_error(&ch, &ch2, affine) < 1e-12);
+
+    let l = LagrangeCurve::<P2, 8>::new(&PTS, &U).unwrap();
+    assert!(cross(l.deriv(0.0, 1), sub(PTS[1], PTS[0])).abs() > 0.1);
+    let l2 = LagrangeCurve::<P2, 8>::new(&moved(&PTS, 2), &U).unwrap();
+    assert!(params(0.0, 6.0, 60)
+        .filter(|u| !U.contains(u))
+        .all(|u| dist(l.eval(u), l2.eval(u)) > 1e-9));
+
+    let long: Vec<P2> = vec![[0.0, 8.0]; 6];
+    let h = HermiteSpline::<P2, 8>::new(&PTS, &long, &U).unwrap();
+    assert!(params(0.0, 6.0, 600).any(|u| !in_hull(h.eval(u), &PTS, 1e-9)));
+
+    let project = |p: P2| {
+        let den = 0.1 * p[0] - 0.05 * p[1] + 1.0;
+        [(2.0 * p[0] + p[1] + 1.0) / den, (p[1] - 0.5 * p[0]) / den]
+    };
+    let n = nurbs(&PTS, &WEIGHTS);
+    let pts2: Vec<P2> = PTS.iter().map(|&p| project(p)).collect();
+    let w2: Vec<f64> = PTS
+        .iter()
+        .zip(WEIGHTS)
+        .map(|(p, w)| w * (0.1 * p[0] - 0.05 * p[1] + 1.0))
+        .collect();
+    assert!(image_error(&n, &nurbs(&pts2, &w2), project) < 1e-12);
+    // The B-spline of the same points is not mapped projectively.
+    let b = bspline(&PTS);
+    assert!(image_error(&b, &bspline(&pts2), project) > 1e-3);
+}
