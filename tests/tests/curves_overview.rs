@@ -533,9 +533,11 @@ fn remaining_cells() {
     let l = LagrangeCurve::<P2, 8>::new(&PTS, &U).unwrap();
     assert!(cross(l.deriv(0.0, 1), sub(PTS[1], PTS[0])).abs() > 0.1);
     let l2 = LagrangeCurve::<P2, 8>::new(&moved(&PTS, 2), &U).unwrap();
-    assert!(params(0.0, 6.0, 60)
-        .filter(|u| !U.contains(u))
-        .all(|u| dist(l.eval(u), l2.eval(u)) > 1e-9));
+    assert!(
+        params(0.0, 6.0, 60)
+            .filter(|u| !U.contains(u))
+            .all(|u| dist(l.eval(u), l2.eval(u)) > 1e-9)
+    );
 
     let long: Vec<P2> = vec![[0.0, 8.0]; 6];
     let h = HermiteSpline::<P2, 8>::new(&PTS, &long, &U).unwrap();

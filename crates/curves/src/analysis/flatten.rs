@@ -72,10 +72,10 @@ const BISECT_SHIFT: u32 = 6;
 ///
 /// The tolerance is checked against [`resolution`](crate::resolution) before anything else
 /// (`2·piece_count + 2` evaluations). Per piece, growing and bisecting take at most
-/// `12·n` chord certificates (each 7 derivatives and one point) for the `n` segments
-/// found, and `n` never exceeds 2²⁰ nor the number of parameter values the scalar has in the
-/// piece: a piece that would need more is an error, found within that work whatever the
-/// curve.
+/// `12·n` chord certificates (each 7 derivatives and one point), `n` the larger of the first
+/// estimate and the count found, and `n` never exceeds 2²⁰ nor the number of parameter values
+/// the scalar has in the piece: a piece that would need more is an error, found within that
+/// work whatever the curve.
 ///
 /// # Errors
 /// - [`Error::InvalidArgument`]: `tolerance` is not finite and positive.
