@@ -21,9 +21,10 @@ use std::fmt::Debug;
 use proptest::prelude::*;
 use proptest::test_runner::{TestCaseError, TestCaseResult};
 use strak_curves::{
-    ArcLengthTable, BSpline, Bezier, CubicSpline, HermiteSpline, I32F32, Nurbs, ParamCurve,
-    ParamCurveDeriv, Parameterization, Point, Scalar, SplineBoundary, arc_length,
-    arc_length_between, classify_breaks, classify_join, flatten, flatten_count, param_at_length,
+    ArcLengthTable, BSpline, Bezier, BezierChain, CubicSpline, Error, HermiteSpline, I16F16,
+    I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Parameterization, Point, Scalar, SplineBoundary,
+    arc_length, arc_length_between, classify_breaks, classify_join, flatten, flatten_count,
+    length_resolution, param_at_length, resolution,
 };
 use strak_tests::spline_cases::{fail, property};
 use strak_tests::{linspace, pts, to_vec, to_vecs};
@@ -752,4 +753,145 @@ fn arc_length_table_error_estimate_within_8x_at_a_c1_knot() {
         "true error {worst:e} = {:.2} × estimate {est:e}",
         worst / est
     );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Resolution and work bounds
+// ---------------------------------------------------------------------------------------------
+
+/// A curve that counts its evaluations (points and derivatives), so that work bounds are
+/// checked by counting, not by timing.
+struct Counting<'a, C> {
+    curve: &'a C,
+    calls: Cell<usize>,
+}
+
+impl<'a, C> Counting<'a, C> {
+    fn new(curve: &'a C) -> Self {
+        Self {
+            curve,
+            calls: Cell::new(0),
+        }
+    }
+
+    fn take(&self) -> usize {
+        self.calls.replace(0)
+    }
+}
+
+impl<C: ParamCurve> ParamCurve for Counting<'_, C> {
+    type Point = C::Point;
+    fn domain(&self) -> (ScalarOf<C>, ScalarOf<C>) {
+        self.curve.domain()
+    }
+    fn eval(&self, u: ScalarOf<C>) -> C::Point {
+        self.calls.set(self.calls.get() + 1);
+        self.curve.eval(u)
+    }
+    fn piece_count(&self) -> usize {
+        self.curve.piece_count()
+    }
+    fn piece_domain(&self, i: usize) -> (ScalarOf<C>, ScalarOf<C>) {
+        self.curve.piece_domain(i)
+    }
+}
+
+impl<C: ParamCurveDeriv> ParamCurveDeriv for Counting<'_, C> {
+    fn deriv(&self, u: ScalarOf<C>, k: usize) -> C::Point {
+        self.calls.set(self.calls.get() + 1);
+        self.curve.deriv(u, k)
+    }
+}
+
+/// The quadratic Bézier chain of the fuzzing finding, in `I16F16`: four segments, extent 4.
+fn i16f16_quadratic_chain() -> BezierChain<[I16F16; 2], 3, 8> {
+    let p = |x: f64, y: f64| [I16F16::from_num(x), I16F16::from_num(y)];
+    BezierChain::new(&[
+        p(0.0, 0.0),
+        p(1.0, 2.0),
+        p(2.0, 0.0),
+        p(3.0, -2.0),
+        p(4.0, 0.0),
+        p(3.0, 2.0),
+        p(2.0, 1.0),
+        p(1.0, 3.0),
+        p(0.0, 1.0),
+    ])
+    .unwrap()
+}
+
+/// `flatten_count` of an `I16F16` quadratic chain with tolerance `1e-8` (below the spacing
+/// `2⁻¹⁶` of `I16F16`) returns `ToleranceBelowResolution` after the `2·pieces + 2` points of
+/// the resolution check, before any segment is certified; a tolerance just above the
+/// resolution works, within the tolerance plus the rounding of the vertices (4 units of
+/// `2⁻¹⁶`), with work proportional to its vertex count.
+#[test]
+fn flatten_rejects_a_tolerance_below_the_fixed_point_resolution_at_once() {
+    let chain = i16f16_quadratic_chain();
+    let pieces = chain.piece_count();
+    let c = Counting::new(&chain);
+    let eps = I16F16::EPSILON;
+    assert_eq!(resolution(&chain), eps);
+    let below = Err(Error::ToleranceBelowResolution { scalar: "I16F16" });
+    for tol in [1e-8, 0.9 * eps] {
+        assert_eq!(flatten_count(&c, tol), below);
+        assert!(c.take() <= 2 * pieces + 2);
+        let mut out = [[I16F16::ZERO; 2]; 64];
+        assert_eq!(flatten(&chain, tol, &mut out), below);
+    }
+    for tol in [1.25 * eps, 4.0 * eps, 1e-3] {
+        let n = flatten_count(&c, tol).unwrap();
+        let calls = c.take();
+        // The resolution check, per piece the first estimate (2 derivatives), then at most 12
+        // certificates of 8 evaluations per segment (the estimate is exact for quadratics).
+        assert!(
+            calls <= 2 * pieces + 2 + 2 * pieces + 12 * 8 * n,
+            "{calls} evaluations for {n} vertices"
+        );
+        check_flatten(&chain, tol, 400, 4.0 * eps).unwrap();
+    }
+}
+
+/// The arc length and the continuity classification of the `I16F16` chain, and an `f32`
+/// chain (resolution `ε·max|x|`, `ε·L`): an accuracy or tolerance below what the number type
+/// resolves is an error, one just above it works.
+#[test]
+fn analysis_rejects_unresolvable_tolerances() {
+    let chain = i16f16_quadratic_chain();
+    let below = Error::ToleranceBelowResolution { scalar: "I16F16" };
+    assert_eq!(length_resolution(&chain), I16F16::EPSILON);
+    assert_eq!(arc_length(&chain, 1e-8).unwrap_err(), below);
+    let (zero, one) = (I16F16::ZERO, I16F16::ONE);
+    assert_eq!(
+        arc_length_between(&chain, zero, one, 1e-8).unwrap_err(),
+        below
+    );
+    assert_eq!(param_at_length(&chain, 1.0, 1e-8).unwrap_err(), below);
+    assert_eq!(
+        ArcLengthTable::<I16F16, 16>::new(&chain, 1e-8).unwrap_err(),
+        below
+    );
+    let p64: Vec<[f64; 2]> = chain
+        .segments()
+        .iter()
+        .flat_map(|s| {
+            s.control_points()[..2]
+                .iter()
+                .map(|p| p.map(|x| x.to_num()))
+        })
+        .chain(std::iter::once([0.0, 1.0]))
+        .collect();
+    let reference = BezierChain::<[f64; 2], 3, 8>::new(&p64).unwrap();
+    let want = arc_length(&reference, 1e-12).unwrap();
+    let got = arc_length(&chain, 4.0 * length_resolution(&chain)).unwrap();
+    assert!((got - want).abs() < 1e-3, "{got} vs {want}");
+    assert_eq!(classify_breaks(&chain, 1e-12).unwrap_err(), below);
+    assert!(classify_breaks(&chain, 1e-6).unwrap().is_c(0));
+
+    let f = BezierChain::<[f32; 2], 3, 8>::new(&[[0.0, 0.0], [1.0, 2.0], [4.0, 0.0]]).unwrap();
+    let below = Error::ToleranceBelowResolution { scalar: "f32" };
+    assert_eq!(flatten_count(&f, 1e-8).unwrap_err(), below);
+    assert!(flatten_count(&f, 2.0 * resolution(&f)).is_ok());
+    assert_eq!(arc_length(&f, 1e-9).unwrap_err(), below);
+    assert!(arc_length(&f, 2.0 * length_resolution(&f)).is_ok());
 }

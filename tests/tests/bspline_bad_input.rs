@@ -1017,14 +1017,19 @@ fn flatten_capacity_exceeded() {
     );
     // The first four vertices were stored.
     assert_eq!(out[0], c.eval(0.0));
-    // A tolerance far below the curve's size: more than 2^24 segments in one piece.
-    match flatten_count(&c, 1e-300).unwrap_err() {
+    // A tolerance far below the curve's size: more than 2^20 segments in one piece.
+    match flatten_count(&c, 1e-14).unwrap_err() {
         Error::CapacityExceeded { capacity, required } => {
-            assert_eq!(capacity, 1 << 24);
-            assert!(required > 1 << 24);
+            assert_eq!(capacity, 1 << 20);
+            assert!(required > 1 << 20);
         }
         e => panic!("unexpected {e:?}"),
     }
+    // Below the resolution of f64 at the curve's size: rejected before any segment is tried.
+    assert_eq!(
+        flatten_count(&c, 1e-300).unwrap_err(),
+        Error::ToleranceBelowResolution { scalar: "f64" }
+    );
 }
 
 #[test]

@@ -87,6 +87,20 @@ pub enum Error {
     },
     /// A tolerance, accuracy or count argument is zero, negative or otherwise unusable.
     InvalidArgument,
+    /// A tolerance or accuracy is finer than the number type `scalar` resolves at the curve's
+    /// size: below the spacing of its values there (see [`resolution`](crate::resolution) and
+    /// [`length_resolution`](crate::length_resolution)). Checked before any iteration starts.
+    ToleranceBelowResolution {
+        /// The name of the number type ([`Scalar::NAME`](crate::Scalar::NAME)), e.g. `"I16F16"`.
+        scalar: &'static str,
+    },
+    /// An analysis routine did not reach its tolerance or accuracy within its documented
+    /// iteration bound `limit` (interval splits of the arc-length quadrature, steps of the
+    /// inverse arc length).
+    IterationLimit {
+        /// The bound that was reached.
+        limit: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -144,6 +158,14 @@ impl fmt::Display for Error {
             }
             Error::InvalidArgument => f.write_str(
                 "an argument (tolerance, accuracy, count) is zero, negative or unusable",
+            ),
+            Error::ToleranceBelowResolution { scalar } => write!(
+                f,
+                "the tolerance is finer than {scalar} resolves at the curve's size"
+            ),
+            Error::IterationLimit { limit } => write!(
+                f,
+                "the accuracy was not reached within the iteration bound of {limit}"
             ),
         }
     }

@@ -6,7 +6,8 @@
 //!
 //! The method names (`plus`, `minus`, `times`, `lerp`) are chosen so that generic code always
 //! runs the same operations in the same order, whatever the point type: `lerp` is the
-//! convex combination `(1 − t)·a + t·b` of de Casteljau (seeds/000), not glam's `a + (b − a)·t`.
+//! convex combination `(1 − t)·a + t·b` of de Casteljau's algorithm (Farin, *Curves and
+//! Surfaces for CAGD*, 5th ed., §2.3 "Linear Interpolation"), not glam's `a + (b − a)·t`.
 
 use core::fmt::Debug;
 

@@ -1,15 +1,19 @@
-//! Arc length `s(u) = ∫ |c'(u)| du`, its inverse `u(s)`, and an arc-length table for time laws.
+//! Arc length `s(u) = ∫ |c'(u)| du`, its inverse `u(s)`, and an arc-length table for time laws
+//! (adaptive Gaussian quadrature and a table inverted by interpolation, as in Guenter &
+//! Parent, "Computing the Arc Length of Parametric Curves", *IEEE Computer Graphics and
+//! Applications* 10(3), 1990).
 //!
-//! The quadrature and its accuracy are documented at [`arc_length`].
+//! The quadrature, its accuracy and its work bound are documented at [`arc_length`].
 
 use crate::curve::{ParamCurve, ParamCurveDeriv, ScalarOf};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-use super::{check_positive, greater, norm64, param};
+use super::{check_length_accuracy, greater, norm64, param};
 
-/// Nodes of the 8-point Gauss–Legendre rule on `[−1, 1]` (the positive half).
+/// Nodes of the 8-point Gauss–Legendre rule on `[−1, 1]` (the positive half; Abramowitz &
+/// Stegun, *Handbook of Mathematical Functions*, Table 25.4).
 const GL_X: [f64; 4] = [
     0.183_434_642_495_649_8,
     0.525_532_409_916_329,
@@ -27,8 +31,13 @@ const GL_W: [f64; 4] = [
 /// The deepest bisection of an interval (parameter widths down to `2⁻³²` of a piece).
 const MAX_DEPTH: u32 = 32;
 
-/// Iteration limit of the safeguarded Newton method in [`param_at_length`].
-const MAX_NEWTON: usize = 100;
+/// The most interval splits of one adaptive integral (each split evaluates two 8-point
+/// rules); beyond it the accuracy counts as unreachable.
+const MAX_SPLITS: usize = 1 << 16;
+
+/// Iteration limit of the safeguarded Newton method in [`param_at_length`]; bisection alone
+/// reaches the resolution of `f64` in fewer than 64 steps.
+const MAX_NEWTON: usize = 128;
 
 /// The speed `|c'(u)|` in `f64`, with `u` rounded to the scalar and clamped to `[lo, hi]`.
 fn speed<C: ParamCurveDeriv>(curve: &C, u: f64, lo: ScalarOf<C>, hi: ScalarOf<C>) -> f64 {
@@ -64,6 +73,7 @@ fn integrate<C: ParamCurveDeriv>(
 ) -> Result<f64, Error> {
     let parts = f64::from(INITIAL_PARTS);
     let mut total = 0.0;
+    let mut budget = MAX_SPLITS;
     for i in 0..INITIAL_PARTS {
         let x0 = a + (b - a) * (f64::from(i) / parts);
         let x1 = if i + 1 == INITIAL_PARTS {
@@ -71,26 +81,26 @@ fn integrate<C: ParamCurveDeriv>(
         } else {
             a + (b - a) * (f64::from(i + 1) / parts)
         };
-        total += integrate_part(curve, x0, x1, lo, hi, accuracy / parts)?;
+        total += integrate_part(curve, (x0, x1), (lo, hi), accuracy / parts, &mut budget)?;
     }
     Ok(total)
 }
 
-/// Adaptive Gauss–Legendre of `|c'|` over `[a, b]`, inside the piece `[lo, hi]`.
+/// Adaptive Gauss–Legendre of `|c'|` over `[a, b]`, inside the piece `[lo, hi]`, splitting
+/// at most `budget` intervals (shared with the caller's other parts).
 fn integrate_part<C: ParamCurveDeriv>(
     curve: &C,
-    a: f64,
-    b: f64,
-    lo: ScalarOf<C>,
-    hi: ScalarOf<C>,
+    (a, b): (f64, f64),
+    (lo, hi): (ScalarOf<C>, ScalarOf<C>),
     accuracy: f64,
+    budget: &mut usize,
 ) -> Result<f64, Error> {
     if !greater(b, a) {
         return Ok(0.0);
     }
     let eps = ScalarOf::<C>::EPSILON;
-    // Rounding noise of the sums: measured up to ~40 ε on fast curves; below this floor two
-    // estimates that agree to it are accepted whatever the accuracy asked for.
+    // The rounding noise of the sums reaches tens of ε on fast curves: two estimates that
+    // agree to this floor are accepted whatever the accuracy asked for.
     let rel_floor = 128.0 * f64::EPSILON.max(eps);
     // Depth-first stack of (a, b, estimate on [a, b], accuracy share, depth).
     let mut stack = [(0.0, 0.0, 0.0, 0.0, 0_u32); MAX_DEPTH as usize + 2];
@@ -117,8 +127,13 @@ fn integrate_part<C: ParamCurveDeriv>(
             continue;
         }
         if depth >= MAX_DEPTH {
-            return Err(Error::InvalidArgument);
+            return Err(Error::IterationLimit {
+                limit: MAX_DEPTH as usize,
+            });
         }
+        *budget = budget
+            .checked_sub(1)
+            .ok_or(Error::IterationLimit { limit: MAX_SPLITS })?;
         let half = 0.5 * share;
         for item in [
             (m, b, right, half, depth + 1),
@@ -126,7 +141,11 @@ fn integrate_part<C: ParamCurveDeriv>(
         ] {
             match stack.get_mut(top) {
                 Some(slot) => *slot = item,
-                None => return Err(Error::InvalidArgument),
+                None => {
+                    return Err(Error::IterationLimit {
+                        limit: MAX_DEPTH as usize,
+                    });
+                }
             }
             top += 1;
         }
@@ -182,16 +201,28 @@ fn piece_bounds<C: ParamCurve>(
 ///
 /// The integral is computed per piece (the speed `|c'|` is smooth inside a piece, but may jump
 /// at piece boundaries) with the 8-point Gauss–Legendre rule, exact for polynomials of degree
-/// 15, and adaptive bisection: an interval is accepted when the rule on the whole interval
+/// 15 (Burden & Faires, *Numerical Analysis*, §4.7), and adaptive bisection (Burden & Faires
+/// §4.6): an interval is accepted when the rule on the whole interval
 /// and the sum over its two halves agree within the interval's share of the accuracy
 /// (proportional to its parameter length); otherwise both halves are refined with half the
 /// share each. The shares add up to the requested accuracy, and the accepted (finer) value is
 /// far more accurate than the difference that is tested for smooth speeds, so the result is
 /// within the accuracy — a standard error estimate, not a proof. Each piece starts from 16
 /// equal parts, so that a feature between the nodes of one rule (a near-cusp) is not missed
-/// by two estimates that agree on a wrong value. Accuracies below the rounding noise are
-/// raised to `128 · max(ε_f64, ε_S) · length` per interval, since the derivative values and
-/// the sums themselves carry that rounding.
+/// by two estimates that agree on a wrong value; a zero of the speed (a cusp) within about
+/// 2% of an interval's width from its end lies outside every node, and both estimates can
+/// still agree on the smooth continuation of the speed there. Two estimates that agree to the
+/// rounding noise of the sums, `128 · max(ε_f64, ε_S)` of the interval's length, are accepted
+/// whatever the accuracy, since the derivative values and the sums themselves carry that
+/// rounding.
+///
+/// # Work bound
+///
+/// The accuracy is checked against [`length_resolution`](crate::length_resolution) first
+/// (`2·piece_count + 2` evaluations). Per piece the quadrature bisects at most 32 levels deep
+/// and splits at most 2¹⁶ intervals, so it evaluates the speed at most
+/// `16·(16 + 2·(2·2¹⁶ + 16))` times; a piece that needs more is
+/// [`Error::IterationLimit`].
 ///
 /// Everything is computed in `f64` from the curve's derivatives ([`Scalar::to_f64`]) and
 /// lengths are returned as `f64`: the quadrature sums many terms, fixed-point scalars lack
@@ -200,9 +231,11 @@ fn piece_bounds<C: ParamCurve>(
 /// the curve's scalar (checking the range) for use in firmware.
 ///
 /// # Errors
-/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive (or, for
-/// pathological speeds, cannot be reached within 32 bisections); [`Error::NonFinite`] when a
-/// derivative is not finite.
+/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive;
+/// [`Error::ToleranceBelowResolution`] when it is below
+/// [`length_resolution`](crate::length_resolution); [`Error::IterationLimit`] when a piece
+/// needs more than 32 bisection levels or 2¹⁶ splits (pathological speeds);
+/// [`Error::NonFinite`] when a derivative is not finite.
 ///
 /// ```
 /// use strak_curves::{arc_length, ParamCurve, ParamCurveDeriv};
@@ -225,7 +258,7 @@ fn piece_bounds<C: ParamCurve>(
 /// # Ok::<(), strak_curves::Error>(())
 /// ```
 pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, Error> {
-    check_positive(accuracy)?;
+    check_length_accuracy(curve, accuracy)?;
     let (start, end) = curve.domain();
     length_between(curve, start.to_f64(), end.to_f64(), accuracy)
 }
@@ -233,7 +266,7 @@ pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, E
 /// The arc length between the parameters `u0` and `u1` (both clamped to the domain) within
 /// `accuracy`: `s(u1) − s(u0)`, negative when `u1 < u0`.
 ///
-/// Errors as for [`arc_length`].
+/// Errors and work bound as for [`arc_length`].
 ///
 /// ```
 /// use strak_curves::{arc_length_between, ParamCurve, ParamCurveDeriv};
@@ -262,7 +295,7 @@ pub fn arc_length_between<C: ParamCurveDeriv>(
     u1: ScalarOf<C>,
     accuracy: f64,
 ) -> Result<f64, Error> {
-    check_positive(accuracy)?;
+    check_length_accuracy(curve, accuracy)?;
     let (start, end) = curve.domain();
     let x0 = u0.clamp_to(start, end).to_f64();
     let x1 = u1.clamp_to(start, end).to_f64();
@@ -280,11 +313,19 @@ pub fn arc_length_between<C: ParamCurveDeriv>(
 /// The piece containing `s` is found by summing piece lengths (with half the accuracy);
 /// inside it a safeguarded Newton method solves `s(u) = s` (`ds/du = |c'(u)|`), falling back
 /// to bisection of the bracketing interval when a Newton step leaves the bracket or the speed
-/// is zero (cusps).
+/// is zero (cusps) (Press et al., *Numerical Recipes*, 3rd ed., §9.4).
+///
+/// # Work bound
+///
+/// One arc-length integral per piece up to the piece containing `s` (each bounded as in
+/// [`arc_length`]), then at most 128 Newton or bisection steps of one integral each.
 ///
 /// # Errors
 /// [`Error::NonFinite`] when `s` is NaN or a derivative is not finite;
-/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive.
+/// [`Error::InvalidArgument`] when `accuracy` is not finite and positive;
+/// [`Error::ToleranceBelowResolution`] when it is below
+/// [`length_resolution`](crate::length_resolution); [`Error::IterationLimit`] when an
+/// integral exceeds its bound or the steps do not converge within 128.
 ///
 /// ```
 /// use strak_curves::{param_at_length, ParamCurve, ParamCurveDeriv};
@@ -313,7 +354,7 @@ pub fn param_at_length<C: ParamCurveDeriv>(
     s: f64,
     accuracy: f64,
 ) -> Result<ScalarOf<C>, Error> {
-    check_positive(accuracy)?;
+    check_length_accuracy(curve, accuracy)?;
     if s.is_nan() {
         return Err(Error::NonFinite);
     }
@@ -366,7 +407,7 @@ fn solve_in_piece<C: ParamCurveDeriv>(
     for _ in 0..MAX_NEWTON {
         let f = integrate(curve, a, u, lo, hi, half)? - r;
         if f.abs() <= half {
-            break;
+            return Ok(param(u, lo, hi));
         }
         if f < 0.0 {
             x0 = u;
@@ -374,8 +415,10 @@ fn solve_in_piece<C: ParamCurveDeriv>(
             x1 = u;
         }
         if x1 - x0 <= resolution {
-            break;
+            return Ok(param(u, lo, hi));
         }
+        // Newton inside the bracket, bisection otherwise (a safeguarded Newton method,
+        // Numerical Recipes, 3rd ed., §9.4).
         let v = speed(curve, u, lo, hi);
         let newton = u - f / v;
         u = if v > 0.0 && newton > x0 && newton < x1 {
@@ -384,13 +427,13 @@ fn solve_in_piece<C: ParamCurveDeriv>(
             0.5 * (x0 + x1)
         };
     }
-    Ok(param(u, lo, hi))
+    Err(Error::IterationLimit { limit: MAX_NEWTON })
 }
 
 /// A table of arc length against parameter for a time law: `N` samples `(u_i, s_i)` with
 /// `u(s)` and `s(u)` interpolated by C¹ piecewise cubic Hermite (never linearly: linear
-/// interpolation of `u(s)` makes the speed jump at every sample and the jerk chatter, see
-/// DESIGN.md).
+/// interpolation of `u(s)` makes the speed `ds/dt · du/ds` jump at every sample, and the
+/// acceleration and jerk of a time law built on it spike there).
 ///
 /// # Samples
 ///
@@ -413,7 +456,8 @@ fn solve_in_piece<C: ParamCurveDeriv>(
 /// two units of the scalar's resolution below the knot (an `O(ε·|c''|)` error; where `S` is
 /// finer than the curve's own scalar, as for an `f64` table of an `f32` curve, that point may
 /// round back onto the knot and the right speed is used). The tangents are
-/// limited as by Fritsch–Carlson to `m_i ≤ 3·min(Δu/Δs)` of the two adjacent intervals: this
+/// limited as by Fritsch & Carlson ("Monotone Piecewise Cubic Interpolation", *SIAM J. Numer.
+/// Anal.* 17(2), 1980) to `m_i ≤ 3·min(Δu/Δs)` of the two adjacent intervals: this
 /// keeps `u(s)` monotone and finite at zero speed (cusps), and leaves smooth curves with
 /// sampled speed ratios below 3 untouched. `s(u)` is interpolated the same way with slopes
 /// `ds/du = |c'(u_i)|`. The tangents are stored pre-multiplied by the interval width, which
@@ -614,8 +658,16 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
     /// `N − 1` pieces), the arc lengths computed within `accuracy / 2` (see the
     /// [type documentation](Self)).
     ///
+    /// # Work bound
+    ///
+    /// `2(N − 1)` arc-length integrals (each bounded as in [`arc_length`]) and `3N` speed
+    /// evaluations, after the resolution check.
+    ///
     /// # Errors
     /// - [`Error::InvalidArgument`]: `N < 2`, or `accuracy` not finite and positive.
+    /// - [`Error::ToleranceBelowResolution`]: `accuracy` is below
+    ///   [`length_resolution`](crate::length_resolution).
+    /// - [`Error::IterationLimit`]: an integral exceeds the bound of [`arc_length`].
     /// - [`Error::ZeroLengthInterval`]: two samples have the same parameter or the same arc
     ///   length in `S` (a curve standing still over a whole interval, or a domain too short
     ///   for the scalar's resolution); `index` is the interval.
@@ -651,7 +703,7 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
         if N < 2 {
             return Err(Error::InvalidArgument);
         }
-        check_positive(accuracy)?;
+        check_length_accuracy(curve, accuracy)?;
         #[allow(clippy::cast_precision_loss)]
         let last = (N - 1) as f64;
         let (u, knot) = nodes::<C, N>(curve);
@@ -875,6 +927,7 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
+    use crate::analysis::length_resolution;
     use crate::analysis::testcurves::{FnCurve, PolyCurve, arc};
     use crate::scalar::{I16F16, I32F32};
     use core::f64::consts::PI;
@@ -939,7 +992,7 @@ mod tests {
 
     #[test]
     fn cusp_with_a_kink_in_the_speed() {
-        // The seeds' (t³, t²): |c'| = |t|·√(9t² + 4) has a kink at t = 0 (not a dyadic point
+        // The cusp (t³, t²): |c'| = |t|·√(9t² + 4) has a kink at t = 0 (not a dyadic point
         // of [−1, 2]). ∫₀ᵃ t√(9t²+4) dt = ((9a²+4)^{3/2} − 8)/27.
         let c =
             PolyCurve::<f64>::single(-1.0, 2.0, &[[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]);
@@ -1034,6 +1087,34 @@ mod tests {
     }
 
     #[test]
+    fn unresolvable_speed_stops_at_the_split_budget() {
+        // (t, sin(ωt)/ω) with ω = 10⁷ on [0, 1]: the speed √(1 + cos²(ωt)) oscillates 1.6·10⁶
+        // times; no rule resolves it within 2¹⁶ splits. The error comes after at most
+        // 16 + 2·(2·2¹⁶ + 16) Gauss rules of 16 speed evaluations, counted here (no timing),
+        // plus the 3 points of the resolution check.
+        let calls = core::cell::Cell::new(0_usize);
+        let w = 1.0e7;
+        let c = FnCurve {
+            f: |t: f64, k: usize| {
+                calls.set(calls.get() + 1);
+                match k {
+                    0 => [t, libm::sin(w * t) / w],
+                    1 => [1.0, libm::cos(w * t)],
+                    _ => [0.0, -w * libm::sin(w * t)],
+                }
+            },
+            a: 0.0,
+            b: 1.0,
+        };
+        assert_eq!(
+            arc_length(&c, 1e-9),
+            Err(Error::IterationLimit { limit: MAX_SPLITS })
+        );
+        let bound = 16 * (16 + 2 * (2 * MAX_SPLITS + 16)) + 3;
+        assert!(calls.get() <= bound, "{} > {bound}", calls.get());
+    }
+
+    #[test]
     fn fixed_point_and_f32_lengths() {
         let c = PolyCurve::<I32F32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
         let l = arc_length(&c, 1e-8).unwrap();
@@ -1041,8 +1122,13 @@ mod tests {
         let u = param_at_length(&c, parabola_s(1.25), 1e-8).unwrap();
         assert!((u.to_f64() - 1.25).abs() <= 1e-8);
         let c = PolyCurve::<f32>::single(0.0, 2.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
-        // An accuracy below f32 resolution is raised to it: still converges.
-        let l = arc_length(&c, 1e-15).unwrap();
+        // An accuracy below f32's resolution at the curve's length is rejected at once; one
+        // just above it converges.
+        assert_eq!(
+            arc_length(&c, 1e-15),
+            Err(Error::ToleranceBelowResolution { scalar: "f32" })
+        );
+        let l = arc_length(&c, 2.0 * length_resolution(&c)).unwrap();
         assert!((l - parabola_s(2.0)).abs() <= 1e-5);
     }
 

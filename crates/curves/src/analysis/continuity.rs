@@ -1,48 +1,61 @@
 //! Continuity of a join between two curve segments: parametric `C^k` and geometric `G^k`
-//! (seeds/002 "Stetiges Aneinanderfügen", seeds/003 "Übergangsstellen").
+//! (Farin, *Curves and Surfaces for CAGD*, 5th ed., §7.2 "Smoothness Conditions"; Barsky &
+//! DeRose, "Geometric Continuity of Parametric Curves: Three Equivalent Characterizations",
+//! *IEEE Computer Graphics and Applications* 9(6), 1989).
 //!
-//! A join is classified by how many derivatives of the two segments agree at the joint
-//! (seeds/002: "Der Anschluss zwischen zwei Kurvensegmenten wird nach der Anzahl der
-//! übereinstimmenden Ableitungen klassifiziert"):
+//! A join is classified by how many derivatives of the two segments agree at the joint:
 //!
 //! - **`C^k`** (parametric continuity): the derivatives `c, c', …, c^(k)` *with respect to the
-//!   parameter* are equal — "in Richtung und Länge" (seeds/003).
+//!   parameter* are equal, in direction and length.
 //! - **`G^k`** (geometric continuity): the derivatives *with respect to arc length* are equal.
-//!   `G⁰`: the same point ("verbunden"). `G¹`: the same unit tangent `T = c'/|c'|`.
-//!   `G²`: in addition the same curvature vector `κN` (seeds/003: "die Krümmungsvektoren
-//!   stimmen dort überein"). `G³`: in addition the same `d(κN)/ds`.
+//!   `G⁰`: the same point. `G¹`: the same unit tangent `T = c'/|c'|`.
+//!   `G²`: in addition the same curvature vector `κN`. `G³`: in addition the same `d(κN)/ds`
+//!   (the Frenet–Serret frame: do Carmo, *Differential Geometry of Curves and Surfaces*, §1-5).
 //!
-//! The two notions differ (seeds/002): the curve `(t³, t²)` is `C^∞` at `t = 0` but not even
+//! The two notions differ: the curve `(t³, t²)` is `C^∞` at `t = 0` but not even
 //! `G¹` — its tangent vanishes and its direction flips (a cusp); a circle continued with a
 //! faster parameterization is `G¹` (indeed `G³`) but only `C⁰`. When the tangent is not zero,
 //! `C^k` implies `G^k`.
 //!
-//! The formulas and the tolerance rule are documented at [`classify_derivatives`].
+//! The formulas and the tolerance rule are documented at [`classify_derivatives`]. The work
+//! is constant per join (four derivatives on each side); [`classify_breaks`] visits the
+//! `piece_count − 1` inner joins once.
 
 use crate::curve::{ParamCurveDeriv, PieceDeriv, ScalarOf};
 use crate::error::Error;
 use crate::point::Point;
 
-use super::{c64, check_positive, greater, norm64};
+use super::{c64, check_resolvable, greater, norm64};
+use crate::scalar::Scalar;
 
 /// The highest derivative order compared by the classification.
 const MAX_ORDER: u8 = 3;
 
+/// A comparison tolerance for values of `S`: finite, positive and not below the finest
+/// relative spacing of `S` (`ε_S` for floats, `ε_S / LIMIT` for fixed-point, whose values
+/// are equally spaced up to [`Scalar::LIMIT`]; never below `f64`'s `ε`).
+fn check_tolerance<S: Scalar>(tolerance: f64) -> Result<(), Error> {
+    let floor = if S::IS_FIXED {
+        (S::EPSILON / S::LIMIT).max(f64::EPSILON)
+    } else {
+        S::EPSILON
+    };
+    check_resolvable::<S>(tolerance, floor)
+}
+
 /// How smoothly two curve segments join: the highest parametric (`C^k`) and geometric
-/// (`G^k`) order that holds, up to order 3 (seeds/002, seeds/003).
+/// (`G^k`) order that holds, up to order 3 (Farin, *Curves and Surfaces for CAGD*, 5th ed.,
+/// §7.2; Barsky & DeRose, *IEEE CG&A* 9(6), 1989).
 ///
-/// A join is classified by how many derivatives of the two segments agree at the joint
-/// (seeds/002: "Der Anschluss zwischen zwei Kurvensegmenten wird nach der Anzahl der
-/// übereinstimmenden Ableitungen klassifiziert"):
+/// A join is classified by how many derivatives of the two segments agree at the joint:
 ///
 /// - **`C^k`** (parametric continuity): the derivatives `c, c', …, c^(k)` *with respect to the
-///   parameter* are equal — "in Richtung und Länge" (seeds/003).
+///   parameter* are equal, in direction and length.
 /// - **`G^k`** (geometric continuity): the derivatives *with respect to arc length* are equal.
-///   `G⁰`: the same point ("verbunden"). `G¹`: the same unit tangent `T = c'/|c'|`.
-///   `G²`: in addition the same curvature vector `κN` (seeds/003: "die Krümmungsvektoren
-///   stimmen dort überein"). `G³`: in addition the same `d(κN)/ds`.
+///   `G⁰`: the same point. `G¹`: the same unit tangent `T = c'/|c'|`.
+///   `G²`: in addition the same curvature vector `κN`. `G³`: in addition the same `d(κN)/ds`.
 ///
-/// The two notions differ (seeds/002): the curve `(t³, t²)` is `C^∞` at `t = 0` but not even
+/// The two notions differ: the curve `(t³, t²)` is `C^∞` at `t = 0` but not even
 /// `G¹` — its tangent vanishes and its direction flips (a cusp); a circle continued with a
 /// faster parameterization is `G¹` (indeed `G³`) but only `C⁰`. When the tangent is not zero,
 /// `C^k` implies `G^k`.
@@ -55,7 +68,7 @@ const MAX_ORDER: u8 = 3;
 /// ```
 /// use strak_curves::Continuity;
 ///
-/// // The seeds' cusp (t³, t²) at t = 0: C^∞ (reported as C³) but only G⁰.
+/// // The cusp (t³, t²) at t = 0: C^∞ (reported as C³) but only G⁰.
 /// let cusp = Continuity { parametric: Some(3), geometric: Some(0) };
 /// assert!(cusp.is_c(3) && cusp.is_g(0) && !cusp.is_g(1));
 /// assert!(!Continuity::DISCONNECTED.is_g(0));
@@ -227,7 +240,7 @@ pub fn classify_derivatives<P: Point>(
     right: &[P; 4],
     tolerance: f64,
 ) -> Result<Continuity, Error> {
-    check_positive(tolerance)?;
+    check_tolerance::<P::Scalar>(tolerance)?;
     let dim = P::DIM;
     let same = |k: usize| close(dim, |i| c64(&left[k], i), |i| c64(&right[k], i), tolerance);
     if !same(0) {
@@ -275,7 +288,7 @@ fn jet<C: ParamCurveDeriv>(curve: &C, u: ScalarOf<C>) -> [C::Point; 4] {
 }
 
 /// Classifies the join of segment `a` (at the end of its domain) to segment `b` (at the
-/// start of its domain) as `C^k` / `G^k` for `k ≤ 3` (seeds/002, seeds/003).
+/// start of its domain) as `C^k` / `G^k` for `k ≤ 3` (see [`Continuity`]).
 ///
 /// The two curves may be of different types; each is differentiated with respect to its own
 /// parameter. The derivatives of `a` are taken at its domain end (its last piece), those of
@@ -286,7 +299,7 @@ fn jet<C: ParamCurveDeriv>(curve: &C, u: ScalarOf<C>) -> [C::Point; 4] {
 /// ```
 /// use strak_curves::{classify_join, ParamCurve, ParamCurveDeriv};
 ///
-/// /// The seeds' cusp curve c(t) = (t³, t²) on [a, b].
+/// /// The cusp curve c(t) = (t³, t²) on [a, b].
 /// struct Cusp(f64, f64);
 /// impl ParamCurve for Cusp {
 ///     type Point = [f64; 2];
@@ -316,7 +329,7 @@ where
     A: ParamCurveDeriv,
     B: ParamCurveDeriv<Point = A::Point>,
 {
-    check_positive(tolerance)?;
+    check_tolerance::<ScalarOf<A>>(tolerance)?;
     let left = jet(a, a.domain().1);
     let right = jet(b, b.domain().0);
     classify_derivatives(&left, &right, tolerance)
@@ -367,7 +380,7 @@ where
 /// # Ok::<(), strak_curves::Error>(())
 /// ```
 pub fn classify_breaks<C: PieceDeriv>(curve: &C, tolerance: f64) -> Result<Continuity, Error> {
-    check_positive(tolerance)?;
+    check_tolerance::<ScalarOf<C>>(tolerance)?;
     let mut worst = Continuity::SMOOTH;
     for i in 1..curve.piece_count() {
         let (_, end) = curve.piece_domain(i - 1);
@@ -390,12 +403,12 @@ mod tests {
         (c.parametric, c.geometric)
     }
 
-    /// The seeds' curve c2(t) = (t³, t²) split at t = 0.
+    /// The cusp curve c2(t) = (t³, t²) split at t = 0.
     fn cusp(a: f64, b: f64) -> PolyCurve<f64> {
         PolyCurve::single(a, b, &[[0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [1.0, 0.0]])
     }
 
-    /// The seeds' curve c1(t) = (2 cos t − 2, −2 sin t), optionally reparameterized
+    /// The circle c1(t) = (2 cos t − 2, −2 sin t), optionally reparameterized
     /// t = speed · τ.
     fn c1(speed: f64, a: f64, b: f64) -> FnCurve<impl Fn(f64, usize) -> [f64; 2], 2> {
         FnCurve {
@@ -412,14 +425,14 @@ mod tests {
     }
 
     #[test]
-    fn seed_cusp_is_c_infinity_but_not_g1() {
+    fn cusp_is_c_infinity_but_not_g1() {
         let c = classify_join(&cusp(-1.0, 0.0), &cusp(0.0, 1.0), 1e-12).unwrap();
         assert_eq!(cg(c), (Some(3), Some(0)));
         assert!(c.is_c(3) && c.is_g(0) && !c.is_g(1));
     }
 
     #[test]
-    fn seed_circle_reparameterized_is_g1_but_only_c0() {
+    fn circle_reparameterized_is_g1_but_only_c0() {
         // c1 on [-π/2, 0], continued by c1(2τ) on [0, π/4]: same point (0, 0), tangent
         // (0, −2) vs (0, −4), the same circle — G³ (hence G¹) but only C⁰.
         let a = c1(1.0, -FRAC_PI_2, 0.0);
@@ -714,6 +727,27 @@ mod tests {
             assert_eq!(classify_join(&a, &a, tol), Err(Error::InvalidArgument));
             assert_eq!(classify_breaks(&a, tol), Err(Error::InvalidArgument));
         }
+    }
+
+    #[test]
+    fn tolerance_below_the_scalar_spacing_is_an_error() {
+        use crate::scalar::I16F16;
+        let jet = [[0.0, 0.0], [1.0, 0.0], [0.0, 0.0], [0.0, 0.0]];
+        let below = Err(Error::ToleranceBelowResolution { scalar: "f64" });
+        assert_eq!(classify_derivatives(&jet, &jet, 1e-17), below);
+        assert!(classify_derivatives(&jet, &jet, 4e-16).unwrap().is_c(3));
+        let jet32 = jet.map(|p| p.map(|x| x as f32));
+        let below = Err(Error::ToleranceBelowResolution { scalar: "f32" });
+        assert_eq!(classify_derivatives(&jet32, &jet32, 1e-8), below);
+        assert!(classify_derivatives(&jet32, &jet32, 2e-7).unwrap().is_c(3));
+        // I16F16 values are 2⁻¹⁶ apart up to 16 383: relative spacing down to 9.3·10⁻¹⁰.
+        let fixed = jet.map(|p| p.map(I16F16::from_num));
+        let below = Err(Error::ToleranceBelowResolution { scalar: "I16F16" });
+        assert_eq!(classify_derivatives(&fixed, &fixed, 1e-10), below);
+        assert!(classify_derivatives(&fixed, &fixed, 1e-9).unwrap().is_c(3));
+        let a = cusp(-1.0, 0.0);
+        assert!(classify_join(&a, &a, 1e-17).is_err());
+        assert!(classify_breaks(&a, 1e-17).is_err());
     }
 
     #[test]

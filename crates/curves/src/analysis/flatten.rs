@@ -1,24 +1,26 @@
-//! Flattening: a polyline that approximates a curve within a distance tolerance
-//! (seeds/004 "Approximation": determine the number of points, distribute them along the
-//! curve sections, draw line segments).
+//! Flattening: a polyline that approximates a curve within a distance tolerance.
 //!
-//! The method and its guarantee are documented at [`flatten`].
+//! The method, its guarantee and its work bound are documented at [`flatten`].
 
 use crate::curve::{ParamCurveDeriv, ScalarOf};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-use super::{c64, check_positive, greater, norm64, param};
+use super::{c64, check_resolvable, greater, norm64, param, resolution, spacing};
 
 /// The highest derivative used in the bound on `|c''|` (exact for degree ≤ 8).
 const MAX_ORDER: usize = 8;
 
 /// The largest number of segments per piece; more means the tolerance is unreachable.
-const MAX_SEGMENTS: usize = 1 << 24;
+const MAX_SEGMENTS: usize = 1 << 20;
 
-/// Flattens `curve` into a polyline whose distance to the curve is at most `tolerance`
-/// (seeds/004 "Approximation"), written to `out`; returns the number of vertices.
+/// Bisection for the segment count stops when the bracket is below `1/2^BISECT_SHIFT` of
+/// its upper end (exact below `2^(BISECT_SHIFT + 1)` segments).
+const BISECT_SHIFT: u32 = 6;
+
+/// Flattens `curve` into a polyline whose distance to the curve is at most `tolerance`,
+/// written to `out`; returns the number of vertices.
 ///
 /// The first vertex is `curve.eval(u_start)`, the last `curve.eval(u_end)`, and every piece
 /// boundary is a vertex.
@@ -27,7 +29,10 @@ const MAX_SEGMENTS: usize = 1 << 24;
 ///
 /// Every piece of the curve is flattened on its own; piece boundaries are always vertices.
 /// A piece `[a, b]` is cut into `n` segments uniform in the parameter. On a segment
-/// `[s, s + h]` the deviation of the curve from its chord is the linear-interpolation error
+/// `[s, s + h]` the deviation of the curve from its chord is the error of linear
+/// interpolation (de Boor, *A Practical Guide to Splines*, ch. III "Broken line
+/// interpolation"; Burden & Faires, *Numerical Analysis*, §3.1, the interpolation error
+/// theorem with `n = 1`)
 ///
 /// ```text
 /// c(u) − chord(u) = −(u − s)(s + h − u)/2 · (weighted mean of c'' over the segment)
@@ -54,21 +59,34 @@ const MAX_SEGMENTS: usize = 1 << 24;
 /// then the result is an estimate, accurate when segments are short compared with the
 /// distance to the nearest (complex) pole of the piece.
 ///
-/// `n` is the smallest number of uniform segments for which this certificate holds (found by
-/// growing `n` from an estimate and then bisecting), so the vertex count is close to the
-/// minimum of uniform sampling (the tests find it within 10% of the smallest uniform count
-/// that meets the tolerance).
+/// `n` is found by growing a count from an estimate (by at least a quarter per step) until
+/// the certificate holds, then bisecting towards the smallest passing count, to within 1/64
+/// of it (exactly below 128 segments); the tests find the vertex count within 10% of the
+/// smallest uniform count that meets the tolerance.
 ///
 /// Parameters are computed in `f64` and rounded to the curve's scalar; with fixed-point
 /// scalars the vertices lie at the rounded parameters, and the certificate is computed for the
 /// segments between those rounded parameters.
 ///
+/// # Work bound
+///
+/// The tolerance is checked against [`resolution`](crate::resolution) before anything else
+/// (`2·piece_count + 2` evaluations). Per piece, growing and bisecting take at most
+/// `12·n` chord certificates (each 7 derivatives and one point), `n` the larger of the first
+/// estimate and the count found, and `n` never exceeds 2²⁰ nor the number of parameter values
+/// the scalar has in the piece: a piece that would need more is an error, found within that
+/// work whatever the curve.
+///
 /// # Errors
 /// - [`Error::InvalidArgument`]: `tolerance` is not finite and positive.
+/// - [`Error::ToleranceBelowResolution`]: `tolerance` is below
+///   [`resolution`](crate::resolution) (the spacing of the point type's values at the
+///   curve's size), or a piece would need segments shorter than the spacing of its
+///   parameter values.
 /// - [`Error::CapacityExceeded`]: `out` is too short; `required` is the number of vertices
 ///   needed (then `out` holds the first `out.len()` of them). Also when one piece would need
-///   more than 2²⁴ segments (a tolerance far below the curve's size); then `capacity` is
-///   2²⁴ and `required` a lower estimate.
+///   more than 2²⁰ segments (a tolerance far below the curve's size); then `capacity` is
+///   2²⁰ and `required` a lower estimate.
 /// - [`Error::NonFinite`]: a derivative of the curve is not finite.
 ///
 /// ```
@@ -114,7 +132,8 @@ pub fn flatten<C: ParamCurveDeriv>(
 /// The number of vertices [`flatten`] produces for `curve` and `tolerance`, without storing
 /// them (to size the output storage).
 ///
-/// Errors as for [`flatten`], except that there is no capacity limit.
+/// Errors and work bound as for [`flatten`], except that there is no capacity limit on the
+/// output.
 ///
 /// ```
 /// use strak_curves::{flatten_count, ParamCurve, ParamCurveDeriv};
@@ -144,7 +163,7 @@ fn run<C: ParamCurveDeriv>(
     tolerance: f64,
     mut out: Option<&mut [C::Point]>,
 ) -> Result<usize, Error> {
-    check_positive(tolerance)?;
+    check_resolvable::<ScalarOf<C>>(tolerance, resolution(curve))?;
     let (start, end) = curve.domain();
     let mut count = 0;
     let mut put = |count: &mut usize, u: ScalarOf<C>| {
@@ -186,8 +205,31 @@ fn node<S: Scalar>(a: S, b: S, j: usize, n: usize) -> S {
     }
 }
 
-/// The smallest number of uniform segments on the piece `[a, b]` that passes the chord-error
-/// certificate.
+/// The largest segment count worth trying on `[a, b]`: [`MAX_SEGMENTS`], or fewer when the
+/// scalar has fewer distinct parameter values in the piece; and the error for a piece that
+/// needs more.
+fn segment_cap<S: Scalar>(a: S, b: S, needed: impl Fn() -> usize) -> (usize, Error) {
+    let (af, bf) = (a.to_f64(), b.to_f64());
+    let steps = (bf - af) / spacing::<S>(af.abs().max(bf.abs()));
+    #[allow(clippy::cast_precision_loss)]
+    let limited = steps < MAX_SEGMENTS as f64;
+    if limited {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let cap = (steps as usize).max(1);
+        (cap, Error::ToleranceBelowResolution { scalar: S::NAME })
+    } else {
+        let required = needed();
+        let e = Error::CapacityExceeded {
+            capacity: MAX_SEGMENTS,
+            required,
+        };
+        (MAX_SEGMENTS, e)
+    }
+}
+
+/// A number of uniform segments on the piece `[a, b]` that passes the chord-error
+/// certificate, within `1/2^BISECT_SHIFT` of the smallest, within the work bound of
+/// [`flatten`].
 fn segments<C: ParamCurveDeriv>(
     curve: &C,
     a: ScalarOf<C>,
@@ -198,31 +240,35 @@ fn segments<C: ParamCurveDeriv>(
     // First guess from the linear part of c'' over the whole piece (the exact maximum of
     // |c''| for cubic pieces).
     let m0 = linear_part_bound(curve, a, len);
-    let mut n = segment_count_for(len, m0, tolerance)?;
-    // Grow until the certificate holds; `lo` is the largest count known to fail.
+    let estimate = segment_count_for(len, m0, tolerance)?;
+    let (cap, too_many) = segment_cap(a, b, || estimate.max(MAX_SEGMENTS + 1));
+    let mut n = estimate.min(cap);
+    // Grow until the certificate holds; `lo` is the largest count known to fail. Each step
+    // grows by at least a quarter, so these passes add up to at most 5 times the last count.
     let mut lo = 0;
     let hi = loop {
-        let e = worst_chord_error(curve, a, b, n)?;
+        // At the cap only pass or fail matters: stop at the first failing segment.
+        let stop = (n >= cap).then_some(tolerance);
+        let e = worst_chord_error(curve, a, b, n, stop)?;
         if e <= tolerance {
             break n;
         }
-        lo = n;
-        let grow = libm::ceil(n as f64 * libm::sqrt(e / tolerance).min(4.0));
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let next = (grow.min(MAX_SEGMENTS as f64 + 1.0) as usize).max(n + 1);
-        if next > MAX_SEGMENTS {
-            return Err(Error::CapacityExceeded {
-                capacity: MAX_SEGMENTS,
-                required: next,
-            });
+        if n >= cap {
+            return Err(too_many);
         }
-        n = next;
+        lo = n;
+        #[allow(clippy::cast_precision_loss)]
+        let grow = libm::ceil(n as f64 * libm::sqrt(e / tolerance).clamp(1.25, 4.0));
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let next = grow.min(usize::MAX as f64) as usize;
+        n = next.clamp(n + 1, cap);
     };
-    // Bisect for the smallest passing count in (lo, hi].
+    // Bisect in (lo, hi] down to a bracket of hi/2^BISECT_SHIFT: at most BISECT_SHIFT + 1
+    // passes, failing passes stop at their first failing segment.
     let (mut lo, mut hi) = (lo, hi);
-    while hi - lo > 1 {
+    while hi - lo > (hi >> BISECT_SHIFT).max(1) {
         let mid = lo + (hi - lo) / 2;
-        if worst_chord_error(curve, a, b, mid)? <= tolerance {
+        if worst_chord_error(curve, a, b, mid, Some(tolerance))? <= tolerance {
             hi = mid;
         } else {
             lo = mid;
@@ -231,21 +277,19 @@ fn segments<C: ParamCurveDeriv>(
     Ok(hi)
 }
 
-/// `n = ⌈len · √(m / (8 tol))⌉`, at least 1: uniform segments with `h²/8 · m ≤ tol`.
+/// `n = ⌈len · √(m / (8 tol))⌉`, at least 1: uniform segments with `h²/8 · m ≤ tol`
+/// (saturating).
 fn segment_count_for(len: f64, m: f64, tolerance: f64) -> Result<usize, Error> {
     let n = libm::ceil(len * libm::sqrt(m / (8.0 * tolerance)));
     if !n.is_finite() {
         return Err(Error::NonFinite);
     }
-    if n > MAX_SEGMENTS as f64 {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        return Err(Error::CapacityExceeded {
-            capacity: MAX_SEGMENTS,
-            required: n.min(usize::MAX as f64) as usize,
-        });
-    }
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    Ok((n as usize).max(1))
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        clippy::cast_precision_loss
+    )]
+    Ok((n.min(usize::MAX as f64) as usize).max(1))
 }
 
 /// `max(|c''(u)|, |c''(u) + c'''(u)·h|)`: the maximum of the linear part of `c''` on
@@ -328,12 +372,14 @@ fn chord_error<C: ParamCurveDeriv>(
     h * h / 8.0 * max_c2
 }
 
-/// The largest certified chord error over the `n` uniform segments of `[a, b]`.
+/// The largest certified chord error over the `n` uniform segments of `[a, b]`; with
+/// `stop = Some(t)` the first error above `t` is returned as soon as it is found.
 fn worst_chord_error<C: ParamCurveDeriv>(
     curve: &C,
     a: ScalarOf<C>,
     b: ScalarOf<C>,
     n: usize,
+    stop: Option<f64>,
 ) -> Result<f64, Error> {
     let mut worst = 0.0_f64;
     let mut u0 = a;
@@ -348,6 +394,9 @@ fn worst_chord_error<C: ParamCurveDeriv>(
                 return Err(Error::NonFinite);
             }
             worst = worst.max(e);
+            if stop.is_some_and(|t| e > t) {
+                return Ok(worst);
+            }
         }
         u0 = u1;
         p0 = p1;
@@ -362,9 +411,10 @@ mod tests {
     use std::vec::Vec;
 
     use super::*;
+    use crate::analysis::resolution;
     use crate::analysis::testcurves::{FnCurve, PolyCurve, arc};
     use crate::curve::ParamCurve;
-    use crate::scalar::I32F32;
+    use crate::scalar::{I16F16, I32F32};
 
     fn to64<P: Point>(p: &P) -> [f64; 2] {
         [c64(p, 0), c64(p, 1)]
@@ -464,7 +514,7 @@ mod tests {
             let ar = arc(2.0, 0.0, 3.0);
             let p = flatten_vec(&ar, tol);
             assert!(max_deviation(&ar, &p) <= tol, "arc {tol}");
-            // The seeds' cusp (t³, t²) and the circle c1(t) = (2cos t − 2, −2 sin t).
+            // The cusp (t³, t²).
             let cusp = PolyCurve::<f64>::single(
                 -1.0,
                 1.0,
@@ -578,12 +628,45 @@ mod tests {
     }
 
     #[test]
-    fn unreachable_tolerance_is_a_capacity_error() {
-        // 1e-300 would need ~1e150 segments.
-        assert!(matches!(
+    fn unreachable_tolerance_is_an_error() {
+        // 1e-300 is below f64's resolution at the parabola's size (extent 1): rejected at once.
+        assert_eq!(
             flatten_count(&parabola(), 1e-300),
-            Err(Error::CapacityExceeded { .. })
+            Err(Error::ToleranceBelowResolution { scalar: "f64" })
+        );
+        // 1e-14 is resolvable but needs about 1/√tol = 10⁷ segments: more than 2^20.
+        assert!(matches!(
+            flatten_count(&parabola(), 1e-14),
+            Err(Error::CapacityExceeded {
+                capacity: MAX_SEGMENTS,
+                ..
+            })
         ));
+        // In I16F16 the resolution is the spacing 2⁻¹⁶ of its values.
+        let q = PolyCurve::<I16F16>::single(-1.0, 1.0, &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        assert_eq!(resolution(&q), 1.0 / 65536.0);
+        assert_eq!(
+            flatten_count(&q, 1e-8),
+            Err(Error::ToleranceBelowResolution { scalar: "I16F16" })
+        );
+        let n = flatten_count(&q, 1.5 / 65536.0).unwrap();
+        assert!(n > 100, "{n}");
+    }
+
+    #[test]
+    fn segments_below_the_parameter_spacing_are_an_error() {
+        // (t, t²), t = u − 1000 on u ∈ [1000, 1000.01] in f32: the parameter spacing there is
+        // 2⁻¹⁴ ≈ 6.1·10⁻⁵, so the piece has only 163 parameter steps. Tolerance 1e-8 needs
+        // h ≤ 2·10⁻⁴ (50 segments); 2e-9 needs h ≤ 8.9·10⁻⁵, which the rounded parameters
+        // cannot keep uniform: an error, although 2e-9 is above the resolution of the points.
+        let q = PolyCurve::<f32>::new(&[1000.0, 1000.01], &[&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]);
+        assert!(resolution(&q) < 2e-9);
+        let n = flatten_count(&q, 1e-8).unwrap();
+        assert!((40..=70).contains(&n), "{n}");
+        assert_eq!(
+            flatten_count(&q, 2e-9),
+            Err(Error::ToleranceBelowResolution { scalar: "f32" })
+        );
     }
 
     #[test]

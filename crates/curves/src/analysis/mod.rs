@@ -2,14 +2,37 @@
 //! [`ParamCurveDeriv`](crate::ParamCurveDeriv), so that it works for every curve type of the
 //! crate (Bézier, B-spline, NURBS, Hermite, cubic splines, …):
 //!
-//! - continuity of joins, parametric `C^k` and geometric `G^k` (seeds/002 "Stetiges
-//!   Aneinanderfügen", seeds/003 "Übergangsstellen"),
-//! - flattening into a polyline within a distance tolerance (seeds/004 "Approximation"),
+//! - continuity of joins, parametric `C^k` and geometric `G^k` (Farin, *Curves and Surfaces
+//!   for CAGD*, 5th ed., §7.2 "Smoothness Conditions"; Barsky & DeRose, "Geometric Continuity
+//!   of Parametric Curves", IEEE CG&A 9(6), 1989),
+//! - flattening into a polyline within a distance tolerance (the error of linear
+//!   interpolation, de Boor, *A Practical Guide to Splines*, ch. III "Piecewise Linear
+//!   Approximation"),
 //! - arc length, its inverse `u(s)`, and an arc-length table with C¹ cubic Hermite
 //!   interpolation for time laws.
 //!
 //! The analysis computes in `f64` internally (curve values are converted with
 //! [`Scalar::to_f64`]) and returns curve parameters and points in the curve's own types.
+//!
+//! # Resolution and iteration bounds
+//!
+//! Every routine validates its tolerance before it iterates: a tolerance that is not finite
+//! and positive is [`Error::InvalidArgument`], one finer than the curve's number type
+//! resolves at the curve's size is [`Error::ToleranceBelowResolution`] ([`resolution`] for
+//! distances, [`length_resolution`] for lengths). Every loop has a bound that does not depend
+//! on the data beyond the stated quantities:
+//!
+//! | routine | work |
+//! |---------|------|
+//! | [`classify_derivatives`] | constant: four derivatives per side, three vector comparisons |
+//! | [`classify_join`], [`classify_breaks`] | 8 derivative evaluations per join; `piece_count − 1` joins |
+//! | [`flatten`], [`flatten_count`] | per piece at most `12·n` chord certificates of 8 evaluations each, `n ≤ 2²⁰` (else [`Error::CapacityExceeded`]) the larger of the first estimate and the segment count found |
+//! | [`arc_length`], [`arc_length_between`] | per piece 16 parts, bisection depth ≤ 32 and at most 2¹⁶ interval splits, so at most `16·(16 + 2·(2·2¹⁶ + 16))` speed evaluations (else [`Error::IterationLimit`]) |
+//! | [`param_at_length`] | the piece lengths, then at most 128 Newton or bisection steps, each one arc-length integral |
+//! | [`ArcLengthTable::new`] | `2(N − 1)` arc-length integrals and `3N` speed evaluations |
+//!
+//! Before any of this, [`resolution`] and [`length_resolution`] evaluate the curve at every
+//! piece boundary and piece midpoint (`2·piece_count + 2` evaluations).
 
 mod arclength;
 mod continuity;
@@ -19,6 +42,7 @@ pub use arclength::*;
 pub use continuity::*;
 pub use flatten::*;
 
+use crate::curve::{ParamCurve, ScalarOf};
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
@@ -66,6 +90,105 @@ fn check_positive(tolerance: f64) -> Result<(), Error> {
         Ok(())
     } else {
         Err(Error::InvalidArgument)
+    }
+}
+
+/// The spacing of values of magnitude `x` in `S`, and never finer than `f64`'s spacing
+/// there (the analysis computes in `f64`): `ε_S` for fixed-point (its values are equally
+/// spaced), `ε_S·|x|` for floats.
+#[inline]
+fn spacing<S: Scalar>(x: f64) -> f64 {
+    let x = x.abs();
+    let own = if S::IS_FIXED {
+        S::EPSILON
+    } else {
+        S::EPSILON * x
+    };
+    own.max(f64::EPSILON * x)
+}
+
+/// The largest coordinate magnitude and the length of the polyline through the curve's
+/// points at every piece boundary and piece midpoint (in parameter order). Both are lower
+/// bounds: of the curve's extent and of its arc length.
+fn size<C: ParamCurve>(curve: &C) -> (f64, f64) {
+    let (start, end) = curve.domain();
+    let first = curve.eval(start);
+    let (mut extent, mut length, mut prev) = (first.max_abs(), 0.0_f64, first);
+    let mut visit = |u: ScalarOf<C>| {
+        let p = curve.eval(u);
+        extent = extent.max(p.max_abs());
+        length += norm64(&p.minus(prev));
+        prev = p;
+    };
+    for i in 0..curve.piece_count() {
+        let (a, b) = curve.piece_domain(i);
+        let (a, b) = (a.max_of(start), b.min_of(end));
+        visit(param(
+            0.5 * (a.to_f64() + b.to_f64()),
+            a.min_of(b),
+            b.max_of(a),
+        ));
+        visit(b);
+    }
+    visit(end);
+    (extent, length)
+}
+
+/// The finest distance the curve's number type resolves on this curve: the spacing of its
+/// coordinates at the curve's largest coordinate magnitude, `ε_S` for fixed-point and
+/// `ε_S·max|x|` for floats (never below `f64`'s spacing there). The magnitude is taken over
+/// the points at every piece boundary and piece midpoint.
+///
+/// [`flatten`] and [`flatten_count`] reject a tolerance below it with
+/// [`Error::ToleranceBelowResolution`]: the vertices themselves are rounded to the point
+/// type, so no polyline can be certified closer than that.
+///
+/// ```
+/// use strak_curves::{resolution, BezierChain, I16F16};
+/// let p = |x: f64, y: f64| [I16F16::from_num(x), I16F16::from_num(y)];
+/// let c = BezierChain::<_, 3, 4>::new(&[p(0.0, 0.0), p(1.0, 2.0), p(2.0, 0.0)])?;
+/// assert_eq!(resolution(&c), 1.0 / 65536.0); // I16F16: equally spaced values
+/// let f = BezierChain::<_, 3, 4>::new(&[[0.0_f32, 0.0], [1.0, 2.0], [4.0, 0.0]])?;
+/// assert_eq!(resolution(&f), 4.0 * f64::from(f32::EPSILON)); // ε·max|x|
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+pub fn resolution<C: ParamCurve>(curve: &C) -> f64 {
+    spacing::<ScalarOf<C>>(size(curve).0)
+}
+
+/// The finest arc-length accuracy the curve's number type resolves: the spacing of a value
+/// of the curve's length in it, `ε_S` for fixed-point and `ε_S·L` for floats (never below
+/// `f64`'s spacing), with `L` the length of the polyline through the points at every piece
+/// boundary and piece midpoint (a lower bound of the arc length).
+///
+/// [`arc_length`], [`arc_length_between`], [`param_at_length`] and [`ArcLengthTable::new`]
+/// reject an accuracy below it with [`Error::ToleranceBelowResolution`].
+///
+/// ```
+/// use strak_curves::{length_resolution, Bezier};
+/// let line = Bezier::new([[0.0_f32, 0.0], [3.0, 4.0]])?;
+/// assert_eq!(length_resolution(&line), 5.0 * f64::from(f32::EPSILON));
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+pub fn length_resolution<C: ParamCurve>(curve: &C) -> f64 {
+    spacing::<ScalarOf<C>>(size(curve).1)
+}
+
+/// An arc-length `accuracy` for `curve`: finite, positive and at least
+/// [`length_resolution`].
+fn check_length_accuracy<C: ParamCurve>(curve: &C, accuracy: f64) -> Result<(), Error> {
+    check_positive(accuracy)?;
+    check_resolvable::<ScalarOf<C>>(accuracy, length_resolution(curve))
+}
+
+/// `tolerance` finite, positive and at least `floor`; the error names the scalar `S`.
+#[inline]
+fn check_resolvable<S: Scalar>(tolerance: f64, floor: f64) -> Result<(), Error> {
+    check_positive(tolerance)?;
+    if tolerance < floor {
+        Err(Error::ToleranceBelowResolution { scalar: S::NAME })
+    } else {
+        Ok(())
     }
 }
 

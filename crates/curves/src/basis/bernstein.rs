@@ -1,11 +1,12 @@
-//! The Bernstein basis `B_i^g(t) = C(g, i) (1 − t)^{g−i} tⁱ` (seeds/000 "Bernsteinbasis",
-//! seeds/004 "Bernstein-Polynome") and the binomial coefficients of Pascal's triangle.
+//! The Bernstein basis `B_i^g(t) = C(g, i) (1 − t)^{g−i} tⁱ` (Farin, *Curves and Surfaces
+//! for CAGD*, 5th ed., §4.1 "Bernstein Polynomials"; Piegl & Tiller, *The NURBS Book*, 2nd
+//! ed., §1.3) and the binomial coefficients of Pascal's triangle.
 //!
 //! Values are computed with the triangle `B_i^r = (1 − t) B_i^{r−1} + t B_{i−1}^{r−1}` (the
 //! de Casteljau scheme applied to the unit vectors): only convex combinations of numbers in
 //! `[0, 1]`, so no binomial coefficient is ever formed in the scalar type and fixed-point
-//! evaluation cannot overflow (seeds/000: "Für hohe Grade erfordert die Auswertung der
-//! Bernsteinbasis hohe numerische Genauigkeit").
+//! evaluation cannot overflow (the closed form multiplies large binomials by small powers,
+//! which needs high precision for high degrees).
 
 use super::int_scalar;
 use crate::scalar::Scalar;
@@ -35,7 +36,7 @@ pub fn binomial(n: usize, k: usize) -> Option<u64> {
 }
 
 /// Row `g = N − 1` of Pascal's triangle, `[C(g, 0), …, C(g, g)]`, built with the additive rule
-/// `C(n, i) = C(n − 1, i − 1) + C(n − 1, i)` (seeds/000 "Pascal'sches Dreieck");
+/// `C(n, i) = C(n − 1, i − 1) + C(n − 1, i)` (Pascal's triangle);
 /// `None` on `u64` overflow.
 ///
 /// ```
@@ -89,10 +90,10 @@ fn bernstein_row<S: Scalar>(t: S, level: usize, b: &mut [S]) {
 }
 
 /// All `N` Bernstein basis functions of degree `g = N − 1` at `t`:
-/// `[B_0^g(t), …, B_g^g(t)]` (seeds/000 `B⃗^g(t)`). `t` is clamped to `[0, 1]`.
+/// `[B_0^g(t), …, B_g^g(t)]`. `t` is clamped to `[0, 1]`.
 ///
-/// The values are non-negative and sum to one (partition of unity, seeds/000 "affin
-/// invariant").
+/// The values are non-negative and sum to one (partition of unity, which makes Bézier
+/// curves affinely invariant; Farin §4.2).
 ///
 /// ```
 /// use strak_curves::basis::bernstein_all;
@@ -119,7 +120,7 @@ pub fn bernstein<S: Scalar, const N: usize>(i: usize, t: S) -> S {
 }
 
 /// The derivatives `d/dt B_i^g(t)` of all `N` Bernstein functions of degree `g = N − 1`, by
-/// the formula of seeds/004 `dB_{i,n}/dt = n (B_{i−1,n−1}(t) − B_{i,n−1}(t))` (with
+/// `dB_{i,n}/dt = n (B_{i−1,n−1}(t) − B_{i,n−1}(t))` (Farin §4.3; with
 /// `B_{−1,n−1} = B_{n,n−1} = 0`). Zero for `N ≤ 1`. `t` is clamped to `[0, 1]`.
 ///
 /// Values are bounded by `g` in magnitude (fits every scalar type for `g ≤ 16 383`).
@@ -148,7 +149,7 @@ pub fn bernstein_deriv_all<S: Scalar, const N: usize>(t: S) -> [S; N] {
     out
 }
 
-/// The closed form `B_i^g(t) = C(g, i) (1 − t)^{g−i} tⁱ` in `f64` (seeds/000), for checks and
+/// The closed form `B_i^g(t) = C(g, i) (1 − t)^{g−i} tⁱ` in `f64`, for checks and
 /// host-side tools; zero for `i > g`. `t` is clamped to `[0, 1]`.
 ///
 /// ```
@@ -177,7 +178,7 @@ mod tests {
     use crate::{I16F16, I32F32};
 
     #[test]
-    fn pascal_triangle_of_the_seed() {
+    fn pascal_triangle_rows() {
         assert_eq!(pascal_row::<1>(), Some([1]));
         assert_eq!(pascal_row::<2>(), Some([1, 1]));
         assert_eq!(pascal_row::<3>(), Some([1, 2, 1]));
@@ -207,7 +208,7 @@ mod tests {
     }
 
     #[test]
-    fn cubic_values_of_the_seed() {
+    fn cubic_values() {
         // B⃗³(t) = ((1−t)³, 3(1−t)²t, 3(1−t)t², t³) at t = 1/4.
         let b = bernstein_all::<f64, 4>(0.25);
         assert_eq!(b, [27.0 / 64.0, 27.0 / 64.0, 9.0 / 64.0, 1.0 / 64.0]);
@@ -243,7 +244,7 @@ mod tests {
 
     #[test]
     fn symmetry_b_i_n_equals_b_n_minus_i_at_one_minus_t() {
-        // seeds/004: B_{i,n}(t) = B_{n−i,n}(1 − t); exact for dyadic t.
+        // Symmetry B_{i,n}(t) = B_{n−i,n}(1 − t); exact for dyadic t.
         for t in [0.0, 0.125, 0.25, 0.5, 0.875, 1.0] {
             let a = bernstein_all::<f64, 6>(t);
             let b = bernstein_all::<f64, 6>(1.0 - t);
@@ -279,7 +280,7 @@ mod tests {
     }
 
     #[test]
-    fn derivative_formula_of_the_seed() {
+    fn derivative_formula() {
         // dB_{i,n}/dt = n (B_{i−1,n−1} − B_{i,n−1}), against the derivative of the closed form.
         for step in 1..20 {
             let t = step as f64 / 20.0;
@@ -294,7 +295,7 @@ mod tests {
                 assert!((di - exact).abs() < 1e-14, "i={i} t={t}: {di} vs {exact}");
             }
         }
-        // seeds/004: the maximum of B_{i,n} is at t = i/n.
+        // The maximum of B_{i,n} is at t = i/n.
         assert_eq!(bernstein_deriv_all::<f64, 5>(0.25)[1], 0.0);
         assert_eq!(bernstein_deriv_all::<f64, 5>(0.5)[2], 0.0);
         assert_eq!(bernstein_deriv_all::<f64, 5>(0.75)[3], 0.0);

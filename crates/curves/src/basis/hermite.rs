@@ -1,6 +1,7 @@
-//! The cubic Hermite basis (seeds/000 and 002 "Hermite-Basis", seeds/003 "Hermite-Matrix").
+//! The cubic Hermite basis (Farin, *Curves and Surfaces for CAGD*, 5th ed., §6.5 "Cubic
+//! Hermite Interpolation"; Burden & Faires, *Numerical Analysis*, §3.4).
 //!
-//! In the convention of seeds/002 (used throughout this crate):
+//! In the order used throughout this crate:
 //!
 //! | function | product form     | monomial form     | role                       |
 //! |----------|------------------|-------------------|----------------------------|
@@ -11,14 +12,16 @@
 //!
 //! so that a segment over `[u_i, u_{i+1}]` with `Δ_i = u_{i+1} − u_i` and
 //! `s = (t − u_i)/Δ_i` is `c(t) = H_0(s) q_i + Δ_i H_1(s) m_i + Δ_i H_2(s) m_{i+1} + H_3(s) q_{i+1}`
-//! (seeds/002 "Lösung der Interpolationsaufgabe").
+//! (the tangents are derivatives with respect to `t`, hence the factor `Δ_i`).
 //!
-//! The relation to the matrix `K⁻¹` of seeds/003 is documented in the
+//! The relation to the Hermite basis matrix `M_H` ([`HERMITE_K_INV`]) is documented in the
 //! [`basis`](crate::basis) module docs.
 
 use crate::scalar::Scalar;
 
-/// The matrix `K⁻¹` of seeds/003: `Q(t) = [t³ t² t 1] · K⁻¹ · [P_r, P_{r+1}, P'_r, P'_{r+1}]ᵀ`.
+/// The Hermite basis matrix `M_H = K⁻¹` (Foley, van Dam, Feiner & Hughes, *Computer
+/// Graphics: Principles and Practice*, 2nd ed., §11.2.2), the inverse of the matrix `K` of
+/// the four end conditions: `Q(t) = [t³ t² t 1] · K⁻¹ · [P_0, P_1, P'_0, P'_1]ᵀ`.
 ///
 /// Rows: powers `t³, t², t, 1`; columns: start point, end point, start tangent, end tangent
 /// (i.e. the monomial coefficients of `H_0, H_3, H_1, H_2`, see the [`basis`](crate::basis) module docs).
@@ -38,7 +41,7 @@ use crate::scalar::Scalar;
 pub const HERMITE_K_INV: [[i8; 4]; 4] =
     [[2, -2, 1, 1], [-3, 3, -2, -1], [0, 0, 1, 0], [1, 0, 0, 0]];
 
-/// The Hermite basis of seeds/002 in the monomial basis: row `i` holds the coefficients of
+/// The Hermite basis in the monomial basis: row `i` holds the coefficients of
 /// `H_i` in ascending powers `1, t, t², t³`, i.e. `H⃗(t) = HERMITE_MONOMIAL · (1, t, t², t³)ᵀ`.
 ///
 /// ```
@@ -64,7 +67,7 @@ pub fn hermite_k_inv<S: Scalar>() -> [[S; 4]; 4] {
     HERMITE_K_INV.map(|row| row.map(|v| S::from_i16(i16::from(v))))
 }
 
-/// The cubic Hermite basis `[H_0(t), H_1(t), H_2(t), H_3(t)]` of seeds/002,
+/// The cubic Hermite basis `[H_0(t), H_1(t), H_2(t), H_3(t)]`,
 /// `t` clamped to `[0, 1]`:
 /// `H_0 = (1−t)²(1+2t)`, `H_1 = t(1−t)²`, `H_2 = −t²(1−t)`, `H_3 = (3−2t)t²`.
 ///
@@ -140,7 +143,7 @@ mod tests {
     }
 
     #[test]
-    fn basis_values_of_the_seed() {
+    fn basis_values() {
         assert_eq!(hermite(0.0_f64), [1.0, 0.0, 0.0, 0.0]);
         assert_eq!(hermite(1.0_f64), [0.0, 0.0, 0.0, 1.0]);
         assert_eq!(hermite(0.5_f64), [0.5, 0.125, -0.125, 0.5]);
@@ -166,7 +169,7 @@ mod tests {
 
     #[test]
     fn interpolation_conditions() {
-        // seeds/003: d^r/dt^r H_{i,k}(t_j) = δ_ij δ_kr, in 002's order (H_0, H_1, H_2, H_3)
+        // d^r/dt^r H_{i,k}(t_j) = δ_ij δ_kr, in the order (H_0, H_1, H_2, H_3)
         assert_eq!(hermite(0.0_f64), [1.0, 0.0, 0.0, 0.0]);
         assert_eq!(hermite(1.0_f64), [0.0, 0.0, 0.0, 1.0]);
         assert_eq!(hermite_deriv(0.0_f64, 1), [0.0, 1.0, 0.0, 0.0]);
@@ -193,7 +196,7 @@ mod tests {
 
     #[test]
     fn k_inverse_is_the_inverse_of_k_and_holds_the_basis() {
-        // seeds/003: K = [[0,0,0,1],[1,1,1,1],[0,0,1,0],[3,2,1,0]]
+        // K: the end conditions c(0), c(1), c'(0), c'(1) on [t³ t² t 1]
         let k = [[0, 0, 0, 1], [1, 1, 1, 1], [0, 0, 1, 0], [3, 2, 1, 0]];
         for i in 0..4 {
             for j in 0..4 {

@@ -1,7 +1,7 @@
-//! The Lagrange basis of a node vector (seeds/000 and 002 "Lagrange Interpolation",
-//! seeds/003 "Lagrange-Polynome").
+//! The Lagrange basis of a node vector (Farin, *Curves and Surfaces for CAGD*, 5th ed., §6.2
+//! "Lagrange Polynomials"; Burden & Faires, *Numerical Analysis*, §3.1).
 //!
-//! For nodes (Stützstellen) `u_0 < u_1 < … < u_g`,
+//! For nodes `u_0 < u_1 < … < u_g`,
 //! `L_i^g(t) = Π_{k≠i} (t − u_k)/(u_i − u_k)`: `L_i^g(u_i) = 1` and `L_i^g(u_j) = 0` for
 //! `j ≠ i`, so `c(t) = Σ q_i L_i^g(t)` interpolates the points `q_i` at the nodes.
 
@@ -9,7 +9,7 @@ use crate::error::Error;
 use crate::scalar::Scalar;
 
 /// A validated node vector `u_0 < u_1 < … < u_g` (`g = N − 1`) and its Lagrange basis
-/// `L_i^g(t) = Π_{k≠i} (t − u_k)/(u_i − u_k)` (seeds/000, product formula).
+/// `L_i^g(t) = Π_{k≠i} (t − u_k)/(u_i − u_k)` (the product formula).
 ///
 /// The parameter `t` is clamped to `[u_0, u_g]`. Each value is the product of the `g` ratios
 /// `(t − u_k)/(u_i − u_k)`, one division per factor (the divisors are non-zero because the
@@ -23,7 +23,7 @@ use crate::scalar::Scalar;
 /// ```
 /// use strak_curves::basis::LagrangeBasis;
 ///
-/// // seeds/002: nodes {0, 1, 3}; L_0 = (t² − 4t + 3)/3, L_1 = t(t − 3)/−2, L_2 = t(t − 1)/6
+/// // Nodes {0, 1, 3}: L_0 = (t² − 4t + 3)/3, L_1 = t(t − 3)/−2, L_2 = t(t − 1)/6
 /// let l = LagrangeBasis::new([0.0, 1.0, 3.0])?;
 /// assert_eq!(l.values(2.0), [-1.0 / 3.0, 1.0, 1.0 / 3.0]);
 /// # Ok::<(), strak_curves::Error>(())
@@ -127,7 +127,8 @@ impl<S: Scalar, const N: usize> LagrangeBasis<S, N> {
     }
 
     /// All values `[L_0^g(t), …, L_g^g(t)]`, `t` clamped to `[u_0, u_g]`. They sum to one
-    /// (seeds/000 "affin invariant") but may be negative (no convex hull property).
+    /// (so Lagrange curves are affinely invariant) but may be negative (no convex hull
+    /// property).
     pub fn values(&self, t: S) -> [S; N] {
         core::array::from_fn(|i| self.value(i, t))
     }
@@ -139,7 +140,7 @@ mod tests {
     use super::*;
     use crate::{I16F16, I32F32};
 
-    fn seed_basis(t: f64) -> [f64; 3] {
+    fn worked_basis(t: f64) -> [f64; 3] {
         [
             (t * t - 4.0 * t + 3.0) / 3.0,
             t * (t - 3.0) / -2.0,
@@ -148,14 +149,14 @@ mod tests {
     }
 
     #[test]
-    fn seed_example_nodes_0_1_3() {
+    fn worked_example_nodes_0_1_3() {
         let l = LagrangeBasis::new([0.0, 1.0, 3.0]).unwrap();
         assert_eq!(l.degree(), 2);
         assert_eq!(l.domain(), (0.0, 3.0));
         for step in 0..=12 {
             let t = step as f64 / 4.0;
             let v = l.values(t);
-            let s = seed_basis(t);
+            let s = worked_basis(t);
             for i in 0..3 {
                 assert!((v[i] - s[i]).abs() < 1e-15, "i={i} t={t}");
             }
@@ -172,8 +173,8 @@ mod tests {
     }
 
     #[test]
-    fn seed_example_curve_through_the_points() {
-        // seeds/002: q = (1, 0), (−1, 0), (3, 3) at u = 0, 1, 3.
+    fn worked_example_curve_through_the_points() {
+        // q = (1, 0), (−1, 0), (3, 3) at u = 0, 1, 3.
         let l = LagrangeBasis::new([0.0, 1.0, 3.0]).unwrap();
         let q = [[1.0, 0.0], [-1.0, 0.0], [3.0, 3.0]];
         let c = |t: f64| {

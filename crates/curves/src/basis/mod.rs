@@ -1,5 +1,7 @@
-//! Polynomial bases (seeds/000 and 002 "Polynombasen", seeds/003 "Hermite-Matrix",
-//! seeds/004 "Bernstein-Polynome") and the matrices between them.
+//! Polynomial bases and the matrices between them (Farin, *Curves and Surfaces for CAGD*,
+//! 5th ed., §4.1 "Bernstein Polynomials", §4.8 "The Matrix Form of a Bézier Curve", §6.2
+//! "Lagrange Polynomials", §6.5 "Cubic Hermite Interpolation"; Piegl & Tiller, *The NURBS
+//! Book*, 2nd ed., §1.2 "Power Basis Form of a Curve", §1.3 "Bézier Curves").
 //!
 //! | basis      | functions                          | module items                               |
 //! |------------|------------------------------------|--------------------------------------------|
@@ -8,8 +10,8 @@
 //! | Lagrange   | `L_i^g(t) = Π_{k≠i} (t−u_k)/(u_i−u_k)` | [`LagrangeBasis`]                    |
 //! | Hermite    | `H_0 … H_3` (cubic)                | [`hermite`], [`hermite_deriv`], [`HERMITE_K_INV`] |
 //!
-//! Basis changes are matrices (seeds/000 "Basistransformation"): [`monomial_to_bernstein_matrix`]
-//! is `T_{B←M}`, [`bernstein_to_monomial_matrix`] is `T_{M←B} = (T_{B←M})⁻¹`, and
+//! Basis changes are matrices: [`monomial_to_bernstein_matrix`] is `T_{B←M}`,
+//! [`bernstein_to_monomial_matrix`] is `T_{M←B} = (T_{B←M})⁻¹`, and
 //! [`bernstein_to_monomial`] / [`monomial_to_bernstein`] convert control points.
 //!
 //! Everything here is `no_std`, allocation-free and generic over [`Scalar`]
@@ -20,16 +22,17 @@
 //! ```
 //! use strak_curves::basis;
 //!
-//! // The cubic Bernstein basis at t = 1/2 (seeds/000): (1, 3, 3, 1) / 8.
+//! // The cubic Bernstein basis at t = 1/2: (1, 3, 3, 1) / 8.
 //! let b: [f64; 4] = basis::bernstein_all(0.5);
 //! assert_eq!(b, [0.125, 0.375, 0.375, 0.125]);
 //! ```
 //!
 //! # Basis changes
-//! Notation of seeds/000: a polynomial has the monomial coefficient vector `a⃗`
-//! (`f = Σ a_j tʲ`) and the Bernstein coefficient vector `b⃗` (`f = Σ b_i B_i^g`);
-//! `b⃗ = T_{B←M} a⃗`, `a⃗ = T_{M←B} b⃗ = (T_{B←M})⁻¹ b⃗`, and the bases themselves are related by
-//! `B⃗^g(t) = A_{B←M} M⃗^g(t)` with `T_{M←B} = A_{B←M}ᵀ`.
+//! A polynomial has the monomial coefficient vector `a⃗` (`f = Σ a_j tʲ`) and the Bernstein
+//! coefficient vector `b⃗` (`f = Σ b_i B_i^g`); `b⃗ = T_{B←M} a⃗`,
+//! `a⃗ = T_{M←B} b⃗ = (T_{B←M})⁻¹ b⃗`, and the bases themselves are related by
+//! `B⃗^g(t) = A_{B←M} M⃗^g(t)` with `T_{M←B} = A_{B←M}ᵀ` (Farin §4.8 writes the cubic case as
+//! a matrix product).
 //!
 //! ## Derivation of the entries
 //! **`A_{B←M}` and `T_{M←B}`.** Expanding `(1 − t)^{g−i}` binomially,
@@ -43,14 +46,12 @@
 //! `tʲ = Σ_{i≥j} C(g−j, i−j) tⁱ (1−t)^{g−i} = Σ_{i≥j} [C(g−j, i−j) / C(g,i)] B_i^g(t)`, and
 //! `C(g−j, i−j)/C(g,i) = C(i,j)/C(g,j)`. Hence `b_i = Σ_{j≤i} C(i,j)/C(g,j) · a_j`:
 //! `T_{B←M}[i][j] = C(i,j) / C(g,j)` (`j ≤ i`, else 0), lower triangular with entries in
-//! `[0, 1]`. For `g = 3` this is the matrix of seeds/000:
-//! `[[1,0,0,0],[1,1/3,0,0],[1,2/3,1/3,0],[1,1,1,1]]`.
+//! `[0, 1]`. For `g = 3`: `[[1,0,0,0],[1,1/3,0,0],[1,2/3,1/3,0],[1,1,1,1]]`.
 //!
-//! ## Erratum in seeds/000
-//! The worked example converts the Bernstein coefficients `(2, −2, 5, 1)` and prints the result
-//! `2 − 12t + 33t² − 23t³`. Its own intermediate lines sum the cubic terms to
-//! `−2 − 6 − 15 + 1 = −22`, and `f(1)` must equal `b_3 = 1`: the correct monomial vector is
-//! `(2, −12, 33, −22)`, which is what [`bernstein_to_monomial`] returns.
+//! ## Worked example
+//! The Bernstein coefficients `(2, −2, 5, 1)` have the monomial vector `(2, −12, 33, −22)`:
+//! `f(t) = 2 − 12t + 33t² − 22t³`. The cubic terms are `−2 − 6 − 15 + 1 = −22`, and
+//! `f(1) = b_3 = 1` checks it; [`bernstein_to_monomial`] returns exactly these values.
 //!
 //! ## Numbers
 //! Entries are computed in `f64` (binomials exact while below 2⁵³, i.e. for `g ≤ 50`) and rounded
@@ -58,21 +59,21 @@
 //! (`I16F16`: degree ≤ 11, `I32F32`: degree ≤ 21), which is reported as
 //! [`Error::OutOfRange`](crate::Error::OutOfRange). The point conversions also work in `f64` and round each result once.
 //!
-//! # The Hermite basis and the matrix K⁻¹ of seeds/003
-//! seeds/003 writes a cubic segment on `[0, 1]` as
-//! `Q(t) = [t³ t² t 1] · K⁻¹ · [P_r, P_{r+1}, P'_r, P'_{r+1}]ᵀ` with
-//! [`HERMITE_K_INV`] `= [[2,−2,1,1],[−3,3,−2,−1],[0,0,1,0],[1,0,0,0]]`. Column `j` of `K⁻¹`
+//! # The Hermite basis matrix
+//! A cubic segment on `[0, 1]` in matrix form is
+//! `Q(t) = [t³ t² t 1] · M_H · [P_0, P_1, P'_0, P'_1]ᵀ` with the Hermite basis matrix
+//! [`HERMITE_K_INV`] `= M_H = [[2,−2,1,1],[−3,3,−2,−1],[0,0,1,0],[1,0,0,0]]` (Foley, van Dam,
+//! Feiner & Hughes, *Computer Graphics: Principles and Practice*, 2nd ed., §11.2.2 "Hermite
+//! Curves"), the inverse of the matrix `K` of the four end conditions. Column `j` of `M_H`
 //! holds the coefficients of the `j`-th blending function in *descending* powers, and the
-//! geometry vector lists both points before both tangents. Hence the columns of `K⁻¹` are
-//! `H_0, H_3, H_1, H_2` of seeds/002 (003 calls them `H_{r,0}, H_{r+1,0}, H_{r,1}, H_{r+1,1}`).
+//! geometry vector lists both points before both tangents. Hence the columns of `M_H` are
+//! `H_0, H_3, H_1, H_2` in this crate's order (start point, start tangent, end tangent, end
+//! point; Farin §6.5).
 //!
-//! The formulas agree, including the sign of the end-tangent function:
-//! 003's `H_{r+1,1}(t) = t³ − t²` is 002's `H_2(t) = −t²(1 − t)`; both weight the end
-//! tangent as a derivative vector pointing *forward* (in the direction of motion). The
-//! difference is only in the drawings: seeds/002 warns ("Vorsicht") that its figure draws the
-//! arrow at the end point *against* the vector `m` used in the formula. `H_2` is negative on
-//! `(0, 1)` because a forward end tangent pulls the curve back before the end point; do not
-//! negate it. [`HERMITE_MONOMIAL`] is the same matrix in the order of seeds/002.
+//! Both forms weight the end tangent as a derivative vector pointing *forward*, in the
+//! direction of motion: `t³ − t² = −t²(1 − t) = H_2(t)`. `H_2` is negative on `(0, 1)`
+//! because a forward end tangent pulls the curve back before the end point; do not negate
+//! it. [`HERMITE_MONOMIAL`] is the same matrix in this crate's order.
 
 mod bernstein;
 mod hermite;

@@ -1,10 +1,11 @@
-//! The monomial basis `M_i^g(t) = tⁱ` and the Horner scheme (seeds/000 "Monombasis",
-//! "Effiziente Auswertung").
+//! The monomial (power) basis `M_i^g(t) = tⁱ` and the Horner scheme (Piegl & Tiller, *The
+//! NURBS Book*, 2nd ed., §1.2 "Power Basis Form of a Curve", Algorithm A1.1; Knuth, *The Art
+//! of Computer Programming*, vol. 2, §4.6.4).
 //!
 //! A polynomial `f(t) = a_0 + a_1 t + … + a_g t^g` is evaluated with the Horner scheme
 //! `f(t) = a_0 + t(a_1 + t(… + t(a_{g−1} + t a_g)…))`: `g` multiplications and `g` additions.
 //! [`MonomialCurve`] is a polynomial curve stored by its monomial coefficients (points), the
-//! fast evaluator once the coefficients are known (seeds/003 writes cubic segments this way:
+//! fast evaluator once the coefficients are known (the algebraic form of a cubic segment,
 //! `Q(u) = p_0 + p_1 u + p_2 u² + p_3 u³`).
 
 use super::{MAX_DEGREE, falling_factorial_f64, int_scalar};
@@ -14,7 +15,9 @@ use crate::point::Point;
 use crate::scalar::Scalar;
 
 /// The polynomial `Σ a_i tⁱ` with scalar coefficients `coeffs = [a_0, …, a_g]`, by the Horner
-/// scheme (seeds/000: `f = a_g; for i = g−1..0: f = a_i + t·f`). Zero for no coefficients.
+/// scheme (`f = a_g; for i = g−1..0: f = a_i + t·f`): `g` multiplications and `g`
+/// additions, where evaluating each power separately takes `O(g²)` multiplications. Zero for
+/// no coefficients.
 ///
 /// No clamping and no range check.
 ///
@@ -26,7 +29,7 @@ use crate::scalar::Scalar;
 ///
 /// ```
 /// use strak_curves::basis::horner;
-/// // seeds/000: t(2 + t²) − 1 = −1 + 2t + t³
+/// // t(2 + t²) − 1 = −1 + 2t + t³
 /// assert_eq!(horner(&[-1.0, 2.0, 0.0, 1.0], 2.0), 11.0);
 /// ```
 pub fn horner<S: Scalar>(coeffs: &[S], t: S) -> S {
@@ -65,10 +68,9 @@ pub fn horner_points<P: Point>(coeffs: &[P], t: P::Scalar) -> P {
     f
 }
 
-/// The monomial basis `M⃗^g(t) = (1, t, t², …, t^g)` with `g = N − 1` (seeds/000), by
-/// repeated multiplication. `t` is clamped to `[0, 1]`, the domain of the seed's comparison
-/// of bases ("Wichtig ist, dass nur der Definitionsbereich `t ∈ [0,1]` betrachtet wird"), so
-/// every value lies in `[0, 1]`.
+/// The monomial basis `M⃗^g(t) = (1, t, t², …, t^g)` with `g = N − 1`, by repeated
+/// multiplication. `t` is clamped to `[0, 1]`, the domain on which the bases of this module
+/// are compared, so every value lies in `[0, 1]`.
 ///
 /// ```
 /// use strak_curves::basis::monomials;
@@ -87,11 +89,11 @@ pub fn monomials<S: Scalar, const N: usize>(t: S) -> [S; N] {
 }
 
 /// A polynomial curve `c(u) = Σ_{i=0}^{g} a_i uⁱ` of degree at most `g = N − 1`, stored by its
-/// monomial coefficients (seeds/000 "Monombasis"), over the domain `[u_start, u_end]`
+/// monomial coefficients (Piegl & Tiller §1.2), over the domain `[u_start, u_end]`
 /// (`[0, 1]` from [`MonomialCurve::new`]).
 ///
-/// The polynomial is in the parameter `u` itself (not normalized to the domain), as in
-/// seeds/003 `Q(u) = p_0 + p_1 u + …`. Evaluation uses the Horner scheme; the `k`-th
+/// The polynomial is in the parameter `u` itself (not normalized to the domain),
+/// `Q(u) = p_0 + p_1 u + …`. Evaluation uses the Horner scheme; the `k`-th
 /// derivative is the Horner scheme on the differentiated coefficients
 /// `a_i · i!/(i − k)!` (formed at evaluation by multiplying with small integers).
 /// Parameters outside the domain are clamped to it.
@@ -104,7 +106,7 @@ pub fn monomials<S: Scalar, const N: usize>(t: S) -> [S; N] {
 /// ```
 /// use strak_curves::{ParamCurve, ParamCurveDeriv, basis::MonomialCurve};
 ///
-/// // seeds/000: f(t) = 2 − 12t + 33t² − 22t³ (the monomial form of Bernstein (2, −2, 5, 1))
+/// // f(t) = 2 − 12t + 33t² − 22t³ (the monomial form of Bernstein (2, −2, 5, 1))
 /// let f = MonomialCurve::new([[2.0], [-12.0], [33.0], [-22.0]])?;
 /// assert_eq!(f.eval(1.0), [1.0]);
 /// assert_eq!(f.deriv(0.0, 1), [-12.0]);
@@ -264,8 +266,8 @@ mod tests {
     use glam::Vec2;
 
     #[test]
-    fn horner_of_the_seed_example() {
-        // seeds/000: t(2 + t²) − 1 = 2t + t³ − 1
+    fn horner_of_a_worked_example() {
+        // t(2 + t²) − 1 = 2t + t³ − 1
         let a = [-1.0, 2.0, 0.0, 1.0];
         for t in [-2.0, -0.5, 0.0, 0.5, 1.0, 3.0] {
             assert_eq!(horner(&a, t), t * (2.0 + t * t) - 1.0);
@@ -279,7 +281,7 @@ mod tests {
 
     #[test]
     fn horner_equals_standard_evaluation() {
-        // seeds/000 "Standardauswertung" (quadratic cost) vs Horner (linear cost)
+        // The sum of separately formed powers (quadratic cost) vs Horner (linear cost)
         let a = [0.5, -1.25, 3.0, 0.75, -2.0];
         for t in [0.0, 0.25, 0.5, 1.0] {
             let m = monomials::<f64, 5>(t);

@@ -1,7 +1,8 @@
-//! Basis changes between the monomial and the Bernstein basis (seeds/000
-//! "Basistransformation", "Beispieltransformation") for any degree `g = N − 1`.
+//! Basis changes between the monomial and the Bernstein basis for any degree `g = N − 1`
+//! (Farin, *Curves and Surfaces for CAGD*, 5th ed., §4.8 "The Matrix Form of a Bézier
+//! Curve").
 //!
-//! The formulas, their derivation and an erratum of seeds/000 are documented in the
+//! The formulas, their derivation and a worked example are documented in the
 //! [`basis`](crate::basis) module docs ("Basis changes").
 
 use super::bernstein::binomial_f64;
@@ -50,7 +51,7 @@ fn matrix_from<S: Scalar, const N: usize>(
 ///
 /// ```
 /// use strak_curves::basis::bernstein_to_monomial_matrix;
-/// // seeds/000: A_{B←M}ᵀ for g = 3
+/// // A_{B←M}ᵀ for g = 3
 /// let t = bernstein_to_monomial_matrix::<f64, 4>()?;
 /// assert_eq!(t, [
 ///     [1.0, 0.0, 0.0, 0.0],
@@ -74,7 +75,7 @@ pub fn bernstein_to_monomial_matrix<S: Scalar, const N: usize>() -> Result<[[S; 
 ///
 /// ```
 /// use strak_curves::basis::monomial_to_bernstein_matrix;
-/// // seeds/000, g = 3
+/// // g = 3
 /// let t = monomial_to_bernstein_matrix::<f64, 4>()?;
 /// assert_eq!(t, [
 ///     [1.0, 0.0, 0.0, 0.0],
@@ -89,7 +90,7 @@ pub fn monomial_to_bernstein_matrix<S: Scalar, const N: usize>() -> Result<[[S; 
     matrix_from(|i, j| bernstein_from_monomial_entry(g, i, j))
 }
 
-/// The basis matrix `A_{B←M}` of seeds/000 with `B⃗^g(t) = A_{B←M} M⃗^g(t)`: row `i` holds the
+/// The basis matrix `A_{B←M}` with `B⃗^g(t) = A_{B←M} M⃗^g(t)`: row `i` holds the
 /// monomial coefficients of `B_i^g`, `A[i][j] = (−1)^{j−i} C(g,j) C(j,i)`. It is the
 /// transpose of [`bernstein_to_monomial_matrix`].
 ///
@@ -154,8 +155,8 @@ pub(crate) fn map_coordinates<P: Point, const N: usize>(
 }
 
 /// Converts Bernstein coefficients (Bézier points) `b⃗` to monomial coefficients
-/// `a⃗ = T_{M←B} b⃗`, coordinate-wise (seeds/000 "Matrixdarstellung": the control point
-/// matrix is transformed like a coefficient vector).
+/// `a⃗ = T_{M←B} b⃗`, coordinate-wise (in matrix form the control point
+/// matrix is transformed like a coefficient vector, Farin §4.8).
 ///
 /// # Errors
 /// [`Error::NonFinite`] for NaN/∞ input, [`Error::OutOfRange`] when a coefficient does not fit
@@ -163,7 +164,7 @@ pub(crate) fn map_coordinates<P: Point, const N: usize>(
 ///
 /// ```
 /// use strak_curves::basis::bernstein_to_monomial;
-/// // seeds/000 worked example (its printed −23 is a typo for −22, see the `basis` module docs)
+/// // the worked example of the `basis` module docs
 /// let a = bernstein_to_monomial(&[[2.0], [-2.0], [5.0], [1.0]])?;
 /// assert_eq!(a, [[2.0], [-12.0], [33.0], [-22.0]]);
 /// # Ok::<(), strak_curves::Error>(())
@@ -198,7 +199,7 @@ mod tests {
     use glam::DVec2;
 
     #[test]
-    fn seed_matrices_degree_3() {
+    fn matrices_degree_3() {
         let tbm = monomial_to_bernstein_matrix::<f64, 4>().unwrap();
         assert_eq!(
             tbm,
@@ -228,8 +229,8 @@ mod tests {
     }
 
     #[test]
-    fn seed_worked_example_bernstein_to_monomial_and_back() {
-        // seeds/000: b = (2, −2, 5, 1); the printed −23 is an arithmetic slip for −22.
+    fn worked_example_bernstein_to_monomial_and_back() {
+        // b = (2, −2, 5, 1): the cubic coefficient is −2 − 6 − 15 + 1 = −22 (f(1) = b_3 = 1).
         let a = bernstein_to_monomial_f64(&[2.0, -2.0, 5.0, 1.0]);
         assert_eq!(a, [2.0, -12.0, 33.0, -22.0]);
         assert_eq!(monomial_to_bernstein_f64(&a), [2.0, -2.0, 5.0, 1.0]);

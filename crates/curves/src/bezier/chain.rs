@@ -1,6 +1,6 @@
-//! A piecewise Bézier curve: Bézier segments joined end to start (seeds/000 and 002
-//! "Stetiges Aneinanderfügen", "C¹-stetiger Bézier Spline"; seeds/004 "Bézier-Kurven
-//! aneinandersetzen").
+//! A piecewise Bézier curve: Bézier segments joined end to start (Farin, *Curves and
+//! Surfaces for CAGD*, 5th ed., ch. 7 "Spline Curves in Bézier Form", §7.1 "Global and Local
+//! Parameters", §7.2 "Smoothness Conditions").
 
 use heapless::Vec;
 
@@ -10,13 +10,13 @@ use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-/// A composite Bézier curve ("Bézier spline", seeds/002): `n ≤ M` [`Bezier`] segments of
+/// A composite Bézier curve (a spline curve in Bézier form): `n ≤ M` [`Bezier`] segments of
 /// degree `g = N − 1`, segment `i` ending where segment `i + 1` starts (C⁰ at least).
 ///
 /// The parameter domain is `[0, n]`; segment `i` covers `[i, i + 1]` with its local parameter
 /// `t = u − i`. Because every segment has a parameter interval of length 1, derivatives with
 /// respect to `u` are the segments' own derivatives with respect to `t`, and the join
-/// conditions of seeds/000 read directly: the chain is C¹ at the join `u = i + 1` exactly when
+/// conditions (Farin §7.2) read directly: the chain is C¹ at the join `u = i + 1` exactly when
 /// `b_{g−1}, b_g = c_0, c_1` are collinear and equally spaced (what
 /// [`Bezier::join_c1`] produces), G¹ when only the directions agree ([`Bezier::join_g1`]).
 ///
@@ -85,7 +85,7 @@ fn parameters<S: Scalar, const M: usize>(n: usize) -> Result<(Vec<S, M>, S), Err
 impl<P: Point, const N: usize, const M: usize> BezierChain<P, N, M> {
     /// The chain from its composite representation: `n·(N − 1) + 1` points, where segment `i`
     /// has the points `points[i·(N−1) ..= (i+1)·(N−1)]`, so consecutive segments share their
-    /// join point (seeds/002, "C¹-stetiger Bézier Spline").
+    /// join point (the piecewise Bézier polygon, Farin §7.1).
     ///
     /// # Errors
     /// * [`Error::InvalidArgument`] for degree-0 segments (`N < 2`);
@@ -407,8 +407,8 @@ mod tests {
     }
 
     #[test]
-    fn seed_full_circle_from_four_quarter_circles() {
-        // seeds/004 quarter circle, κ = 0.551897, repeated around the unit circle: each join
+    fn full_circle_from_four_quarter_circles() {
+        // The cubic quarter circle, κ = 0.551897, repeated around the unit circle: each join
         // has equally spaced collinear tangent points, so the chain is C¹.
         let k = QUARTER_CIRCLE_KAPPA;
         let p = |x: f64, y: f64| DVec2::new(x, y);

@@ -1,22 +1,25 @@
-//! The cubic Bézier approximation of a quarter of the unit circle (seeds/004 "Approximation
-//! von Viertelkreis", "Bezier-Viertelkreis"). The values of κ and the radial errors are
-//! documented on [`QUARTER_CIRCLE_KAPPA`] and [`quarter_circle_radial_error`].
+//! The cubic Bézier approximation of a quarter of the unit circle (Goldapp, "Approximation
+//! of circular arcs by cubic polynomials", *Computer Aided Geometric Design* 8(3), 1991). A
+//! polynomial curve cannot be a circle; the exact circle is the rational [`Nurbs::circle`](crate::Nurbs::circle).
+//! The values of κ and the radial errors are documented on [`QUARTER_CIRCLE_KAPPA`] and
+//! [`quarter_circle_radial_error`].
 
 use super::curve::Bezier;
 use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-/// `κ = 0.551897`, the tangent length of the cubic quarter circle in seeds/004.
+/// `κ = 0.551897`, a tangent length of the cubic quarter circle in common use (for example
+/// O. Vornberger's lecture notes *Computergrafik*, Universität Osnabrück, ch. 7 "2D-Kurven").
 ///
 /// The arc from `(0, 1)` to `(1, 0)` is approximated by the Bézier points
 /// `(0, 1), (κ, 1), (1, κ), (1, 0)` ([`Bezier::quarter_circle`]): the end points and end
-/// tangents are exact, `κ` sets the tangent length. seeds/004 writes the coordinates as
+/// tangents are exact, `κ` sets the tangent length. In coordinates,
 /// `f_1(t) = 3t(1−t)² κ + 3t²(1−t) + t³`, `f_2(t) = (1−t)³ + 3t(1−t)² + 3t²(1−t) κ`.
 ///
-/// The seed's figure also states `P(0.5) = (cos 45°, sin 45°)`; that holds for
+/// The midpoint `P(0.5) = (cos 45°, sin 45°)` lies on the circle for
 /// `κ = 4/3 (√2 − 1)` ([`QUARTER_CIRCLE_KAPPA_MIDPOINT`]) only. With `κ = 0.551897`,
-/// `P(0.5) = (0.706961, 0.706961)`: the seed's value trades the exact midpoint for a smaller,
+/// `P(0.5) = (0.706961, 0.706961)`: this value trades the exact midpoint for a smaller,
 /// nearly balanced maximal radial error (see [`quarter_circle_radial_error`]; the
 /// equioscillating optimum is `κ ≈ 0.551915` with `±1.96 · 10⁻⁴`).
 pub const QUARTER_CIRCLE_KAPPA: f64 = 0.551897;
@@ -26,7 +29,7 @@ pub const QUARTER_CIRCLE_KAPPA: f64 = 0.551897;
 pub const QUARTER_CIRCLE_KAPPA_MIDPOINT: f64 = 0.552_284_749_830_793_5;
 
 impl<P: Point> Bezier<P, 4> {
-    /// The cubic quarter circle `(0, 1), (κ, 1), (1, κ), (1, 0)` (seeds/004) for any `κ`, in
+    /// The cubic quarter circle `(0, 1), (κ, 1), (1, κ), (1, 0)` for any `κ`, in
     /// the plane of the first two coordinates (further coordinates are zero).
     ///
     /// # Errors
@@ -64,7 +67,7 @@ impl<P: Point> Bezier<P, 4> {
         Self::new([xy(o, l), xy(kappa, l), xy(l, kappa), xy(l, o)])
     }
 
-    /// The quarter circle of seeds/004 with `κ =` [`QUARTER_CIRCLE_KAPPA`] `= 0.551897`
+    /// The quarter circle with `κ =` [`QUARTER_CIRCLE_KAPPA`] `= 0.551897`
     /// (rounded to the scalar type).
     ///
     /// # Errors
@@ -102,7 +105,7 @@ fn arc(kappa: f64, t: f64) -> ([f64; 2], [f64; 2]) {
 }
 
 /// The maximal radial error `max_{t∈[0,1]} | ‖c(t)‖ − 1 |` of the cubic quarter circle with
-/// tangent length `kappa` (seeds/004), in `f64`. `NaN` for a non-finite `kappa`.
+/// tangent length `kappa`, in `f64`. `NaN` for a non-finite `kappa`.
 ///
 /// The extrema of `‖c(t)‖` are the roots of `d/dt ‖c‖²/2 = c · c'`. The function samples
 /// `c · c'` on 512 equal intervals, refines every sign change by bisection to the resolution
@@ -111,7 +114,7 @@ fn arc(kappa: f64, t: f64) -> ([f64; 2], [f64; 2]) {
 ///
 /// | κ | max radial error | where |
 /// |---|------------------|-------|
-/// | [`QUARTER_CIRCLE_KAPPA`] = 0.551897 (seeds/004) | 2.0564 · 10⁻⁴ | `t = 1/2`, inside the circle (`‖c‖ = 0.999794`); outside by at most 1.928 · 10⁻⁴ near `t ≈ 0.181` and `0.819` |
+/// | [`QUARTER_CIRCLE_KAPPA`] = 0.551897 | 2.0564 · 10⁻⁴ | `t = 1/2`, inside the circle (`‖c‖ = 0.999794`); outside by at most 1.928 · 10⁻⁴ near `t ≈ 0.181` and `0.819` |
 /// | [`QUARTER_CIRCLE_KAPPA_MIDPOINT`] = 4/3 (√2 − 1) ≈ 0.5522847 | 2.7253 · 10⁻⁴ | `t = 1/2 ± √3/6`, outside; exact at `t = 1/2` |
 ///
 /// ```
@@ -184,7 +187,7 @@ mod tests {
         // tangents are horizontal at the start and vertical at the end
         assert_eq!(c.deriv(0.0, 1).y, 0.0);
         assert_eq!(c.deriv(1.0, 1).x, 0.0);
-        // seeds/004 f_1 and f_2 at t = 1/2
+        // the coordinate functions f_1 and f_2 at t = 1/2
         let k = QUARTER_CIRCLE_KAPPA;
         let f1 = |t: f64| 3.0 * t * (1.0 - t).powi(2) * k + 3.0 * t * t * (1.0 - t) + t.powi(3);
         let f2 =
@@ -202,15 +205,15 @@ mod tests {
 
     #[test]
     fn radial_error_values() {
-        let e_seed = quarter_circle_radial_error(QUARTER_CIRCLE_KAPPA);
+        let e_common = quarter_circle_radial_error(QUARTER_CIRCLE_KAPPA);
         let e_mid = quarter_circle_radial_error(QUARTER_CIRCLE_KAPPA_MIDPOINT);
-        // the seed's κ: the extremum is at t = 1/2, inside the circle
+        // κ = 0.551897: the extremum is at t = 1/2, inside the circle
         let c = Bezier::<DVec2, 4>::quarter_circle(QUARTER_CIRCLE_KAPPA).unwrap();
         assert!(
-            (e_seed - (1.0 - c.eval(0.5).length())).abs() < 1e-15,
-            "{e_seed}"
+            (e_common - (1.0 - c.eval(0.5).length())).abs() < 1e-15,
+            "{e_common}"
         );
-        assert!((e_seed - 2.056_354e-4).abs() < 1e-9, "{e_seed}");
+        assert!((e_common - 2.056_354e-4).abs() < 1e-9, "{e_common}");
         // κ = 4/3(√2 − 1): maximum at t = 1/2 ± √3/6, outside the circle
         let t = 0.5 - 3f64.sqrt() / 6.0;
         let cm = Bezier::<DVec2, 4>::quarter_circle(QUARTER_CIRCLE_KAPPA_MIDPOINT).unwrap();

@@ -1,5 +1,6 @@
-//! Conversion between Bézier points and monomial coefficients (seeds/000
-//! "Basistransformation": `a⃗ = T_{M←B} b⃗`, `b⃗ = T_{B←M} a⃗`).
+//! Conversion between Bézier points and monomial coefficients, `a⃗ = T_{M←B} b⃗` and
+//! `b⃗ = T_{B←M} a⃗` (Farin, *Curves and Surfaces for CAGD*, 5th ed., §4.8; the matrices and
+//! their derivation are in the [`basis`](crate::basis) module docs).
 
 use super::curve::Bezier;
 use crate::basis::{MonomialCurve, binomial_f64};
@@ -22,7 +23,7 @@ impl<P: Point, const N: usize> Bezier<P, N> {
     ///
     /// ```
     /// use strak_curves::Bezier;
-    /// // seeds/000: (2, −2, 5, 1) ↦ 2 − 12t + 33t² − 22t³
+    /// // (2, −2, 5, 1) ↦ 2 − 12t + 33t² − 22t³
     /// let m = Bezier::new([[2.0], [-2.0], [5.0], [1.0]])?.to_monomial()?;
     /// assert_eq!(m.coefficients(), &[[2.0], [-12.0], [33.0], [-22.0]]);
     /// # Ok::<(), strak_curves::Error>(())
@@ -85,7 +86,7 @@ mod tests {
     use glam::DVec2;
 
     #[test]
-    fn seed_example_round_trip() {
+    fn worked_example_round_trip() {
         let b = Bezier::new([[2.0], [-2.0], [5.0], [1.0]]).unwrap();
         let m = b.to_monomial().unwrap();
         assert_eq!(m.coefficients(), &[[2.0], [-12.0], [33.0], [-22.0]]);

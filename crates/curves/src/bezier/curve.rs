@@ -1,5 +1,6 @@
-//! The Bézier curve type, its validation and de Casteljau evaluation (seeds/000
-//! "Kurvenauswertung nach de Casteljau").
+//! The Bézier curve type, its validation and de Casteljau evaluation (Farin, *Curves and
+//! Surfaces for CAGD*, 5th ed., §3.2 "The de Casteljau Algorithm"; Piegl & Tiller, *The NURBS
+//! Book*, 2nd ed., §1.3, Algorithm A1.5).
 
 use crate::basis::{MAX_DEGREE, falling_factorial_f64, int_scalar};
 use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
@@ -8,10 +9,15 @@ use crate::point::Point;
 use crate::scalar::Scalar;
 
 /// A Bézier curve `c(t) = Σ_{i=0}^{g} b_i B_i^g(t)`, `t ∈ [0, 1]`, of degree `g = N − 1`
-/// with the `N` Bézier points `b_0, …, b_g` (seeds/000 "Beziér Kurven").
+/// with the `N` Bézier points `b_0, …, b_g` (Farin §4.1–4.2).
+///
+/// Properties (Farin §3.3, §4.2): the curve interpolates `b_0` and `b_g` and is tangent to
+/// the control polygon there (`c'(0) = g(b_1 − b_0)`, `c'(1) = g(b_g − b_{g−1})`), lies in
+/// the convex hull of its points, and is affinely invariant; it approximates the inner points
+/// and every point influences the whole curve (no local control).
 ///
 /// Evaluation is de Casteljau's algorithm, `b_i^r = (1 − t) b_i^{r−1} + t b_{i+1}^{r−1}`,
-/// `c(t) = b_0^g` (seeds/000): convex combinations only, so in fixed-point it cannot overflow
+/// `c(t) = b_0^g`: `g(g + 1)/2` convex combinations (`O(g²)`), so in fixed-point it cannot overflow
 /// when the points fit. The `k`-th derivative is de Casteljau down to level `g − k`, then the
 /// `k`-th forward difference times `g!/(g − k)!`:
 /// `c^{(k)}(t) = g!/(g−k)! · Σ_i Δ^k b_i B_i^{g−k}(t)`; zero above the degree.
@@ -27,7 +33,7 @@ use crate::scalar::Scalar;
 /// ```
 /// use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv};
 ///
-/// // seeds/000: the cubic with Bernstein coefficients (2, −2, 5, 1)
+/// // The cubic with Bernstein coefficients (2, −2, 5, 1)
 /// let c = Bezier::new([[2.0], [-2.0], [5.0], [1.0]])?;
 /// assert_eq!(c.eval(0.5), [2.0 - 6.0 + 33.0 / 4.0 - 22.0 / 8.0]);
 /// assert_eq!(c.deriv(0.0, 1), [-12.0]); // 3 (b_1 − b_0)
@@ -213,15 +219,15 @@ mod tests {
     use glam::{DVec2, Vec2};
 
     #[test]
-    fn seed_example_de_casteljau_at_one_third_equals_bernstein_sum() {
-        // seeds/000 coefficients (2, −2, 5, 1): Σ b_i B_i³(1/3) = 23/27
+    fn de_casteljau_at_one_third_equals_bernstein_sum() {
+        // Coefficients (2, −2, 5, 1): Σ b_i B_i³(1/3) = 23/27
         let c = Bezier::new([[2.0], [-2.0], [5.0], [1.0]]).unwrap();
         let t = 1.0 / 3.0;
         let b = bernstein_all::<f64, 4>(t);
         let sum = 2.0 * b[0] - 2.0 * b[1] + 5.0 * b[2] + b[3];
         assert!((c.eval(t)[0] - 23.0 / 27.0).abs() < 1e-15);
         assert!((c.eval(t)[0] - sum).abs() < 1e-15);
-        // seeds/004: P(1/3) by de Casteljau in 2-D, against the closed-form Bernstein sum
+        // P(1/3) by de Casteljau in 2-D, against the closed-form Bernstein sum
         let q = [
             DVec2::new(0.0, 0.0),
             DVec2::new(1.0, 3.0),

@@ -1,5 +1,7 @@
 //! The hodograph (derivative curve) of a Bézier curve: `c'(t) = g Σ (b_{i+1} − b_i) B_i^{g−1}(t)`
-//! (seeds/000 "Endtangenteninterpolation", seeds/004 `dB_{i,n}/dt = n (B_{i−1,n−1} − B_{i,n−1})`).
+//! (Farin, *Curves and Surfaces for CAGD*, 5th ed., §4.3 "The Derivative of a Bézier Curve",
+//! from `dB_{i,n}/dt = n (B_{i−1,n−1} − B_{i,n−1})`; at the ends it gives the end-tangent
+//! interpolation `c'(0) = g (b_1 − b_0)`).
 
 use super::curve::Bezier;
 use crate::basis::int_scalar;

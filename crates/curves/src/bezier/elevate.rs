@@ -1,5 +1,6 @@
-//! Degree elevation: the same curve with one more Bézier point (seeds/002 "Stetiges
-//! Aneinanderfügen" joins segments of different degree; elevation brings them to one degree).
+//! Degree elevation: the same curve with one more Bézier point (Farin, *Curves and Surfaces
+//! for CAGD*, 5th ed., §5.1 "Degree Elevation"; Piegl & Tiller, *The NURBS Book*, 2nd ed.,
+//! §5.5). It brings segments of different degree to one degree before they are joined.
 
 use super::curve::Bezier;
 use crate::error::Error;

@@ -1,5 +1,7 @@
-//! Joining Bézier segments with C¹ or G¹ continuity (seeds/000 and 002 "Stetiges
-//! Aneinanderfügen", "Tangentenstetigkeit"; seeds/003 "Übergangsstellen").
+//! Joining Bézier segments with C¹ or G¹ continuity (Farin, *Curves and Surfaces for CAGD*,
+//! 5th ed., §7.2 "Smoothness Conditions", §7.3 "C1 and C2 Continuity"; for geometric
+//! continuity Barsky & DeRose, "Geometric Continuity of Parametric Curves", *IEEE Computer
+//! Graphics and Applications* 9(6), 1989).
 //!
 //! A segment `b` of degree `g` ends with the derivative `c_b'(1) = g (b_g − b_{g−1})`; a
 //! following segment `c` of degree `h` starts with `c_c'(0) = h (c_1 − c_0)`.
@@ -7,8 +9,8 @@
 //! * C¹ (parametric): additionally `h (c_1 − c_0) = g (b_g − b_{g−1})`, i.e.
 //!   `c_1 = b_g + (g/h)(b_g − b_{g−1})` — for equal degrees `b_{g−1}, b_g, c_1` are collinear
 //!   and equally spaced.
-//! * G¹ (geometric): `c_1 − c_0` only has the direction of `b_g − b_{g−1}` (seeds/003:
-//!   `TV_1 = k TV_2`, `k > 0`); its length is free.
+//! * G¹ (geometric): `c_1 − c_0` only has the direction of `b_g − b_{g−1}` (the tangent
+//!   vectors agree up to a factor `k > 0`); its length is free.
 //!
 //! Both functions return the *following* segment adjusted: `c_0` and `c_1` replaced, all other
 //! points kept (for a line, `M = 2`, that moves its end point).

@@ -1,4 +1,5 @@
-//! Bézier curves (seeds/000 and 002 "Beziér Kurven", seeds/004 "Bézier-Kurven").
+//! Bézier curves (Farin, *Curves and Surfaces for CAGD*, 5th ed., ch. 3–5; Piegl & Tiller,
+//! *The NURBS Book*, 2nd ed., §1.3).
 //!
 //! [`Bezier`] is one polynomial segment `c(t) = Σ b_i B_i^g(t)`, `t ∈ [0, 1]`, given by its
 //! `N = g + 1` Bézier points, evaluated with de Casteljau's algorithm. The operations live in

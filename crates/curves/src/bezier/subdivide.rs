@@ -1,6 +1,7 @@
-//! Subdivision with the de Casteljau triangle and sub-segments by blossoming (seeds/004
-//! "Rekursion nach de Casteljau": `bezier(P0, P01, P012, P0123)` and
-//! `bezier(P0123, P123, P23, P3)`).
+//! Subdivision with the de Casteljau triangle and sub-segments by blossoming (Farin, *Curves
+//! and Surfaces for CAGD*, 5th ed., §4.6 "Subdivision", §3.4 "The Blossom"; Ramshaw, "Blossoms
+//! are polar forms", *Computer Aided Geometric Design* 6(4), 1989). Splitting a cubic at
+//! `t = 1/2` gives `(P0, P01, P012, P0123)` and `(P0123, P123, P23, P3)`, built from midpoints.
 
 use super::curve::{Bezier, casteljau_step};
 use crate::point::Point;
@@ -10,7 +11,7 @@ impl<P: Point, const N: usize> Bezier<P, N> {
     /// Splits the curve at `t` (clamped to `[0, 1]`) into the parts over `[0, t]` and `[t, 1]`,
     /// each reparameterized to `[0, 1]`: the left part has the points `b_0^0, b_0^1, …, b_0^g`
     /// (the upper edge of the de Casteljau triangle), the right part `b_0^g, b_1^{g−1}, …, b_g^0`
-    /// (its lower edge) — seeds/004 "halbiere" for `t = 1/2`.
+    /// (its lower edge); for `t = 1/2` every point is a midpoint of two others.
     ///
     /// Both parts are built from convex combinations of the points, so their derivatives are
     /// bounded by this curve's (scaled by `tᵏ` and `(1 − t)ᵏ`); no new range check is needed.
@@ -105,7 +106,7 @@ mod tests {
                 assert!((dl - dc).length() < 1e-12);
             }
         }
-        // seeds/004 "halbiere": the halves at t = 1/2 are built from midpoints only
+        // The halves at t = 1/2 are built from midpoints only
         let q = [
             DVec2::new(0.0, 0.0),
             DVec2::new(2.0, 4.0),

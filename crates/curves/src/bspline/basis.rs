@@ -1,5 +1,7 @@
-//! The B-spline basis functions `N_i^g` (seeds/000, seeds/002: "natürliche Basis",
-//! Cox–de Boor recursion) and their derivatives.
+//! The B-spline basis functions `N_i^g` by the Cox–de Boor recursion (Cox, "The numerical
+//! evaluation of B-splines", *J. Inst. Maths Applics* 10, 1972; de Boor, "On calculating
+//! with B-splines", *J. Approx. Theory* 6, 1972; Piegl & Tiller, *The NURBS Book*, 2nd ed.,
+//! §2.2, and §2.3 for the derivatives) and their derivatives.
 //!
 //! Cox–de Boor recursion, with the convention `0/0 := 0`:
 //!
@@ -9,7 +11,8 @@
 //! ```
 //!
 //! On the span `[u_s, u_{s+1})` only `N_{s−g}^g, …, N_s^g` are non-zero; they are computed
-//! together with the triangular scheme. At the right end `u = u_K` of the domain the last
+//! together with the triangular scheme (Piegl & Tiller §2.5, Algorithms A2.2 and A2.3). At
+//! the right end `u = u_K` of the domain the last
 //! non-empty span is taken as closed, so that the basis still sums to one there (the same
 //! convention as the curve evaluation).
 
@@ -50,12 +53,12 @@ pub(crate) fn basis_table<S: Scalar, const M: usize>(
 /// All non-zero basis functions at `u` (clamped to the domain `[u_g, u_K]`): returns the span
 /// `s` and `[N_{s−g}^g(u), …, N_s^g(u), 0, …]` (entries above `g` are zero).
 ///
-/// The values are non-negative and sum to one (partition of unity, seeds/000).
+/// The values are non-negative and sum to one (partition of unity, Piegl & Tiller §2.2).
 ///
 /// ```
 /// use strak_curves::{KnotVector, bspline_basis};
 ///
-/// // Uniform quadratic, seeds/004 (n = 4, k = 3): T = (0,0,0,1,2,3,3,3)
+/// // Clamped uniform quadratic, 5 de Boor points: T = (0,0,0,1,2,3,3,3)
 /// let kv = KnotVector::<f64, 8>::new(2, &[0., 0., 0., 1., 2., 3., 3., 3.]).unwrap();
 /// let (span, n) = bspline_basis(&kv, 1.5);
 /// assert_eq!(span, 3);
@@ -87,7 +90,7 @@ pub fn bspline_basis<S: Scalar, const M: usize>(
 /// ```
 /// use strak_curves::{KnotVector, bspline_basis_derivs};
 ///
-/// // Bernstein special case (seeds/004): knots 0,0,0,1,1,1 give B_i^2(u).
+/// // Bernstein special case: knots 0,0,0,1,1,1 give B_i^2(u).
 /// let kv = KnotVector::<f64, 8>::new(2, &[0., 0., 0., 1., 1., 1.]).unwrap();
 /// let mut rows = [[0.0; 8]; 3];
 /// let (span, valid) = bspline_basis_derivs(&kv, 0.5, &mut rows);
@@ -211,8 +214,8 @@ pub(crate) fn basis_derivative_orders<S: Scalar, const M: usize>(kv: &KnotVector
     orders
 }
 
-/// A single basis function `N_i^g(u)` straight from the Cox–de Boor recursion (seeds/000,
-/// "in Klausur gegeben"), for any knot slice `u_0 ≤ … ≤ u_{m−1}`.
+/// A single basis function `N_i^g(u)` straight from the Cox–de Boor recursion (Piegl &
+/// Tiller §2.5, Algorithm A2.4), for any knot slice `u_0 ≤ … ≤ u_{m−1}`.
 ///
 /// `N_i^0` is 1 on the half-open `[u_i, u_{i+1})`, except at the right end `u = u_K`
 /// (`K = m − g − 1`) of the domain, where only the last non-empty span of the domain is on —
@@ -353,8 +356,8 @@ mod tests {
     }
 
     #[test]
-    fn seed_quadratic_example() {
-        // seeds/004: T = (0,0,0,1,2,3,3,3), N_{2,3} = t/2·N_{2,2} + (3−t)/2·N_{3,2}
+    fn quadratic_example() {
+        // T = (0,0,0,1,2,3,3,3), order 3: N_{2,3} = t/2·N_{2,2} + (3−t)/2·N_{3,2}
         let t = [0., 0., 0., 1., 2., 3., 3., 3.];
         for (u, v) in [
             (0.0, 0.0),
@@ -376,7 +379,7 @@ mod tests {
 
     #[test]
     fn bernstein_special_case() {
-        // seeds/004: knots (0,…,0, 1,…,1), k times each, give the Bernstein polynomials.
+        // Knots (0,…,0, 1,…,1), g + 1 times each, give the Bernstein polynomials.
         for g in 0..=BSPLINE_MAX_DEGREE {
             let mut t = [0.0; 16];
             for v in t.iter_mut().skip(g + 1).take(g + 1) {

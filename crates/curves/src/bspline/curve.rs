@@ -1,5 +1,6 @@
-//! The B-spline curve `c(u) = Σ d_i N_i^g(u)` with de Boor points `d_i` (seeds/000,
-//! seeds/002 "Basis-Splines"), evaluated with de Boor's algorithm.
+//! The B-spline curve `c(u) = Σ d_i N_i^g(u)` with de Boor points `d_i` (Piegl & Tiller,
+//! *The NURBS Book*, 2nd ed., §3.2), evaluated with de Boor's algorithm (de Boor, *A Practical
+//! Guide to Splines*, ch. X "The Stable Evaluation of B-splines and Splines").
 
 use heapless::Vec;
 
@@ -11,13 +12,14 @@ use crate::point::Point;
 use crate::scalar::Scalar;
 
 /// A B-spline curve of degree `g ≤` [`BSPLINE_MAX_DEGREE`] with up to `N` de Boor points and
-/// up to `M` knots (seeds/000 and 002: "Basis-Splines"; seeds/004 writes the order `k = g + 1`).
+/// up to `M` knots (Piegl & Tiller §3.2; some texts use the order `k = g + 1`).
 ///
 /// `c(u) = Σ_{i=0}^{K−1} d_i N_i^g(u)` on the domain `[u_g, u_K]` of a knot vector with
 /// `m = K + g + 1` knots. Each non-empty knot span is one polynomial piece; at a knot of
 /// multiplicity `μ` the curve is `C^{g−μ}`, and a knot of multiplicity `g` makes it pass
 /// through a de Boor point. The curve lies in the union of the convex hulls of `g + 1`
-/// consecutive de Boor points and is affine invariant.
+/// consecutive de Boor points, is affine invariant, and moving `d_i` changes it only on
+/// `[u_i, u_{i+g+1})` (local control; Piegl & Tiller §3.2).
 ///
 /// Evaluation is de Boor's algorithm (convex combinations only, safe in fixed-point):
 /// O(g²) after an O(log K) span search (O(1) for uniform knots). Parameters outside the
@@ -39,7 +41,7 @@ use crate::scalar::Scalar;
 /// [`BSpline::from_knot_vector`]) use `K ≤ N` points and `K + g + 1 ≤ M` knots. A clamped
 /// knot vector (end multiplicity `g + 1`) makes the curve interpolate `d_0` and `d_{K−1}`.
 ///
-/// **Closed** curves ([`BSpline::closed`], seeds/000: `K = n`) with `K` de Boor points are
+/// **Closed** curves ([`BSpline::closed`]: `K` segments for `K` points) with `K` de Boor points are
 /// stored as the open B-spline over the periodically extended knot vector with the last `g`
 /// points repeated in front: they need `N ≥ K + g` and `M ≥ K + 2g + 1`, and
 /// [`BSpline::control_points`] / [`BSpline::knots`] return that extended representation.
@@ -76,7 +78,7 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
     /// ```
     /// use strak_curves::{BSpline, ParamCurve};
     ///
-    /// // seeds/002: g = 3, K = 7, U = [0,0,0,0,1,2,3,4,4,4,4]
+    /// // g = 3, K = 7, U = [0,0,0,0,1,2,3,4,4,4,4]
     /// let d = [[0.0], [1.0], [2.0], [3.0], [4.0], [5.0], [6.0]];
     /// let t = [0., 0., 0., 0., 1., 2., 3., 4., 4., 4., 4.];
     /// let c = BSpline::<[f64; 1], 8, 12>::new(3, &d, &t).unwrap();
@@ -174,8 +176,8 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
         Self::from_knot_vector(points, kv)
     }
 
-    /// A closed (periodic) B-spline through `K = points.len()` de Boor points (seeds/000:
-    /// "geschlossene B-Splines", `K = n` segments, `m = K` knots on the circle).
+    /// A closed (periodic) B-spline with `K = points.len()` de Boor points: `K` segments and
+    /// `K` knots on the circle of one period.
     ///
     /// `knots = None` gives uniform knots with period `[0, 1]`. Otherwise `knots` holds the
     /// `K + 1` values `u_0 ≤ u_1 ≤ … ≤ u_K` (`u_0 < u_K`) whose `K` intervals make one period;
@@ -183,7 +185,7 @@ impl<P: Point, const N: usize, const M: usize> BSpline<P, N, M> {
     /// be at most `g`. The domain is `[u_0, u_K]`; as for every curve, parameters outside it
     /// are clamped (not wrapped), and at `u_K` the last piece is used.
     ///
-    /// As for open B-splines (seeds/002), `d_i` acts on `[u_i, u_{i+g+1}]`, read modulo the
+    /// As for open B-splines, `d_i` acts on `[u_i, u_{i+g+1}]`, read modulo the
     /// period. Internally this is the open B-spline over the periodically extended knot vector
     /// `u_{−g}, …, u_{K+g}` (`u_{j+K} = u_j + (u_K − u_0)`, `K + 2g + 1` knots) with the de Boor
     /// points `d_{K−g}, …, d_{K−1}, d_0, …, d_{K−1}` (the last `g` repeated in front), so it
@@ -399,7 +401,8 @@ fn shifted<P: Point>(d: &[P; LOCAL], k: usize, g: usize) -> [P; LOCAL] {
     e
 }
 
-/// De Boor's algorithm (seeds/000) for a curve of degree `p` on span `s`: `d[j]` holds the de
+/// De Boor's algorithm (de Boor, *A Practical Guide to Splines*, ch. X; Piegl & Tiller §5.2,
+/// computing a point by corner cutting) for a curve of degree `p` on span `s`: `d[j]` holds the de
 /// Boor point acting on `N_{s−p+j}^p`, `j = 0..=p`. Each step is the convex combination
 /// `(1 − α)·d_{j−1} + α·d_j` with `α = (u − u_i)/(u_{i+p+1−r} − u_i) ∈ [0, 1]`.
 pub(crate) fn de_boor<P: Point, const M: usize>(
@@ -565,8 +568,8 @@ mod tests {
         [9.0, 3.0],
     ];
 
-    fn seed_curve() -> C2 {
-        // seeds/002: g = 3, n = 4, K = 7, m = 11, U = [0,0,0,0,1,2,3,4,4,4,4]
+    fn open_cubic() -> C2 {
+        // g = 3, n = 4 segments, K = 7, m = 11, U = [0,0,0,0,1,2,3,4,4,4,4]
         C2::new(3, &D7, &[0., 0., 0., 0., 1., 2., 3., 4., 4., 4., 4.]).unwrap()
     }
 
@@ -617,7 +620,7 @@ mod tests {
     #[test]
     fn de_boor_equals_basis_sum() {
         let curves = [
-            seed_curve(),
+            open_cubic(),
             C2::new(2, &D7, &[0., 0., 0., 0.3, 0.3, 1.1, 2., 3., 3., 3.]).unwrap(),
             C2::new(3, &D7, &[-3., -2., -1., 0., 1., 2., 3., 4., 5., 6., 7.]).unwrap(),
             C2::new(1, &D7[..3], &[0., 0., 1., 2., 2.]).unwrap(),
@@ -633,7 +636,7 @@ mod tests {
 
     #[test]
     fn endpoint_interpolation_and_end_tangents() {
-        let c = seed_curve();
+        let c = open_cubic();
         assert_eq!(c.eval(0.0), D7[0]);
         assert_eq!(c.eval(4.0), D7[6]);
         // c'(u_g) = g/(u_{g+1} − u_1)·(d_1 − d_0) and c'(u_K) = g/(u_{K+g−1}... ) (d_{K−1} − d_{K−2})
@@ -669,7 +672,7 @@ mod tests {
 
     #[test]
     fn continuity_at_simple_knots_is_g_minus_1() {
-        let c = seed_curve();
+        let c = open_cubic();
         for s in 4..=6 {
             for k in 0..3 {
                 let (l, r) = left_right(&c, s, k);
@@ -708,7 +711,7 @@ mod tests {
 
     #[test]
     fn affine_invariance() {
-        let c = seed_curve();
+        let c = open_cubic();
         let f = |p: [f64; 2]| [0.6 * p[0] - 0.8 * p[1] + 3.0, 0.8 * p[0] + 0.6 * p[1] - 1.0];
         let img: [[f64; 2]; 7] = D7.map(f);
         let ci = C2::new(3, &img, c.knots()).unwrap();
@@ -797,7 +800,7 @@ mod tests {
 
     #[test]
     fn fixed_point_matches_f64() {
-        let c = seed_curve();
+        let c = open_cubic();
         let t16 = c.knots().iter().map(|&x| I16F16::from_num(x));
         let t16: heapless::Vec<I16F16, 16> = t16.collect();
         let d16 = D7.map(|p| p.map(I16F16::from_num));

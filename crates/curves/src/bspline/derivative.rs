@@ -2,7 +2,8 @@
 //! fixed-point range bound that makes them safe.
 //!
 //! The derivative of a B-spline of degree `g` is a B-spline of degree `g − 1` on the same knots
-//! with the de Boor points (seeds/000, differentiating the Cox–de Boor recursion)
+//! with the de Boor points (Piegl & Tiller, *The NURBS Book*, 2nd ed., §3.3;
+//! differentiating the Cox–de Boor recursion)
 //!
 //! ```text
 //! Q_i = g · (d_{i+1} − d_i) / (u_{i+g+1} − u_{i+1})
@@ -121,7 +122,7 @@ mod tests {
 
     #[test]
     fn derivative_points_of_clamped_cubic() {
-        // Global derivative points Q_i = g (d_{i+1} − d_i)/(u_{i+g+1} − u_{i+1}) for the seed's
+        // Global derivative points Q_i = g (d_{i+1} − d_i)/(u_{i+g+1} − u_{i+1}) for the knots
         // U = [0,0,0,0,1,2,3,4,4,4,4]; on the first span they are Q_0, Q_1, Q_2.
         let d = [[0.0], [1.0], [3.0], [6.0], [10.0], [15.0], [21.0]];
         let c = BSpline::<[f64; 1], 8, 12>::clamped_uniform(3, &d, 0.0, 4.0).unwrap();

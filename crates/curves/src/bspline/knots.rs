@@ -1,6 +1,7 @@
 //! Knot vectors: validation, generators, multiplicity and knot-span search.
 //!
-//! Notation of seeds/000 and seeds/002 ("Basis-Splines"): degree `g`, `K` de Boor points, a
+//! Notation (as Piegl & Tiller, *The NURBS Book*, 2nd ed., §2.2, with `g` for their `p`):
+//! degree `g`, `K` de Boor points, a
 //! knot vector `U = (u_0, …, u_{m−1})` with `m = K + g + 1` entries for an open B-spline. The
 //! curve is defined on the domain `[u_g, u_K]`; the knot interval `[u_i, u_{i+1})` is a
 //! *span* and only the `g + 1` de Boor points `d_{i−g}, …, d_i` act on it. A knot repeated `μ`
@@ -44,7 +45,7 @@ pub(crate) fn check_degree(degree: usize) -> Result<(), Error> {
 }
 
 /// `num / den`, or zero when `den` is not positive: the `0/0 := 0` convention of the Cox–de
-/// Boor recursion (seeds/000). Every caller passes a knot difference that is positive by
+/// Boor recursion (Piegl & Tiller §2.2). Every caller passes a knot difference that is positive by
 /// construction; the guard makes the absence of a division by zero evident.
 #[inline]
 pub(crate) fn ratio<S: Scalar>(num: S, den: S) -> S {
@@ -65,7 +66,7 @@ pub(crate) fn ratio<S: Scalar>(num: S, den: S) -> S {
 /// ```
 /// use strak_curves::KnotVector;
 ///
-/// // seeds/002: g = 3, n = 4 segments, K = 7, m = 11, U = [0,0,0,0,1,2,3,4,4,4,4]
+/// // g = 3, n = 4 segments, K = 7, m = 11, U = [0,0,0,0,1,2,3,4,4,4,4]
 /// let kv = KnotVector::<f64, 16>::new(3, &[0., 0., 0., 0., 1., 2., 3., 4., 4., 4., 4.]).unwrap();
 /// assert_eq!(kv.control_point_count(), 7);
 /// assert_eq!(kv.domain(), (0.0, 4.0));
@@ -120,7 +121,7 @@ impl<S: Scalar, const M: usize> KnotVector<S, M> {
         Self::from_vec(degree, v)
     }
 
-    /// The clamped ("open", seeds/000) uniform knot vector for `count` de Boor points over
+    /// The clamped (open, nonperiodic) uniform knot vector for `count` de Boor points over
     /// `[u0, u1]`: `g + 1` copies of `u0`, `count − g − 1` equally spaced inner knots, `g + 1`
     /// copies of `u1`. The curve interpolates its first and last de Boor point.
     ///
@@ -175,7 +176,7 @@ impl<S: Scalar, const M: usize> KnotVector<S, M> {
     }
 
     /// The periodically extended uniform knot vector of a closed B-spline with `count`
-    /// de Boor points (seeds/000: `K = n`, one segment per point) over one period `[u0, u1]`:
+    /// de Boor points (one segment per point) over one period `[u0, u1]`:
     /// `count + 2g + 1` knots `u_j = u0 + (j − g)·h`, `h = (u1 − u0)/count`. It belongs to the
     /// open B-spline with `count + g` points whose first `g` points repeat the last `g`
     /// (see [`BSpline::closed`](crate::BSpline::closed)).
@@ -513,21 +514,21 @@ mod tests {
     type Kv = KnotVector<f64, 32>;
 
     #[test]
-    fn seed_example_open_cubic() {
-        // seeds/000 + 002: g = 3, n = 4, K = 7, m = 11, U = [0,0,0,0,1,2,3,4,4,4,4]
+    fn clamped_cubic_examples() {
+        // g = 3, n = 4, K = 7, m = 11, U = [0,0,0,0,1,2,3,4,4,4,4]
         let kv = Kv::clamped_uniform(3, 7, 0.0, 4.0).unwrap();
         assert_eq!(kv.as_slice(), &[0., 0., 0., 0., 1., 2., 3., 4., 4., 4., 4.]);
         assert_eq!(kv.control_point_count(), 7);
         assert_eq!(kv.piece_count(), 4);
         assert_eq!(kv.domain(), (0.0, 4.0));
         assert!(kv.is_uniform());
-        // seeds/000 second example: g = 3, n = 5, m = 12, K = 8, U = 000012345555
+        // g = 3, n = 5, m = 12, K = 8, U = 000012345555
         let kv = Kv::clamped_uniform(3, 8, 0.0, 5.0).unwrap();
         assert_eq!(
             kv.as_slice(),
             &[0., 0., 0., 0., 1., 2., 3., 4., 5., 5., 5., 5.]
         );
-        // seeds/004 (order k = 4, n = 8): T = (0,0,0,0,1,2,3,4,5,6,6,6,6)
+        // Order 4 with 9 points: T = (0,0,0,0,1,2,3,4,5,6,6,6,6)
         let kv = Kv::clamped_uniform(3, 9, 0.0, 6.0).unwrap();
         assert_eq!(
             kv.as_slice(),

@@ -1,4 +1,5 @@
-//! B-splines (seeds/000 and seeds/002: "Basis-Splines"; seeds/004: "B-Splines"): knot vectors,
+//! B-splines (Piegl & Tiller, *The NURBS Book*, 2nd ed., ch. 2, 3 and 5; de Boor, *A
+//! Practical Guide to Splines*, ch. IX–XI): knot vectors,
 //! the Cox–de Boor basis, the curve with de Boor evaluation and derivatives, knot insertion and
 //! conversion to Bézier segments.
 

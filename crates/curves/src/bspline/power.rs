@@ -3,17 +3,17 @@
 //!
 //! The route is the textbook one: each non-empty knot span `[u_s, u_{s+1})` of a B-spline of
 //! degree `g` is one polynomial piece. Its Bézier points are the blossom values
-//! `b_j = f(u_s^{g−j}, u_{s+1}^j)` (Bézier extraction by knot insertion, seeds/000 and
-//! seeds/004 "B-Splines"; the same triangle as [`BSpline::to_bezier_segments`]), and the
-//! Bernstein → monomial matrix `T_{M←B}` (seeds/000 "Basistransformation",
-//! [`bernstein_to_monomial_matrix`](crate::basis::bernstein_to_monomial_matrix)) turns them
+//! `b_j = f(u_s^{g−j}, u_{s+1}^j)` (Bézier extraction by knot insertion, Piegl & Tiller,
+//! *The NURBS Book*, 2nd ed., §5.3; the same triangle as [`BSpline::to_bezier_segments`]),
+//! and the Bernstein → monomial matrix `T_{M←B}` (Farin, *Curves and Surfaces for CAGD*,
+//! 5th ed., §4.8; [`bernstein_to_monomial_matrix`](crate::basis::bernstein_to_monomial_matrix)) turns them
 //! into the coefficients of
 //!
 //! ```text
 //! c(u) = a_0 + a_1 t + … + a_g t^g,   t = (u − u_s)·r_s ∈ [0, 1],   r_s = 1/(u_{s+1} − u_s),
 //! ```
 //!
-//! evaluated by Horner (seeds/000 "Effiziente Auswertung"): `g` multiplications and `g`
+//! evaluated by Horner (Piegl & Tiller §1.2, Algorithm A1.1): `g` multiplications and `g`
 //! additions per coordinate, no division. Derivatives: `c^{(k)}(u) = r_s^k · Σ_{j≥k}
 //! j!/(j−k)!·a_j t^{j−k}`.
 //!
@@ -54,8 +54,8 @@ struct Piece<P: Point, const K: usize> {
 }
 
 /// A B-spline as piecewise polynomials in the power (monomial) basis, evaluated with the
-/// Horner scheme: the fast random-access evaluator of a [`BSpline`] (seeds/000 "Monombasis",
-/// "Effiziente Auswertung"; seeds/004 "B-Splines").
+/// Horner scheme: the fast random-access evaluator of a [`BSpline`] (the piecewise power
+/// basis form, Piegl & Tiller §1.2 and §5.3).
 ///
 /// `K` is the order (coefficients per piece, at least degree + 1; higher coefficients are
 /// zero), `N` the capacity of pieces (non-empty knot spans). Piece `i` on `[u_s, u_{s+1})`
@@ -535,12 +535,12 @@ mod tests {
         }
     }
 
-    /// seeds/002 (g = 3, U = [0,0,0,0,1,2,3,4,4,4,4]) with the de Boor points
+    /// The open cubic (g = 3, U = [0,0,0,0,1,2,3,4,4,4,4]) with the de Boor points
     /// d_i = (i, i²): a clamped uniform cubic reproduces quadratics exactly where the
     /// knot vector is uniform enough; here checked at the closed-form values c(0) = d_0,
     /// c(4) = d_6 and the uniform inner-piece formula c(u_s) = (d_{s−3} + 4 d_{s−2} + d_{s−1})/6.
     #[test]
-    fn seed_example() {
+    fn open_cubic_example() {
         let d: [[f64; 2]; 7] = core::array::from_fn(|i| [i as f64, (i * i) as f64]);
         let b = B2::new(3, &d, &[0., 0., 0., 0., 1., 2., 3., 4., 4., 4., 4.]).unwrap();
         let p = P2::from_bspline(&b).unwrap();
@@ -558,7 +558,7 @@ mod tests {
     #[test]
     fn coefficients_of_a_cubic_bezier() {
         // One piece (Bernstein): the monomial form of b = (2, −2, 5, 1) is (2, −12, 33, −22)
-        // (seeds/000 "Beispieltransformation", corrected; see the basis module docs).
+        // (the worked example of the basis module docs).
         let d = [[2.0, 0.0], [-2.0, 0.0], [5.0, 0.0], [1.0, 0.0]];
         let b = B2::new(3, &d, &[1., 1., 1., 1., 3., 3., 3., 3.]).unwrap();
         let p = P2::from_bspline(&b).unwrap();

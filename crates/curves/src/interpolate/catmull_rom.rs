@@ -1,5 +1,8 @@
 //! Catmull-Rom and cardinal splines: [`HermiteSpline`]s whose tangents are computed from the
-//! neighbouring points (finite differences over the nodes).
+//! neighbouring points (finite differences over the nodes; Catmull & Rom, "A class of local
+//! interpolating splines", in Barnhill & Riesenfeld (eds.), *Computer Aided Geometric
+//! Design*, Academic Press 1974). Each point influences the four pieces around it (local
+//! control), and the curve is C¹.
 
 use heapless::Vec;
 

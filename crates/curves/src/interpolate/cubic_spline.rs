@@ -1,19 +1,22 @@
-//! Interpolating cubic splines (seeds/003 "Kubische Splines", seeds/004 "Gleichungssystem"):
-//! piecewise cubic curves through the points, C² at the inner nodes, with two end conditions.
+//! Interpolating cubic splines: piecewise cubic curves through the points, C² at the inner
+//! nodes, with two end conditions (de Boor, *A Practical Guide to Splines*, ch. IV "Cubic
+//! spline interpolation", "Boundary conditions"; Burden & Faires, *Numerical Analysis*,
+//! §3.5 "Cubic Spline Interpolation").
 //!
 //! The spline is stored in Hermite form: per node the point `q_i` and the first derivative
 //! `m_i` (w.r.t. `u`), each piece evaluated as a [`HermiteSegment`](crate::HermiteSegment)
 //! (Bézier form, de Casteljau). C² continuity at node `i` (with `h_i = u_{i+1} − u_i` and the
-//! slopes `δ_i = (q_{i+1} − q_i)/h_i`) is the tridiagonal equation
+//! slopes `δ_i = (q_{i+1} − q_i)/h_i`) is the tridiagonal equation of de Boor's slope form
 //!
 //! `m_{i−1}/h_{i−1} + 2·(1/h_{i−1} + 1/h_i)·m_i + m_{i+1}/h_i = 3·(δ_{i−1}/h_{i−1} + δ_i/h_i)`,
 //!
-//! which replaces the dense `4n × 4n` system of seeds/004 by an `O(n)` solve
+//! which replaces the dense `4n × 4n` system for the monomial coefficients of every piece by
+//! an `O(n)` solve
 //! ([`solve_tridiagonal`](crate::solve_tridiagonal), or
 //! [`solve_cyclic_tridiagonal`](crate::solve_cyclic_tridiagonal) for closed curves). The end
 //! conditions: natural `c''(u_0) = 0 ⇔ 2m_0 + m_1 = 3δ_0` and
-//! `c''(u_n) = 0 ⇔ m_{n−1} + 2m_n = 3δ_{n−1}` (seeds/004); clamped `m_0`, `m_n` given
-//! (seeds/003); periodic: the C² equation also at the seam `u_0 ≅ u_n`.
+//! `c''(u_n) = 0 ⇔ m_{n−1} + 2m_n = 3δ_{n−1}`; clamped (complete) `m_0`, `m_n` given;
+//! periodic: the C² equation also at the seam `u_0 ≅ u_n`, a cyclic tridiagonal system.
 
 use heapless::Vec;
 
@@ -34,10 +37,9 @@ use crate::scalar::Scalar;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SplineBoundary<P> {
-    /// Natural spline: zero second derivative at both ends (seeds/004, `f''(t_0) = f''(t_n) = 0`).
+    /// Natural spline: zero second derivative at both ends, `c''(u_0) = c''(u_n) = 0`.
     Natural,
-    /// Clamped (complete) spline: the first derivatives (w.r.t. `u`) at the two ends are given
-    /// (seeds/003, "man gibt die 1. Ableitung in den Endpunkten vor").
+    /// Clamped (complete) spline: the first derivatives (w.r.t. `u`) at the two ends are given.
     Clamped {
         /// `c'(u_0)`.
         start: P,
@@ -50,11 +52,12 @@ pub enum SplineBoundary<P> {
     Periodic,
 }
 
-/// An interpolating cubic spline through at most `N` points (seeds/003, seeds/004): C² at
+/// An interpolating cubic spline through at most `N` points: C² at
 /// the inner nodes, with the end conditions of a [`SplineBoundary`].
 ///
-/// Nodes are given or computed by a [`Parameterization`](crate::Parameterization) (seeds/004
-/// uses chord length). `u` outside `[u_0, u_n]` is clamped. The linear system is solved once
+/// Nodes are given or computed by a [`Parameterization`](crate::Parameterization) (chord
+/// length is the usual choice for curves). `u` outside `[u_0, u_n]` is clamped. Every
+/// tangent depends on every point (no local control). The linear system is solved once
 /// in `f64` in fixed storage (`O(n)`); the node derivatives are then rounded to the scalar
 /// type and the spline is evaluated in it as Hermite pieces.
 ///
@@ -291,7 +294,7 @@ mod tests {
         CubicSpline::new(&PTS, CHORD, SplineBoundary::Natural).unwrap()
     }
 
-    /// The dense 4n×4n system of seeds/004 for one coordinate, solved by Gaussian elimination
+    /// The dense 4n×4n system of the monomial pieces for one coordinate, solved by Gaussian elimination
     /// with partial pivoting: f_i(t) = a + b t + c t² + d t³ on [t_{i−1}, t_i].
     fn dense_natural(t: &[f64], y: &[f64]) -> [[f64; 4]; 5] {
         const M: usize = 20;
@@ -350,7 +353,7 @@ mod tests {
     }
 
     #[test]
-    fn natural_matches_dense_seed_system() {
+    fn natural_matches_dense_system() {
         let s = natural();
         let t = s.nodes();
         for c in 0..2 {

@@ -1,5 +1,7 @@
-//! Cubic Hermite interpolation (seeds/000 and seeds/002, "Hermite Interpolation"): curve
-//! pieces through points `q_i` with prescribed tangents `m_i` at nodes `u_i`.
+//! Cubic Hermite interpolation: curve pieces through points `q_i` with prescribed tangents
+//! `m_i` at nodes `u_i` (Farin, *Curves and Surfaces for CAGD*, 5th ed., §6.5 "Cubic Hermite
+//! Interpolation", §8.1 "C1 Piecewise Cubic Hermite Interpolation"; de Boor, *A Practical
+//! Guide to Splines*, ch. IV "Piecewise cubic Hermite interpolation").
 //!
 //! On `[u_i, u_{i+1}]`, with `Δ_i = u_{i+1} − u_i` and `s = (t − u_i)/Δ_i`,
 //!
@@ -9,7 +11,7 @@
 //! `H3 = (3−2s)s²`. The tangents are derivatives with respect to `u` (not `s`), hence the
 //! factor `Δ_i`. Each piece is evaluated in its Bézier form
 //! `b0 = q_i, b1 = q_i + Δ_i·m_i/3, b2 = q_{i+1} − Δ_i·m_{i+1}/3, b3 = q_{i+1}`
-//! with de Casteljau's algorithm (convex combinations only, seeds/000), and its derivatives
+//! with de Casteljau's algorithm (convex combinations only), and its derivatives
 //! with respect to `u` as the Bézier curves of the hodograph.
 
 use heapless::Vec;
@@ -21,7 +23,8 @@ use crate::point::Point;
 use crate::scalar::Scalar;
 
 /// One cubic Hermite piece on `[u0, u1]` through `q0`, `q1` with tangents `m0`, `m1`
-/// (derivatives with respect to `u`), seeds/002 "Lösung der Interpolationsaufgabe".
+/// (derivatives with respect to `u`): `c(u) = H0(s) q0 + Δ H1(s) m0 + Δ H2(s) m1 + H3(s) q1`
+/// with `Δ = u1 − u0`, `s = (u − u0)/Δ` (Farin §6.5).
 ///
 /// ```
 /// use strak_curves::{HermiteSegment, ParamCurve, ParamCurveDeriv};
@@ -136,7 +139,8 @@ impl<P: Point> PieceDeriv for HermiteSegment<P> {
 }
 
 /// A C¹ cubic Hermite spline: pieces [`HermiteSegment`] between consecutive nodes, sharing
-/// points and tangents at the nodes (seeds/002, "Hermite Interpolation").
+/// points and tangents at the nodes (Farin §8.1). Moving a point or tangent changes the two
+/// pieces next to it only (local control).
 ///
 /// Holds at most `N` nodes (so `N − 1` pieces). The piece containing `u` is found by binary
 /// search over the nodes; `u` outside `[u_0, u_n]` is clamped.
@@ -485,8 +489,8 @@ mod tests {
         (3.0 - 2.0 * t) * t * t
     }
 
-    /// seeds/002: c_i(t) = H0(s) q_i + Δ H1(s) m_i + Δ H2(s) m_{i+1} + H3(s) q_{i+1}.
-    fn seed_formula(u: [f64; 2], q: [[f64; 2]; 2], m: [[f64; 2]; 2], t: f64) -> [f64; 2] {
+    /// c_i(t) = H0(s) q_i + Δ H1(s) m_i + Δ H2(s) m_{i+1} + H3(s) q_{i+1}.
+    fn textbook_formula(u: [f64; 2], q: [[f64; 2]; 2], m: [[f64; 2]; 2], t: f64) -> [f64; 2] {
         let d = u[1] - u[0];
         let s = (t - u[0]) / d;
         core::array::from_fn(|c| {
@@ -507,11 +511,14 @@ mod tests {
     }
 
     #[test]
-    fn segment_matches_seed_formula() {
+    fn segment_matches_textbook_formula() {
         let s = seg();
         for i in 0..=20 {
             let t = U[0] + (U[1] - U[0]) * f64::from(i) / 20.0;
-            assert!(close(s.eval(t), seed_formula(U, Q, M, t), 1e-13), "t = {t}");
+            assert!(
+                close(s.eval(t), textbook_formula(U, Q, M, t), 1e-13),
+                "t = {t}"
+            );
         }
     }
 
@@ -529,7 +536,7 @@ mod tests {
 
     #[test]
     fn segment_derivatives_match_hermite_matrix_coefficients() {
-        // seeds/003: Q(s) = A s³ + B s² + C s + D with the tangents scaled by Δ
+        // The algebraic form Q(s) = A s³ + B s² + C s + D with the tangents scaled by Δ
         // (A = 2(q0 − q1) + Δm0 + Δm1, B = 3(q1 − q0) − 2Δm0 − Δm1, C = Δm0, D = q0).
         let s = seg();
         let d = U[1] - U[0];
@@ -613,7 +620,7 @@ mod tests {
     }
 
     #[test]
-    fn spline_pieces_match_seed_formula() {
+    fn spline_pieces_match_textbook_formula() {
         let h = spline();
         for i in 0..3 {
             let u = [h.nodes()[i], h.nodes()[i + 1]];
@@ -621,7 +628,7 @@ mod tests {
             let m = [h.tangents()[i], h.tangents()[i + 1]];
             for j in 0..=8 {
                 let t = u[0] + (u[1] - u[0]) * f64::from(j) / 8.0;
-                assert!(close(h.eval(t), seed_formula(u, q, m, t), 1e-13));
+                assert!(close(h.eval(t), textbook_formula(u, q, m, t), 1e-13));
             }
         }
     }

@@ -1,13 +1,15 @@
-//! Lagrange curves (seeds/000 and seeds/002, "Lagrange Interpolation"): the polynomial curve
-//! of degree `n` through `n + 1` points `q_i` at nodes `u_i`,
+//! Lagrange curves: the polynomial curve of degree `n` through `n + 1` points `q_i` at nodes
+//! `u_i` (Farin, *Curves and Surfaces for CAGD*, 5th ed., §6.2 "Lagrange Polynomials"),
 //! `c(t) = Σ q_i·L_i^n(t)` with `L_i^n(t) = Π_{k≠i} (t − u_k)/(u_i − u_k)`.
 //!
-//! Points are evaluated with Neville's algorithm: the interpolant of nodes `i..=j` is the
-//! affine combination `(1 − λ)·p_{i..j−1} + λ·p_{i+1..j}` with `λ = (t − u_i)/(u_j − u_i)`, the
-//! analogue of de Casteljau's scheme (seeds/000). Derivatives use the Newton form
+//! Points are evaluated with Neville's algorithm (Burden & Faires, *Numerical Analysis*,
+//! §3.2; Aitken's algorithm in Farin §6.1): the interpolant of nodes `i..=j` is the affine
+//! combination `(1 − λ)·p_{i..j−1} + λ·p_{i+1..j}` with `λ = (t − u_i)/(u_j − u_i)`, the
+//! analogue of de Casteljau's scheme. Derivatives use the Newton form
 //! `c(t) = Σ [u_0..u_i]q · Π_{m<i}(t − u_m)` (divided differences, computed once at
-//! construction) and the Horner scheme for derivatives. As seeds/000 warns, many nodes make
-//! the curve overshoot ("Überschwingen"); prefer splines for more than a handful of points.
+//! construction; de Boor, *A Practical Guide to Splines*, ch. I) and the Horner scheme for
+//! derivatives. Many nodes make the curve oscillate (Runge's example: de Boor ch. II; Farin
+//! §6.4 "Limits of Lagrange Interpolation"); prefer splines for more than a handful of points.
 
 use heapless::Vec;
 
@@ -24,7 +26,7 @@ use crate::scalar::Scalar;
 /// ```
 /// use strak_curves::{LagrangeCurve, ParamCurve, ParamCurveDeriv};
 ///
-/// // seeds/002: nodes {0, 1, 3}, points (1,0), (−1,0), (3,3):
+/// // Nodes {0, 1, 3}, points (1,0), (−1,0), (3,3):
 /// // c(t) = ((4t² − 10t + 3)/3, t(t − 1)/2)
 /// let c = LagrangeCurve::<_, 4>::new(&[[1.0_f64, 0.0], [-1.0, 0.0], [3.0, 3.0]], &[0.0, 1.0, 3.0])
 ///     .unwrap();
@@ -336,11 +338,11 @@ mod tests {
     use crate::Parameterization;
     use crate::scalar::{I16F16, I32F32};
 
-    const SEED_PTS: [[f64; 2]; 3] = [[1.0, 0.0], [-1.0, 0.0], [3.0, 3.0]];
-    const SEED_U: [f64; 3] = [0.0, 1.0, 3.0];
+    const WORKED_PTS: [[f64; 2]; 3] = [[1.0, 0.0], [-1.0, 0.0], [3.0, 3.0]];
+    const WORKED_U: [f64; 3] = [0.0, 1.0, 3.0];
 
-    /// seeds/002, expanded: c(t) = (1,0)(t² − 4t + 3)/3 + (−1,0)·t(t − 3)/(−2) + (3,3)·t(t − 1)/6.
-    fn seed(t: f64) -> [f64; 2] {
+    /// Expanded: c(t) = (1,0)(t² − 4t + 3)/3 + (−1,0)·t(t − 3)/(−2) + (3,3)·t(t − 1)/6.
+    fn expanded(t: f64) -> [f64; 2] {
         let l0 = (t * t - 4.0 * t + 3.0) / 3.0;
         let l1 = t * (t - 3.0) / -2.0;
         let l2 = t * (t - 1.0) / 6.0;
@@ -352,25 +354,25 @@ mod tests {
     }
 
     fn curve() -> LagrangeCurve<[f64; 2], 4> {
-        LagrangeCurve::new(&SEED_PTS, &SEED_U).unwrap()
+        LagrangeCurve::new(&WORKED_PTS, &WORKED_U).unwrap()
     }
 
     #[test]
-    fn seed_example() {
+    fn worked_example() {
         let c = curve();
         assert_eq!(c.domain(), (0.0, 3.0));
         assert_eq!(c.degree(), 2);
         for j in 0..=30 {
             let t = f64::from(j) / 10.0;
-            assert!(near(c.eval(t), seed(t), 1e-14), "t = {t}");
+            assert!(near(c.eval(t), expanded(t), 1e-14), "t = {t}");
         }
         for i in 0..3 {
-            assert_eq!(c.eval(SEED_U[i]), SEED_PTS[i]);
+            assert_eq!(c.eval(WORKED_U[i]), WORKED_PTS[i]);
         }
     }
 
     #[test]
-    fn seed_example_derivatives() {
+    fn worked_example_derivatives() {
         // x = (4t² − 10t + 3)/3, y = t(t − 1)/2
         let c = curve();
         for j in 0..=30 {
@@ -394,8 +396,8 @@ mod tests {
     #[test]
     fn clamps_parameter() {
         let c = curve();
-        assert_eq!(c.eval(-1.0), SEED_PTS[0]);
-        assert_eq!(c.eval(4.0), SEED_PTS[2]);
+        assert_eq!(c.eval(-1.0), WORKED_PTS[0]);
+        assert_eq!(c.eval(4.0), WORKED_PTS[2]);
         assert_eq!(c.deriv(-1.0, 1), c.deriv(0.0, 1));
     }
 
@@ -418,21 +420,21 @@ mod tests {
 
     #[test]
     fn parameterized_nodes() {
-        let c = LagrangeCurve::<_, 4>::new(&SEED_PTS, Parameterization::Uniform).unwrap();
+        let c = LagrangeCurve::<_, 4>::new(&WORKED_PTS, Parameterization::Uniform).unwrap();
         assert_eq!(c.nodes(), &[0.0, 1.0, 2.0]);
-        assert_eq!(c.points(), &SEED_PTS);
-        assert_eq!(c.eval(2.0), SEED_PTS[2]);
+        assert_eq!(c.points(), &WORKED_PTS);
+        assert_eq!(c.eval(2.0), WORKED_PTS[2]);
     }
 
     #[test]
     fn fixed_point_and_f32_match_f64() {
         let c = curve();
-        let p16 = SEED_PTS.map(|p| p.map(I16F16::from_num));
-        let u16 = SEED_U.map(I16F16::from_num);
-        let p32 = SEED_PTS.map(|p| p.map(I32F32::from_num));
-        let u32_ = SEED_U.map(I32F32::from_num);
-        let pf = SEED_PTS.map(|p| p.map(|x| x as f32));
-        let uf = SEED_U.map(|x| x as f32);
+        let p16 = WORKED_PTS.map(|p| p.map(I16F16::from_num));
+        let u16 = WORKED_U.map(I16F16::from_num);
+        let p32 = WORKED_PTS.map(|p| p.map(I32F32::from_num));
+        let u32_ = WORKED_U.map(I32F32::from_num);
+        let pf = WORKED_PTS.map(|p| p.map(|x| x as f32));
+        let uf = WORKED_U.map(|x| x as f32);
         let a = LagrangeCurve::<_, 4>::new(&p16, &u16).unwrap();
         let b = LagrangeCurve::<_, 4>::new(&p32, &u32_).unwrap();
         let f = LagrangeCurve::<_, 4>::new(&pf, &uf).unwrap();
@@ -454,21 +456,21 @@ mod tests {
     fn errors() {
         let uni = Parameterization::Uniform;
         assert_eq!(
-            LagrangeCurve::<_, 4>::new(&SEED_PTS[..1], uni),
+            LagrangeCurve::<_, 4>::new(&WORKED_PTS[..1], uni),
             Err(Error::TooFewPoints {
                 required: 2,
                 found: 1
             })
         );
         assert_eq!(
-            LagrangeCurve::<_, 2>::new(&SEED_PTS, uni),
+            LagrangeCurve::<_, 2>::new(&WORKED_PTS, uni),
             Err(Error::CapacityExceeded {
                 capacity: 2,
                 required: 3
             })
         );
         assert_eq!(
-            LagrangeCurve::<_, 4>::new(&SEED_PTS, &SEED_U[..2]),
+            LagrangeCurve::<_, 4>::new(&WORKED_PTS, &WORKED_U[..2]),
             Err(Error::LengthMismatch {
                 expected: 3,
                 found: 2
@@ -479,7 +481,7 @@ mod tests {
             Err(Error::NonFinite)
         );
         assert_eq!(
-            LagrangeCurve::<_, 4>::new(&SEED_PTS, &[0.0, 3.0, 1.0]),
+            LagrangeCurve::<_, 4>::new(&WORKED_PTS, &[0.0, 3.0, 1.0]),
             Err(Error::NodesNotIncreasing { index: 2 })
         );
         assert_eq!(

@@ -1,6 +1,6 @@
 //! Interpolating curves: Lagrange curves, Hermite splines (with Catmull-Rom and cardinal
 //! tangents), parabolic blending and interpolating cubic splines, plus the interpolation
-//! nodes (parameterizations) and the tridiagonal solvers they need (seeds/000, 002, 003, 004).
+//! nodes (parameterizations) and the tridiagonal solvers they need.
 
 mod catmull_rom;
 mod cubic_spline;

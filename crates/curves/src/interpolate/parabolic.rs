@@ -1,6 +1,8 @@
-//! Parabolic blending (seeds/003, "Parabolic Blending"): between two points, the weighted
-//! mean of the two overlapping parabolas (Lagrange polynomials of degree 2) through three
-//! consecutive points.
+//! Parabolic blending (Overhauser, "Analytic definition of curves and surfaces by parabolic
+//! blending", Ford Motor Company, Scientific Research Staff, 1968; Rogers & Adams,
+//! *Mathematical Elements for Computer Graphics*, McGraw-Hill 1976, pp. 133–138): between two
+//! points, the weighted mean of the two overlapping parabolas (Lagrange polynomials of degree
+//! 2) through three consecutive points.
 //!
 //! With `n + 1` points `P_0 … P_n`, node `i` at `u = i`, and on piece `r` the local
 //! parameter `t = u − r ∈ [0, 1]`:
@@ -26,7 +28,7 @@ use super::parameterization::Parameterization;
 use crate::error::Error;
 use crate::point::Point;
 
-/// A parabolic blending curve (seeds/003) through at least 3 points, node `i` at `u = i`,
+/// A parabolic blending (Overhauser) curve through at least 3 points, node `i` at `u = i`,
 /// domain `[0, n]`; C¹, piecewise cubic (quadratic on the first and last piece).
 ///
 /// ```
@@ -117,8 +119,8 @@ mod tests {
         [7.0, -2.0],
     ];
 
-    /// seeds/003, literally.
-    fn seed_s(p: &[[f64; 2]], r: usize, t: f64) -> [f64; 2] {
+    /// The blend of the two parabolas, literally (module docs).
+    fn blend_s(p: &[[f64; 2]], r: usize, t: f64) -> [f64; 2] {
         let n = p.len() - 1;
         let first = |a: [f64; 2], b: [f64; 2], c: [f64; 2], k: usize| {
             a[k] * (t - 1.0) * (t - 2.0) / 2.0 - b[k] * t * (t - 2.0) + c[k] * t * (t - 1.0) / 2.0
@@ -139,14 +141,14 @@ mod tests {
     }
 
     #[test]
-    fn matches_seed_formulas() {
+    fn matches_blend_formulas() {
         let c = ParabolicBlend::<_, 8>::new(&PTS).unwrap();
         assert_eq!(c.domain(), (0.0, 5.0));
         assert_eq!(c.piece_count(), 5);
         for r in 0..5 {
             for j in 0..=10 {
                 let t = f64::from(j) / 10.0;
-                let want = seed_s(&PTS, r, t);
+                let want = blend_s(&PTS, r, t);
                 let got = c.eval(r as f64 + t);
                 for k in 0..2 {
                     assert!(
@@ -165,16 +167,16 @@ mod tests {
         for (i, p) in PTS.iter().enumerate() {
             assert_eq!(c.eval(i as f64), *p);
         }
-        // d/dt S_r(1) = d/dt S_{r+1}(0), by numerical differentiation of the seed formulas
+        // d/dt S_r(1) = d/dt S_{r+1}(0), by numerical differentiation of the blend formulas
         // and by the curve's own derivatives.
         let h = 1e-6;
         for r in 0..4 {
             let left = c.as_hermite().segment(r).unwrap().deriv((r + 1) as f64, 1);
             let right = c.deriv((r + 1) as f64, 1);
-            let left_fd = seed_s(&PTS, r, 1.0);
-            let left_fd2 = seed_s(&PTS, r, 1.0 - h);
-            let right_fd = seed_s(&PTS, r + 1, h);
-            let right_fd0 = seed_s(&PTS, r + 1, 0.0);
+            let left_fd = blend_s(&PTS, r, 1.0);
+            let left_fd2 = blend_s(&PTS, r, 1.0 - h);
+            let right_fd = blend_s(&PTS, r + 1, h);
+            let right_fd0 = blend_s(&PTS, r + 1, 0.0);
             for k in 0..2 {
                 assert!((left[k] - right[k]).abs() < 1e-13);
                 let l = (left_fd[k] - left_fd2[k]) / h;

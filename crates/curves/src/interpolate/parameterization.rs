@@ -1,10 +1,12 @@
-//! Interpolation nodes (seeds/000 "Stützstellen"): the parameter values `u_0 < u_1 < … < u_n`
+//! Interpolation nodes: the parameter values `u_0 < u_1 < … < u_n`
 //! at which an interpolating curve passes through its points.
 //!
 //! The nodes are either given by the caller ([`NodeSource::Given`], checked with
 //! [`validate_interpolation_nodes`]) or computed from the points by a [`Parameterization`]:
-//! uniform, chord-length (seeds/004 "Intervallgrenzen": `Δ_i = |P_{i+1} − P_i|`) or
-//! centripetal (`Δ_i = √|P_{i+1} − P_i|`).
+//! uniform, chord-length (`Δ_i = |P_{i+1} − P_i|`) or centripetal (`Δ_i = √|P_{i+1} − P_i|`)
+//! (Piegl & Tiller, *The NURBS Book*, 2nd ed., §9.2.1; Farin, *Curves and Surfaces for CAGD*,
+//! 5th ed., §7.7 "Finding a Knot Sequence"; Lee, "Choosing nodes in parametric curve
+//! interpolation", *Computer-Aided Design* 21(6), 1989).
 
 use heapless::Vec;
 
@@ -16,8 +18,12 @@ use crate::scalar::Scalar;
 ///
 /// All three start at `u_0 = 0`:
 /// - `Uniform`: `u_i = i`;
-/// - `ChordLength`: `u_{i+1} = u_i + |q_{i+1} − q_i|` (seeds/004, "Intervallgrenzen");
-/// - `Centripetal`: `u_{i+1} = u_i + √|q_{i+1} − q_i|`.
+/// - `ChordLength`: `u_{i+1} = u_i + |q_{i+1} − q_i|`;
+/// - `Centripetal`: `u_{i+1} = u_i + √|q_{i+1} − q_i|` (Lee 1989).
+///
+/// Uniform nodes make a curve built on them affinely invariant; chord-length and
+/// centripetal nodes change under non-uniform scaling, so such curves are invariant under
+/// similarities (rotations, translations, uniform scaling) only.
 ///
 /// The sums are formed in `f64` and then rounded to the scalar type. Under chord-length and
 /// centripetal parameterization two equal consecutive points give an empty interval, which

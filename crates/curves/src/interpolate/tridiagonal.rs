@@ -1,5 +1,8 @@
 //! O(n) solvers for tridiagonal and cyclic tridiagonal linear systems (the systems of
-//! interpolating cubic splines, seeds/003 and seeds/004), in caller-provided storage.
+//! interpolating cubic splines), in caller-provided storage: the Thomas algorithm (Burden &
+//! Faires, *Numerical Analysis*, §6.6, Crout factorization of a tridiagonal matrix; Press et
+//! al., *Numerical Recipes*, 3rd ed., §2.4) and, for the cyclic case, the Sherman–Morrison
+//! correction (Numerical Recipes §2.7).
 //!
 //! The matrix is given by three equally long slices: `sub[i]` is the entry in row `i`,
 //! column `i − 1`; `diag[i]` the diagonal entry; `sup[i]` the entry in row `i`, column `i + 1`.

@@ -1,11 +1,12 @@
-//! The exact circle as a NURBS curve (seeds/004: "NURBS-Kreis").
+//! The exact circle as a NURBS curve (Piegl & Tiller, *The NURBS Book*, 2nd ed., §7.5
+//! "Construction of Circles", the nine-point square; here with the knots scaled to `[0, 4]`).
 //!
 //! Degree 2, nine control points on the square around the circle — `(1,0), (1,1), (0,1),
 //! (−1,1), (−1,0), (−1,−1), (0,−1), (1,−1), (1,0)` — with weights `1, √2/2, 1, √2/2, …` and the
 //! knot vector `0,0,0,1,1,2,2,3,3,4,4,4`. Each quarter is a rational quadratic Bézier arc. The
 //! double inner knots only guarantee `C⁰`; by the symmetry of the control square the pieces
 //! meet `C¹` (equal velocity `√2·radius`), while the second derivative jumps (its tangential
-//! part changes sign). On the first quarter, with `t = u/4` (seeds/004, "Viertelkreis durch NURBS"):
+//! part changes sign). On the first quarter, with `t = u/4`, expanding the rational quadratic:
 //!
 //! ```text
 //! Px(t) = (16t² − 8t + 1 + √2/2·(−32t² + 8t)) / (16t² − 8t + 1 + √2/2·(−32t² + 8t) + 16t²)
@@ -21,7 +22,7 @@ use crate::error::Error;
 use crate::point::Point;
 use crate::scalar::Scalar;
 
-/// The seed's control points of the unit circle.
+/// The control points of the unit circle (the square around it).
 const UNIT: [(f64, f64); 9] = [
     (1.0, 0.0),
     (1.0, 1.0),
@@ -34,12 +35,12 @@ const UNIT: [(f64, f64); 9] = [
     (1.0, 0.0),
 ];
 
-/// The seed's knot vector.
+/// The knot vector, one quarter per unit.
 const KNOTS: [i16; 12] = [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4];
 
 impl<P: Point, const N: usize, const M: usize> Nurbs<P, N, M> {
     /// The full circle of `radius` around `center` in the plane of the first two coordinates
-    /// (other coordinates are the center's), exactly as seeds/004: degree 2, 9 control points,
+    /// (other coordinates are the center's), as Piegl & Tiller §7.5: degree 2, 9 control points,
     /// weights `1, √2/2` alternating, knots `0,0,0,1,1,2,2,3,3,4,4,4`. The domain is `[0, 4]`,
     /// one quarter per unit, counter-clockwise from `center + (radius, 0)`. Needs `N ≥ 9`,
     /// `M ≥ 12`.
@@ -109,7 +110,7 @@ mod tests {
 
     type Circle = Nurbs<[f64; 2], 9, 12>;
 
-    /// seeds/004, "Viertelkreis durch NURBS", t ∈ [0, 1/4].
+    /// The expanded first quarter (module docs), t ∈ [0, 1/4].
     fn quarter(t: f64) -> [f64; 2] {
         let s = FRAC_1_SQRT_2;
         let a = 16.0 * t * t - 8.0 * t + 1.0;
@@ -119,7 +120,7 @@ mod tests {
     }
 
     #[test]
-    fn seed_control_points_weights_knots() {
+    fn control_points_weights_knots() {
         let c = Circle::circle([0.0, 0.0], 1.0).unwrap();
         assert_eq!(c.degree(), 2);
         let expected: [[f64; 2]; 9] = UNIT.map(|(x, y)| [x, y]);
@@ -150,7 +151,7 @@ mod tests {
     }
 
     #[test]
-    fn first_quarter_equals_seed_formula() {
+    fn first_quarter_equals_expanded_formula() {
         let c = Circle::circle([0.0, 0.0], 1.0).unwrap();
         for i in 0..=1000 {
             let t = 0.25 * f64::from(i) / 1000.0;

@@ -1,4 +1,5 @@
-//! NURBS: non-uniform rational B-splines (seeds/004: "NURBS", "NURBS + homogene Koordinaten").
+//! NURBS: non-uniform rational B-splines (Piegl & Tiller, *The NURBS Book*, 2nd ed., §4.2
+//! "Definition and Properties of NURBS Curves", §4.3 "Derivatives of a NURBS Curve").
 //!
 //! ```text
 //! R_i(u) = h_i N_i^g(u) / Σ_j h_j N_j^g(u),      c(u) = Σ_i R_i(u) · P_i
@@ -6,8 +7,9 @@
 //!
 //! with positive weights `h_i`. In homogeneous coordinates `(h_i·P_i, h_i)` the numerator
 //! `A(u) = Σ h_i P_i N_i(u)` and the denominator `w(u) = Σ h_i N_i(u)` are one ordinary
-//! B-spline, evaluated with de Boor's algorithm; then `c = A / w` (seeds/004: "Punktkoordinaten
-//! ← Homogene Koordinaten"). Derivatives follow from `A = w·c` by Leibniz's rule:
+//! B-spline, evaluated with de Boor's algorithm; then `c = A / w`, the projection from
+//! homogeneous to Cartesian coordinates. Derivatives follow from `A = w·c` by Leibniz's rule
+//! (Piegl & Tiller §4.3):
 //!
 //! ```text
 //! c^{(k)} = ( A^{(k)} − Σ_{i=1}^{k} C(k, i) · w^{(i)} · c^{(k−i)} ) / w
@@ -24,7 +26,7 @@ use crate::point::Point;
 use crate::scalar::Scalar;
 
 /// A point in homogeneous coordinates `(w·P, w)`: the control points of the B-spline that
-/// carries a [`Nurbs`] curve (seeds/004). It is itself a [`Point`] with `P::DIM + 1`
+/// carries a [`Nurbs`] curve (Piegl & Tiller §4.2). It is itself a [`Point`] with `P::DIM + 1`
 /// coordinates (the weight last), so every B-spline algorithm applies to it unchanged.
 ///
 /// ```
@@ -109,12 +111,15 @@ const BINOM: [[i16; LOCAL]; LOCAL] = [
 ];
 
 /// A NURBS curve of degree `g ≤` [`BSPLINE_MAX_DEGREE`] with up to `N` control points (and
-/// weights) and up to `M` knots (seeds/004: "NURBS"). Open and closed variants share the
+/// weights) and up to `M` knots (Piegl & Tiller §4.2). Open and closed variants share the
 /// storage rules of [`BSpline`].
 ///
 /// `c(u) = Σ h_i N_i^g(u) P_i / Σ h_j N_j^g(u)`. Weights are positive; equal weights give the
 /// B-spline with the same control points. Conic sections — the exact circle
-/// ([`Nurbs::circle`]) — need rational curves.
+/// ([`Nurbs::circle`]) — need rational curves. With positive weights each piece lies in the
+/// convex hull of its `g + 1` control points, moving a point or changing a weight changes
+/// `g + 1` pieces only, and the curve is invariant under affine (indeed projective) maps of
+/// its control points (Piegl & Tiller §4.2).
 ///
 /// Evaluation runs de Boor's algorithm on the homogeneous points `(h_i·P_i, h_i)` and divides
 /// by the weight `w(u) = Σ h_j N_j^g(u) ≥ min h_j > 0`. Parameters outside the domain are
@@ -683,7 +688,7 @@ mod tests {
 
     #[test]
     fn rational_basis_definition() {
-        // c(u) = Σ h_i N_i P_i / Σ h_j N_j with the literal Cox–de Boor basis (seeds/004).
+        // c(u) = Σ h_i N_i P_i / Σ h_j N_j with the literal Cox–de Boor basis.
         let r = R2::new(3, &D, &W, &T).unwrap();
         for i in 0..=200 {
             let u = 2.0 * f64::from(i) / 200.0;

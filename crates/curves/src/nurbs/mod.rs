@@ -1,4 +1,5 @@
-//! NURBS: rational B-splines in homogeneous coordinates, and the exact circle (seeds/004).
+//! NURBS: rational B-splines in homogeneous coordinates, and the exact circle (Piegl &
+//! Tiller, *The NURBS Book*, 2nd ed., ch. 4 and §7.5).
 
 mod circle;
 mod curve;
