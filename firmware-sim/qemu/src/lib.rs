@@ -20,12 +20,19 @@
 //! the output is deterministic.
 
 #![no_std]
-#![forbid(unsafe_code)]
+// `deny`, not `forbid`: the stack measurement reads and writes the unused stack, and the MPU
+// set-up writes the MPU's registers (the two modules that allow it).
+#![deny(unsafe_code)]
 
 pub mod counter;
 pub mod device;
 pub mod jobs;
+#[allow(unsafe_code)]
+pub mod mpu;
+pub mod planning;
 pub mod play;
+#[allow(unsafe_code)]
+pub mod stack;
 
 use cortex_m_semihosting::debug;
 // The defmt global logger (semihosting) is linked from here.
@@ -33,6 +40,13 @@ use defmt_semihosting as _;
 
 /// Path capacity of the firmware: the bundled jobs need at most 166 pieces.
 pub const PIECES: usize = 256;
+
+/// Path capacity of the flash-playback firmware (`flash-play`): the bundled pick-and-place
+/// blob has 45 pieces, and `Path::from_bytes` decodes them into a path of this capacity.
+pub const FLASH_PIECES: usize = 48;
+
+/// The bundled job that the flash-playback and stack firmware play from its blob.
+pub const FLASH_JOB: &str = "pick-and-place";
 
 /// Exits QEMU with status 0.
 pub fn exit_success() -> ! {

@@ -2,9 +2,10 @@
 //! every sample.
 
 use strak_curves::I32F32;
-use strak_trajectory::{Number, Path, Sample, Sampler};
+use strak_trajectory::{Error, Number, Path, Sample, Sampler};
 
 use crate::jobs::{Event, Format, TimedEvent};
+use crate::mix;
 
 /// A sample value's raw bits, widened to `u64` (as the host's `strak_sim::export::OutBits`).
 pub trait OutBits: Copy {
@@ -122,4 +123,49 @@ where
         count
     );
     count
+}
+
+/// What [`play_blob`] played: the number of samples and a hash of every sample's bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
+pub struct Played {
+    /// Samples played (the final one included).
+    pub samples: u32,
+    /// [`mix`] folded over every sample's positions, velocities and accelerations
+    /// ([`OutBits`]), in the order `cargo xtask qemu` folds the host's bits.
+    pub hash: u64,
+}
+
+/// Validates the blob `blob` (a path of `A` axes in `N`, at most `P` pieces) and plays it with
+/// `events` to its end, as the tick handler would, folding every sample into a hash: the
+/// whole work of a firmware that plays a path from flash.
+///
+/// The blob is decoded into a [`Path`] (in this function's frame) by `Path::from_bytes`.
+///
+/// # Errors
+/// The error of `Path::from_bytes`.
+#[inline(never)]
+pub fn play_blob<N, const A: usize, const P: usize>(
+    blob: &'static [u8],
+    events: &[TimedEvent],
+) -> Result<Played, Error>
+where
+    N: Number,
+    N::Out: OutBits,
+{
+    let path = Path::<N, A, P>::from_bytes(blob)?;
+    let mut player = Player::new(&path, events);
+    let mut played = Played {
+        samples: 0,
+        hash: 0,
+    };
+    loop {
+        let s = player.on_tick();
+        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
+            played.hash = mix(played.hash, v.out_bits());
+        }
+        played.samples = played.samples.wrapping_add(1);
+        if player.done() {
+            return Ok(played);
+        }
+    }
 }
