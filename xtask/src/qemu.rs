@@ -16,9 +16,10 @@
 //! 6. Runs the `stack` firmware under QEMU `-icount` on both targets (the stack and RAM of
 //!    loading and playing a blob, of planning and of compiling on the device, the sizes of
 //!    their values, the instructions of planning and compiling) and the flash-playback
-//!    firmware `flash-play` on a part with the RAM of a real microcontroller (64 KiB, the
-//!    Cortex-M3 on `lm3s6965evb`); checks that the blobs they played give the host's samples
-//!    (a hash of every sample's bits), and the stack against
+//!    firmware `flash-play` on a part with the RAM of a real microcontroller (64 KiB: the
+//!    LM3S6965 on `lm3s6965evb`, an STM32F401CB's on `mps2-an386`); checks that the blobs
+//!    they played give the host's samples (a hash of every sample's bits), and the stack
+//!    against
 //!    `firmware-sim/qemu/stack-budgets.txt` (`--bless` rewrites it), written to
 //!    `target/qemu/stack.json` (see [`crate::stack`]).
 //! 7. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per

@@ -1,6 +1,9 @@
 //! strak's example firmware, shared by its binaries: the jobs embedded in flash, the
 //! tick handler that plays a path through [`Sampler`], on-device compiling, the output
-//! protocol, the panic handler and the exit to QEMU.
+//! protocol, the panic handler and the exit to QEMU; for the measuring firmware the
+//! instruction counter ([`counter`]), the stack measurement ([`stack`]), the MPU set-up that
+//! confines a firmware to the memories of a real part ([`mpu`]) and the planning job
+//! ([`planning`]).
 //!
 //! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
 //! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a

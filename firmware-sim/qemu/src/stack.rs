@@ -68,14 +68,13 @@ fn paint(from: usize, to: usize) {
     let mut at = from;
     while at < to {
         let word = ptr::with_exposed_provenance_mut::<u32>(at);
-        // SAFETY: `from` is `_stack_end` and `to` the stack pointer of the frame that `usage` is inlined into,
-        // so `[from, to)` is RAM of the `RAM` region (the linker placed `_stack_end` there and
-        // the stack pointer never leaves it without faulting) that holds no live value: below
-        // the stack pointer nothing of this thread lives, the statics end at `from`, and the
-        // firmware has no heap. An exception taken meanwhile pushes its frame below the stack
-        // pointer too, and is finished with it when this code runs again (one core, no
-        // preemption of an exception by this code). `at` is 4-byte aligned (both bounds are:
-        // cortex-m-rt aligns `_stack_end` to 4, the stack pointer is 8-byte aligned).
+        // SAFETY: `from` is `_stack_end` (rounded up to a word) and `to` the stack pointer of
+        // the frame that `usage` is inlined into, so `[from, to)` lies in the `RAM` region
+        // between the statics and the current frame, and holds no live value: the statics end
+        // at `from`, nothing of this thread lives below its stack pointer, and the firmware has
+        // no heap. An exception taken meanwhile stacks its frame below the stack pointer and
+        // has returned (its frame dead) before this code runs on. `at` is word-aligned: both
+        // bounds are (`from` rounded up, the stack pointer 8-byte aligned and rounded down).
         unsafe { word.write_volatile(PAINT) };
         at += 4;
     }
