@@ -26,15 +26,15 @@ pub(crate) struct Measured {
     /// Rust target triple.
     pub(crate) target: String,
     /// Fewest instructions of one call.
-    pub(crate) min: u32,
+    pub(crate) min: u64,
     /// Median (the lower middle) over all calls.
-    pub(crate) median: u32,
+    pub(crate) median: u64,
     /// Most instructions of one call.
-    pub(crate) max: u32,
+    pub(crate) max: u64,
     /// Number of calls measured.
-    pub(crate) calls: u32,
+    pub(crate) calls: u64,
     /// Index (from 0) of the first call that took `max`.
-    pub(crate) worst: u32,
+    pub(crate) worst: u64,
 }
 
 /// The budget of one case on one target.
@@ -43,9 +43,9 @@ pub(crate) struct Budget {
     pub(crate) name: String,
     pub(crate) target: String,
     /// Most instructions the median may take.
-    pub(crate) median: u32,
+    pub(crate) median: u64,
     /// Most instructions the worst call may take.
-    pub(crate) max: u32,
+    pub(crate) max: u64,
 }
 
 /// Parses the budget file: `# comments`, blank lines, and lines `name target median max`.
@@ -67,7 +67,7 @@ pub(crate) fn parse_budgets(text: &str) -> Result<Vec<Budget>, String> {
             ));
         };
         let num = |s: &str| {
-            s.parse::<u32>()
+            s.parse::<u64>()
                 .map_err(|_| format!("line {}: `{s}` is not a whole number", i + 1))
         };
         let b = Budget {
@@ -92,7 +92,7 @@ pub(crate) fn write_budgets(measured: &[Measured]) -> String {
          # `cargo xtask qemu --bless` rewrites this file (measured + 5 %).\n\
          # name target median max\n",
     );
-    let up = |x: u32| (f64::from(x) * (1.0 + MARGIN)).ceil() as u32;
+    let up = |x: u64| (x as f64 * (1.0 + MARGIN)).ceil() as u64;
     for m in measured {
         let _ = writeln!(s, "{} {} {} {}", m.name, m.target, up(m.median), up(m.max));
     }
@@ -111,7 +111,7 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
     for line in text.lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
         let num = |s: &str| {
-            s.parse::<u32>()
+            s.parse::<u64>()
                 .map_err(|_| format!("`{line}`: `{s}` is not a whole number"))
         };
         match f.as_slice() {
@@ -204,7 +204,7 @@ pub(crate) fn counts_json(measured: &[Measured], budgets: &[Budget]) -> String {
         let b = budgets
             .iter()
             .find(|b| b.name == m.name && b.target == m.target);
-        let opt = |x: Option<u32>| x.map_or_else(|| "null".to_owned(), |x| x.to_string());
+        let opt = |x: Option<u64>| x.map_or_else(|| "null".to_owned(), |x| x.to_string());
         let _ = writeln!(
             s,
             "  {{\"name\": \"{}\", \"target\": \"{}\", \"min\": {}, \"median\": {}, \"max\": {}, \
@@ -228,7 +228,7 @@ pub(crate) fn counts_json(measured: &[Measured], budgets: &[Budget]) -> String {
 struct Target {
     case: &'static str,
     target: &'static str,
-    limit: u32,
+    limit: u64,
     what: &'static str,
 }
 
@@ -280,7 +280,7 @@ pub(crate) fn target_report(measured: &[Measured]) -> Vec<String> {
         }
     }
     if let Some(m) = find("playback-f32-3axis", "thumbv7em-none-eabihf") {
-        let ok = 2 * u64::from(m.max) <= 3 * u64::from(m.median);
+        let ok = 2 * m.max <= 3 * m.median;
         lines.push(format!(
             "Cortex-M4F, 3-axis f32: worst tick {} ≤ 1.5 × median {}: {}",
             m.max,
@@ -295,7 +295,7 @@ pub(crate) fn target_report(measured: &[Measured]) -> Vec<String> {
 mod tests {
     use super::*;
 
-    fn m(name: &str, median: u32, max: u32) -> Measured {
+    fn m(name: &str, median: u64, max: u64) -> Measured {
         Measured {
             name: name.to_owned(),
             target: "thumbv7m-none-eabi".to_owned(),

@@ -8,8 +8,10 @@
 //! cargo xtask qemu [--bless]
 //!                      the example firmware under QEMU (Cortex-M4F and Cortex-M3), its samples
 //!                      compared bit for bit with the host's; firmware sizes checked against
-//!                      firmware-sim/qemu/sizes.txt, instructions per tick under QEMU -icount
-//!                      against firmware-sim/qemu/icount-budgets.txt (`--bless` rewrites both)
+//!                      firmware-sim/qemu/sizes.txt, stack per operation against
+//!                      firmware-sim/qemu/stack-budgets.txt, instructions per tick and of
+//!                      planning and compiling under QEMU -icount against
+//!                      firmware-sim/qemu/icount-budgets.txt (`--bless` rewrites all three)
 //! ```
 //!
 //! Missing rustup targets, qemu-system-arm and defmt-print are installed; anything that cannot
@@ -19,6 +21,7 @@ mod compare;
 mod icount;
 mod qemu;
 mod size;
+mod stack;
 
 use std::env;
 use std::process::{Command, ExitCode};
@@ -66,11 +69,13 @@ fn print_help() {
     println!("         no_std cross builds (installs missing rustup targets), then qemu");
     println!("  qemu   build the example firmware (firmware-sim/qemu) for Cortex-M4F and");
     println!("         Cortex-M3, run it under QEMU, compare every sample with the host bit for");
-    println!("         bit, check the firmware sizes and the instructions per tick under");
-    println!("         -icount (instruction counts, not cycles; installs qemu-system-arm,");
-    println!("         defmt-print)");
+    println!("         bit, check the firmware sizes, the stack of loading, planning and");
+    println!("         compiling (measured on the core), and the instructions per tick and of");
+    println!("         planning and compiling under -icount (instruction counts, not cycles;");
+    println!("         installs qemu-system-arm, defmt-print)");
     println!("  qemu --bless");
-    println!("         the same, rewriting firmware-sim/qemu/sizes.txt and icount-budgets.txt");
+    println!("         the same, rewriting firmware-sim/qemu/sizes.txt, stack-budgets.txt and");
+    println!("         icount-budgets.txt");
     println!("  bench  criterion benchmarks of strak against its peers (bench/), then");
     println!("         BENCHMARKS.md from their results and the QEMU counts in target/qemu");
 }

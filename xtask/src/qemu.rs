@@ -13,10 +13,19 @@
 //!    every stream with the host's (the first differing tick and value is named).
 //! 5. Reads the firmware sizes from the ELF headers and checks them against
 //!    `firmware-sim/qemu/sizes.txt` (`--bless` rewrites it).
-//! 6. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per
-//!    tick (instruction counts, not cycles), checked against
-//!    `firmware-sim/qemu/icount-budgets.txt` (`--bless` rewrites it) and written to
-//!    `target/qemu/counts.json` (see [`crate::icount`]).
+//! 6. Runs the `stack` firmware under QEMU `-icount` on both targets (the stack and RAM of
+//!    loading and playing a blob, of planning and of compiling on the device, the sizes of
+//!    their values, the instructions of planning and compiling) and the flash-playback
+//!    firmware `flash-play` on a part with the RAM of a real microcontroller (64 KiB: the
+//!    LM3S6965 on `lm3s6965evb`, an STM32F401CB's on `mps2-an386`); checks that the blobs
+//!    they played give the host's samples (a hash of every sample's bits), and the stack
+//!    against
+//!    `firmware-sim/qemu/stack-budgets.txt` (`--bless` rewrites it), written to
+//!    `target/qemu/stack.json` (see [`crate::stack`]).
+//! 7. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per
+//!    tick (instruction counts, not cycles); checks them and the instructions of planning
+//!    and compiling against `firmware-sim/qemu/icount-budgets.txt` (`--bless` rewrites it),
+//!    written to `target/qemu/counts.json` (see [`crate::icount`]).
 
 use std::env;
 use std::fs;
@@ -33,6 +42,7 @@ use strak_sim::job::{Action, Job};
 use crate::compare::{self, StreamKey};
 use crate::icount;
 use crate::size::{self, Expected};
+use crate::stack;
 
 /// The defmt-print release matching the firmware's defmt 1.x.
 pub(crate) const DEFMT_PRINT_VERSION: &str = "1.2.0";
@@ -40,8 +50,16 @@ pub(crate) const DEFMT_PRINT_VERSION: &str = "1.2.0";
 /// How long one firmware may run under QEMU.
 const QEMU_TIMEOUT: Duration = Duration::from_secs(600);
 
-/// The firmware binaries built for each target: the example firmware and the size probes.
-const BINARIES: [&str; 3] = ["strak-qemu", "size-sampler", "size-baseline"];
+/// The firmware binaries built for each target: the example firmware, the size probes, the
+/// stack-measuring firmware and the flash-playback firmware (the `icount` firmware is not
+/// size-checked).
+const BINARIES: [&str; 5] = [
+    "strak-qemu",
+    "size-sampler",
+    "size-baseline",
+    "stack",
+    "flash-play",
+];
 
 /// One firmware build and the QEMU machine it runs on.
 #[derive(Clone, Copy, Debug)]
@@ -51,6 +69,9 @@ struct Firmware {
     cpu: &'static str,
     machine: &'static str,
     formats: &'static [Playback],
+    /// The flash-playback firmware's machine and its label (the part it stands for).
+    flash_machine: &'static str,
+    flash_label: &'static str,
 }
 
 const FIRMWARES: [Firmware; 2] = [
@@ -60,6 +81,8 @@ const FIRMWARES: [Firmware; 2] = [
         cpu: "cortex-m4",
         machine: "mps2-an386",
         formats: &[Playback::F32, Playback::Fixed],
+        flash_machine: "mps2-an386",
+        flash_label: "Cortex-M4F (mps2-an386, the RAM and flash of an STM32F401CB)",
     },
     Firmware {
         label: "Cortex-M3 (mps2-an385)",
@@ -67,6 +90,8 @@ const FIRMWARES: [Firmware; 2] = [
         cpu: "cortex-m3",
         machine: "mps2-an385",
         formats: &[Playback::Fixed],
+        flash_machine: "lm3s6965evb",
+        flash_label: "Cortex-M3 (lm3s6965evb: the LM3S6965, 64 KiB RAM)",
     },
 ];
 
@@ -151,7 +176,8 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     }
 
     check_sizes(&fw_dir, bless)?;
-    check_icount(&qemu, &defmt_print, &root, &fw_dir, bless)?;
+    let planning = check_stack(&qemu, &defmt_print, &root, &fw_dir, &jobs, bless)?;
+    check_icount(&qemu, &defmt_print, &root, &fw_dir, planning, bless)?;
     println!(
         "\nxtask qemu: {compared} firmware samples equal the host's bit for bit; done in {:.0} s",
         started.elapsed().as_secs_f64()
@@ -480,7 +506,11 @@ fn run_firmware(
             }
         }
     };
-    let q_err = q_err.join().unwrap_or_default();
+    let mut q_err = q_err.join().unwrap_or_default();
+    if q_err.contains("Lockup") {
+        q_err += "(the core locked up: a fault it could not take, such as a stack that outgrew \
+                  the RAM)\n";
+    }
     let input = File::open(&raw).map_err(|e| format!("cannot read {}: {e}", raw.display()))?;
     let decoded = Command::new(defmt_print)
         .arg("-e")
@@ -666,13 +696,29 @@ fn check_sizes(fw_dir: &Path, bless: bool) -> Result<(), String> {
     Ok(())
 }
 
-/// Runs the `icount` firmware on every target under `-icount`, checks the counts against
-/// the budget file (or rewrites it when `bless`) and writes `target/qemu/counts.json`.
+/// The instruction counts of `cases` as a table.
+fn print_counts(cases: &[icount::Measured]) {
+    println!(
+        "    {:<30} {:>6} {:>6} {:>6} {:>6} {:>9}",
+        "case", "min", "median", "max", "calls", "max at"
+    );
+    for m in cases {
+        println!(
+            "    {:<30} {:>6} {:>6} {:>6} {:>6} {:>9}",
+            m.name, m.min, m.median, m.max, m.calls, m.worst
+        );
+    }
+}
+
+/// Runs the `icount` firmware on every target under `-icount`, checks its counts and the
+/// counts of planning and compiling (`planning`) against the budget file (or rewrites it
+/// when `bless`) and writes `target/qemu/counts.json`.
 fn check_icount(
     qemu: &Path,
     defmt_print: &Path,
     root: &Path,
     fw_dir: &Path,
+    planning: Vec<icount::Measured>,
     bless: bool,
 ) -> Result<(), String> {
     let shift = format!("shift={}", icount::ICOUNT_SHIFT);
@@ -690,18 +736,10 @@ fn check_icount(
         let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
         let cases =
             icount::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
-        println!(
-            "    {:<30} {:>6} {:>6} {:>6} {:>6} {:>9}",
-            "case", "min", "median", "max", "calls", "max at"
-        );
-        for m in &cases {
-            println!(
-                "    {:<30} {:>6} {:>6} {:>6} {:>6} {:>9}",
-                m.name, m.min, m.median, m.max, m.calls, m.worst
-            );
-        }
+        print_counts(&cases);
         measured.extend(cases);
     }
+    measured.extend(planning);
     for line in icount::target_report(&measured) {
         println!("    target: {line}");
     }
@@ -724,5 +762,138 @@ fn check_icount(
     println!("    wrote {}", json.display());
     icount::check(&measured, &budgets)?;
     println!("<== instruction counts within {}", file.display());
+    Ok(())
+}
+
+/// The path of the release binary `bin` of `fw`.
+fn firmware_elf(fw_dir: &Path, fw: &Firmware, bin: &str) -> PathBuf {
+    fw_dir
+        .join("target")
+        .join(fw.target)
+        .join("release")
+        .join(bin)
+}
+
+/// Runs the `stack` firmware (under `-icount`) and the flash-playback firmware on every
+/// target, checks the blobs they played against the host's samples and their stack against
+/// the budget file (or rewrites it when `bless`), writes `target/qemu/stack.json`, and
+/// returns the instruction counts of planning and compiling.
+fn check_stack(
+    qemu: &Path,
+    defmt_print: &Path,
+    root: &Path,
+    fw_dir: &Path,
+    jobs: &[HostJob],
+    bless: bool,
+) -> Result<Vec<icount::Measured>, String> {
+    let shift = format!("shift={}", icount::ICOUNT_SHIFT);
+    let mut measured = Vec::new();
+    let mut sizes = Vec::new();
+    let mut counts = Vec::new();
+    for fw in &FIRMWARES {
+        let elf = firmware_elf(fw_dir, fw, "stack");
+        println!(
+            "\n==> QEMU -icount {shift} {}: stack and RAM of loading, planning and compiling",
+            fw.label
+        );
+        let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
+        let report =
+            stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
+        check_played(fw.label, jobs, &report)?;
+        let cases = icount::parse_output(&report.rest, fw.target)
+            .map_err(|e| format!("{} (stack firmware): {e}", fw.label))?;
+        print_stack(&report);
+        for (name, pieces, ticks) in &report.compiled {
+            println!("    {name}: {pieces} pieces, {ticks} ticks");
+        }
+        print_counts(&cases);
+        sizes.extend(
+            report
+                .sizes
+                .iter()
+                .map(|(n, b)| (n.clone(), fw.target.to_owned(), *b)),
+        );
+        measured.extend(report.stacks);
+        counts.extend(cases);
+
+        let part = Firmware {
+            machine: fw.flash_machine,
+            label: fw.flash_label,
+            ..*fw
+        };
+        let elf = firmware_elf(fw_dir, fw, "flash-play");
+        println!("\n==> QEMU {}: playing a blob from flash", part.label);
+        let text = run_firmware(qemu, defmt_print, &part, &elf, &[])?;
+        let report =
+            stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", part.label))?;
+        check_played(part.label, jobs, &report)?;
+        let ram = report
+            .part_ram
+            .ok_or_else(|| format!("{}: the flash-playback firmware named no RAM", part.label))?;
+        println!("    the part's RAM: {ram} bytes");
+        print_stack(&report);
+        measured.extend(report.stacks);
+    }
+    let file = fw_dir.join("stack-budgets.txt");
+    if bless {
+        fs::write(&file, stack::write_budgets(&measured))
+            .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        println!("<== wrote {}", file.display());
+    }
+    let text = fs::read_to_string(&file).map_err(|e| {
+        format!(
+            "cannot read {}: {e} (create it with `cargo xtask qemu --bless`)",
+            file.display()
+        )
+    })?;
+    let budgets = stack::parse_budgets(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    let json = root.join("target").join("qemu").join("stack.json");
+    fs::write(&json, stack::stack_json(&measured, &budgets, &sizes))
+        .map_err(|e| format!("cannot write {}: {e}", json.display()))?;
+    println!("    wrote {}", json.display());
+    stack::check(&measured, &budgets)?;
+    println!("<== stack within {}", file.display());
+    Ok(counts)
+}
+
+/// The stack measurements and sizes of `report` as tables.
+fn print_stack(report: &stack::Report) {
+    for (name, bytes) in &report.sizes {
+        println!("    size_of {name:<44} {bytes:>7} bytes");
+    }
+    println!("    {:<30} {:>9} {:>9}", "operation", "stack", "RAM");
+    for m in &report.stacks {
+        println!("    {:<30} {:>9} {:>9}", m.name, m.stack, m.ram);
+    }
+}
+
+/// Checks every blob the firmware played (an `H` line) against the host's samples of the
+/// same job and format: the number of samples and the hash of their bits.
+fn check_played(label: &str, jobs: &[HostJob], report: &stack::Report) -> Result<(), String> {
+    if report.played.is_empty() {
+        return Err(format!("{label}: the firmware played no blob"));
+    }
+    for p in &report.played {
+        let job = jobs
+            .iter()
+            .find(|j| j.name == p.job && j.export.playback.name() == p.format)
+            .ok_or_else(|| {
+                format!(
+                    "{label}: played {} {}, which the host has not",
+                    p.job, p.format
+                )
+            })?;
+        let (samples, hash) = (job.export.samples() as u64, stack::hash(&job.export.bits));
+        if (p.samples, p.hash) != (samples, hash) {
+            return Err(format!(
+                "{label}: {} {}: {} samples of hash {:#018x}, the host has {samples} of hash {hash:#018x}",
+                p.job, p.format, p.samples, p.hash
+            ));
+        }
+    }
+    println!(
+        "    {} blob(s) played, every sample equal to the host's (hash of their bits)",
+        report.played.len()
+    );
     Ok(())
 }

@@ -10,7 +10,7 @@
 //! overhead with straight runs of `nop`s). Without `-icount` the counts follow the host's wall
 //! clock and are not reproducible: the example firmware (`strak-qemu`) logs none of them.
 
-use core::sync::atomic::{Ordering, compiler_fence};
+use core::sync::atomic::{AtomicU32, Ordering, compiler_fence};
 
 use cortex_m::peripheral::SYST;
 use cortex_m::peripheral::syst::SystClkSource;
@@ -73,6 +73,97 @@ impl Counter {
         self.syst
     }
 }
+
+/// SysTick wraps since [`WideCounter::start`], counted by [`WideCounter::on_wrap`].
+static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+/// SysTick extended to 64 bits by counting its wraps in its exception, for spans longer
+/// than one wrap (2²⁴ counts: 655 360 instructions at [`ICOUNT_SHIFT`]), such as planning
+/// and compiling a path.
+///
+/// The firmware's `SysTick` exception handler must call [`WideCounter::on_wrap`]. The
+/// handler's own instructions (a few per wrap of 655 360 instructions) are counted with
+/// the work; under `-icount` the exception is taken at the instruction where the counter
+/// wraps, so the counts are reproducible. Convert them with
+/// [`Calibration::instructions_wide`].
+pub struct WideCounter {
+    syst: SYST,
+}
+
+impl core::fmt::Debug for WideCounter {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("WideCounter(SysTick)")
+    }
+}
+
+impl WideCounter {
+    /// Starts SysTick counting down from [`RELOAD`] on the core clock, its exception taken
+    /// at every wrap.
+    pub fn start(mut syst: SYST) -> Self {
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(RELOAD);
+        syst.clear_current();
+        WRAPS.store(0, Ordering::SeqCst);
+        syst.enable_interrupt();
+        syst.enable_counter();
+        WideCounter { syst }
+    }
+
+    /// Counts one wrap: the body of the firmware's `SysTick` exception handler.
+    pub fn on_wrap() {
+        WRAPS.fetch_add(1, Ordering::SeqCst);
+    }
+
+    /// Counts since [`WideCounter::start`] (the wraps and the current count, read until a
+    /// wrap does not fall between them).
+    pub fn now(&self) -> u64 {
+        loop {
+            let wraps = WRAPS.load(Ordering::SeqCst);
+            let current = SYST::get_current();
+            if WRAPS.load(Ordering::SeqCst) == wraps {
+                return (u64::from(wraps) << 24) | u64::from(RELOAD - (current & RELOAD));
+            }
+        }
+    }
+
+    /// SysTick counts spent in `f`, measured as [`Counter::counts`] measures them.
+    #[inline(never)]
+    pub fn counts<R>(&self, f: impl FnOnce() -> R) -> (u64, R) {
+        let t0 = self.now();
+        compiler_fence(Ordering::SeqCst);
+        let r = f();
+        compiler_fence(Ordering::SeqCst);
+        (self.now().wrapping_sub(t0), r)
+    }
+
+    /// The calibration of this counter (see [`Calibration::measure`]).
+    pub fn calibrate(&self) -> Calibration {
+        let narrow = |c: u64| u32::try_from(c).unwrap_or(u32::MAX);
+        let (empty, ()) = self.counts(nothing);
+        let (nops, ()) = self.counts(nops);
+        Calibration {
+            empty: narrow(empty),
+            nops: narrow(nops),
+        }
+    }
+
+    /// The instructions of a call of 64 `nop`s measured now (exactly 64 when counting is
+    /// exact; see [`Calibration::check_nop64`]).
+    pub fn check_nop64(&self, cal: &Calibration) -> u64 {
+        let (c, ()) = self.counts(nops64);
+        cal.instructions_wide(c)
+    }
+
+    /// Stops the counter and its exception and hands SysTick back.
+    pub fn stop(mut self) -> SYST {
+        self.syst.disable_counter();
+        self.syst.disable_interrupt();
+        self.syst
+    }
+}
+
+/// Nanoseconds per SysTick count: the 25 MHz core clock of QEMU's MPS2 boards.
+pub const NS_PER_COUNT: u64 = 40;
 
 /// The `-icount shift` that `cargo xtask qemu` runs the `icount` firmware with.
 pub const ICOUNT_SHIFT: u32 = 10;
@@ -158,5 +249,18 @@ impl Calibration {
         let c = u64::from(counts.saturating_sub(self.empty));
         let n = (c * u64::from(CALIBRATION_NOPS) + span / 2) / span;
         u32::try_from(n).unwrap_or(u32::MAX)
+    }
+
+    /// The instructions of a [`WideCounter`] measurement of `counts` SysTick counts, the
+    /// overhead subtracted, rounded to nearest.
+    ///
+    /// Converted at the exact ratio of the clocks, [`NS_PER_COUNT`] ns per count and
+    /// 2^[`ICOUNT_SHIFT`] ns per instruction (25.6 counts per instruction), not at the scale
+    /// of the 256 `nop`s: their count is rounded to a whole count, which is exact for one
+    /// tick but off by up to 1 in 6 554 over millions of instructions.
+    pub fn instructions_wide(&self, counts: u64) -> u64 {
+        let c = counts.saturating_sub(u64::from(self.empty));
+        let ns_per_instruction = 1_u64 << ICOUNT_SHIFT;
+        (c.saturating_mul(NS_PER_COUNT) + ns_per_instruction / 2) / ns_per_instruction
     }
 }

@@ -99,4 +99,11 @@ pub struct DeviceJob<const D: usize> {
     pub host_blob_fixed: &'static [u8],
 }
 
+/// The blob job `name` in `format` with `axes` axes, if bundled.
+pub fn find_blob(name: &str, format: Format, axes: usize) -> Option<&'static BlobJob> {
+    BLOB_JOBS
+        .iter()
+        .find(|j| j.name == name && j.format == format && j.axes == axes)
+}
+
 include!(concat!(env!("OUT_DIR"), "/jobs.rs"));

@@ -1,6 +1,9 @@
 //! strak's example firmware, shared by its binaries: the jobs embedded in flash, the
 //! tick handler that plays a path through [`Sampler`], on-device compiling, the output
-//! protocol, the panic handler and the exit to QEMU.
+//! protocol, the panic handler and the exit to QEMU; for the measuring firmware the
+//! instruction counter ([`counter`]), the stack measurement ([`stack`]), the MPU set-up that
+//! confines a firmware to the memories of a real part ([`mpu`]) and the planning job
+//! ([`planning`]).
 //!
 //! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
 //! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a
@@ -20,12 +23,19 @@
 //! the output is deterministic.
 
 #![no_std]
-#![forbid(unsafe_code)]
+// `deny`, not `forbid`: the stack measurement reads and writes the unused stack, and the MPU
+// set-up writes the MPU's registers (the two modules that allow it).
+#![deny(unsafe_code)]
 
 pub mod counter;
 pub mod device;
 pub mod jobs;
+#[allow(unsafe_code)]
+pub mod mpu;
+pub mod planning;
 pub mod play;
+#[allow(unsafe_code)]
+pub mod stack;
 
 use cortex_m_semihosting::debug;
 // The defmt global logger (semihosting) is linked from here.
@@ -33,6 +43,9 @@ use defmt_semihosting as _;
 
 /// Path capacity of the firmware: the bundled jobs need at most 166 pieces.
 pub const PIECES: usize = 256;
+
+/// The bundled job that the flash-playback and stack firmware play from its blob.
+pub const FLASH_JOB: &str = "pick-and-place";
 
 /// Exits QEMU with status 0.
 pub fn exit_success() -> ! {

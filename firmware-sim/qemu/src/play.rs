@@ -2,9 +2,10 @@
 //! every sample.
 
 use strak_curves::I32F32;
-use strak_trajectory::{Number, PathView, Sample, Sampler};
+use strak_trajectory::{Error, Number, PathBlob, PathView, Sample, Sampler};
 
 use crate::jobs::{Event, Format, TimedEvent};
+use crate::mix;
 
 /// A sample value's raw bits, widened to `u64` (as the host's `strak_sim::export::OutBits`).
 pub trait OutBits: Copy {
@@ -123,4 +124,50 @@ where
         count
     );
     count
+}
+
+/// What [`play_blob`] played: the number of samples and a hash of every sample's bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
+pub struct Played {
+    /// Samples played (the final one included).
+    pub samples: u32,
+    /// [`mix`] folded over every sample's positions, velocities and accelerations
+    /// ([`OutBits`]), in the order `cargo xtask qemu` folds the host's bits.
+    pub hash: u64,
+}
+
+/// Validates the blob `blob` (a path of `A` axes in `N`) and plays it with `events` to its
+/// end, as the tick handler would, folding every sample into a hash: the whole work of a
+/// firmware that plays a path from flash.
+///
+/// The blob is validated in place ([`PathBlob::from_bytes`]) and its pieces are read from
+/// flash at each piece switch: no copy of them in RAM.
+///
+/// # Errors
+/// The error of [`PathBlob::from_bytes`].
+#[inline(never)]
+pub fn play_blob<N, const A: usize>(
+    blob: &'static [u8],
+    events: &'static [TimedEvent],
+) -> Result<Played, Error>
+where
+    N: Number,
+    N::Out: OutBits,
+{
+    let path = PathBlob::<N, A>::from_bytes(blob)?;
+    let mut player = Player::new(&path, events);
+    let mut played = Played {
+        samples: 0,
+        hash: 0,
+    };
+    loop {
+        let s = player.on_tick();
+        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
+            played.hash = mix(played.hash, v.out_bits());
+        }
+        played.samples = played.samples.wrapping_add(1);
+        if player.done() {
+            return Ok(played);
+        }
+    }
 }

@@ -1,0 +1,222 @@
+//! Stack, RAM and instructions of the firmware's larger operations, measured on the core:
+//! the stack by painting ([`strak_qemu::stack`]), the instructions with SysTick under QEMU
+//! `-icount` ([`WideCounter`]; **instruction counts, not cycles**).
+//!
+//! Operations, on the Cortex-M4F (`thumbv7em-none-eabihf`, `mps2-an386`) and the Cortex-M3
+//! (`thumbv7m-none-eabi`, `mps2-an385`):
+//! - validating the bundled pick-and-place blob and playing it to its end
+//!   ([`play_blob`], the pieces read in place from flash): fixed-point on both cores, `f32`
+//!   on the Cortex-M4F;
+//! - planning ([`planning::plan`]) and compiling ([`planning::compile_plan`]) the
+//!   16-control-point cubic B-spline job into a `Path<_, 3, 256>`: `f32` on the Cortex-M4F,
+//!   the `I32F32` curve into a `Q40` path on the Cortex-M3.
+//!
+//! This firmware keeps the large RAM of `memory/boards.x` (4 MiB) and reports the RAM each
+//! operation needs.
+//!
+//! # Output protocol (defmt, read by `cargo xtask qemu`)
+//! ```text
+//! CAL <empty> <nops> <nop64>          the counter's calibration (as the icount firmware's)
+//! SIZE <value> <bytes>                size_of of a planning or playback value
+//! STACK <operation> <stack> <ram>     stack high-water mark and RAM needed, in bytes
+//! H <job> <format> <samples> <hash>   a blob played: its samples and their hash
+//! C <operation> <pieces> <ticks>      the path compiled on the device
+//! I <case> <min> <median> <max> 1 0   instructions of one call (min = median = max)
+//! STACKS <n>                          the number of STACK lines
+//! DONE <cases>                        the number of I lines
+//! ```
+
+#![no_std]
+#![no_main]
+#![deny(unsafe_code)]
+
+use cortex_m_rt::{ExceptionFrame, entry, exception};
+use strak_curves::{BSpline, I32F32, Point, Scalar};
+use strak_qemu::counter::{Calibration, WideCounter};
+use strak_qemu::jobs::{Format, find_blob};
+use strak_qemu::planning::{self, Curve};
+use strak_qemu::play::{OutBits, Played, play_blob};
+use strak_qemu::stack;
+use strak_qemu::{FLASH_JOB, PIECES, exit_failure, exit_success};
+use strak_trajectory::{Number, Path, PathBlob, PathTiming, Q40, Sampler};
+
+/// Counts of the report lines.
+#[derive(Default)]
+struct Lines {
+    stacks: u32,
+    cases: u32,
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(p) = cortex_m::Peripherals::take() else {
+        exit_failure()
+    };
+    sizes();
+    // The stack first, with SysTick and its exception off: no exception frame lands in a
+    // measurement.
+    let mut lines = Lines::default();
+    blob::<Q40>("load-play-q40", Format::Fixed, &mut lines);
+    #[cfg(target_abi = "eabihf")]
+    let names = [
+        "plan-bspline16-f32",
+        "compile-bspline16-f32",
+        "plan-compile-bspline16-f32",
+    ];
+    #[cfg(not(target_abi = "eabihf"))]
+    let names = [
+        "plan-bspline16-i32f32",
+        "compile-bspline16-q40",
+        "plan-compile-bspline16-q40",
+    ];
+    #[cfg(target_abi = "eabihf")]
+    {
+        blob::<f32>("load-play-f32", Format::F32, &mut lines);
+        plan_compile::<f32, f32>(names, &mut lines);
+    }
+    #[cfg(not(target_abi = "eabihf"))]
+    plan_compile::<Q40, I32F32>(names, &mut lines);
+    defmt::println!("STACKS {=u32}", lines.stacks);
+
+    let counter = WideCounter::start(p.SYST);
+    let cal = counter.calibrate();
+    let check = counter.check_nop64(&cal);
+    defmt::println!("CAL {=u32} {=u32} {=u64}", cal.empty, cal.nops, check);
+    #[cfg(target_abi = "eabihf")]
+    count_plan_compile::<f32, f32>(names, &counter, &cal, &mut lines);
+    #[cfg(not(target_abi = "eabihf"))]
+    count_plan_compile::<Q40, I32F32>(names, &counter, &cal, &mut lines);
+    defmt::println!("DONE {=u32}", lines.cases);
+    exit_success()
+}
+
+fn size<T>(name: &str) {
+    defmt::println!("SIZE {=str} {=usize}", name, core::mem::size_of::<T>());
+}
+
+/// The sizes of the values of planning and playback.
+fn sizes() {
+    type Plan<S> = PathTiming<'static, Curve<S>, { planning::TABLE }, { planning::ZONES }>;
+    size::<Curve<f32>>("BSpline<[f32;3],16,20>");
+    size::<Curve<I32F32>>("BSpline<[I32F32;3],16,20>");
+    size::<Plan<f32>>("PathTiming<BSpline<[f32;3],16,20>,256,64>");
+    size::<Plan<I32F32>>("PathTiming<BSpline<[I32F32;3],16,20>,256,64>");
+    size::<Path<f32, 3, PIECES>>("Path<f32,3,256>");
+    size::<Path<Q40, 3, PIECES>>("Path<Q40,3,256>");
+    size::<PathBlob<'static, f32, 3>>("PathBlob<f32,3>");
+    size::<PathBlob<'static, Q40, 3>>("PathBlob<Q40,3>");
+    size::<Sampler<'static, f32, 3>>("Sampler<f32,3>");
+    size::<Sampler<'static, Q40, 3>>("Sampler<Q40,3>");
+    size::<BSpline<[f64; 3], 16, 24>>("BSpline<[f64;3],16,24>");
+}
+
+/// Validates and plays the bundled blob of [`FLASH_JOB`] in `N` from flash, logging its stack
+/// and its stream's hash.
+#[inline(never)]
+fn blob<N: Number>(name: &str, format: Format, lines: &mut Lines)
+where
+    N::Out: OutBits,
+{
+    let Some(job) = find_blob(FLASH_JOB, format, 3) else {
+        defmt::error!(
+            "{=str}: no 3-axis {=str} blob bundled",
+            FLASH_JOB,
+            format.name()
+        );
+        exit_failure()
+    };
+    let (played, used) = stack::usage(|| play_blob::<N, 3>(job.blob, job.events));
+    let played: Played = match played {
+        Ok(p) => p,
+        Err(e) => {
+            defmt::error!("{=str}: the blob does not play: {}", name, e);
+            exit_failure()
+        }
+    };
+    stack::log(name, used);
+    lines.stacks += 1;
+    defmt::println!(
+        "H {=str} {=str} {=u32} {=u64}",
+        job.name,
+        format.name(),
+        played.samples,
+        played.hash
+    );
+}
+
+/// Plans and compiles the job with the curve in `S` and the path in `N`, logging the stack of
+/// each stage (`names`: plan, compile, and a third unused here).
+#[inline(never)]
+fn plan_compile<N: Number, S: Scalar>(names: [&str; 3], lines: &mut Lines)
+where
+    [S; 3]: Point<Scalar = S>,
+{
+    let curve = ok_or_fail(names[0], planning::curve::<S>());
+    let (plan, used) = stack::usage(|| planning::plan(&curve));
+    let plan = ok_or_fail(names[0], plan.as_ref());
+    stack::log(names[0], used);
+    let (path, used) = stack::usage(|| planning::compile_plan::<N, S>(plan));
+    let path = ok_or_fail(names[1], path.as_ref());
+    stack::log(names[1], used);
+    lines.stacks += 2;
+    defmt::println!(
+        "C {=str} {=usize} {=u32}",
+        names[1],
+        path.pieces().len(),
+        path.ticks()
+    );
+}
+
+/// Counts the instructions of planning and of compiling the job, and of both (`names`: plan,
+/// compile, both).
+#[inline(never)]
+fn count_plan_compile<N: Number, S: Scalar>(
+    names: [&str; 3],
+    counter: &WideCounter,
+    cal: &Calibration,
+    lines: &mut Lines,
+) where
+    [S; 3]: Point<Scalar = S>,
+{
+    let curve = ok_or_fail(names[0], planning::curve::<S>());
+    let (c, plan) = counter.counts(|| planning::plan(&curve));
+    let plan_instructions = cal.instructions_wide(c);
+    let plan = ok_or_fail(names[0], plan.as_ref());
+    let (c, path) = counter.counts(|| planning::compile_plan::<N, S>(plan));
+    let compile_instructions = cal.instructions_wide(c);
+    ok_or_fail(names[1], path.as_ref());
+    instructions(names[0], plan_instructions);
+    instructions(names[1], compile_instructions);
+    instructions(names[2], plan_instructions + compile_instructions);
+    lines.cases += 3;
+}
+
+/// Logs the instructions of one call as an `I` line.
+fn instructions(name: &str, n: u64) {
+    defmt::println!("I {=str} {=u64} {=u64} {=u64} 1 0", name, n, n, n);
+}
+
+/// The value, or the error logged for `what` and a failed run.
+fn ok_or_fail<T, E: defmt::Format>(what: &str, r: Result<T, E>) -> T {
+    match r {
+        Ok(v) => v,
+        Err(e) => {
+            defmt::error!("{=str}: {}", what, e);
+            exit_failure()
+        }
+    }
+}
+
+/// Counts SysTick's wraps for [`WideCounter`].
+#[exception]
+fn SysTick() {
+    WideCounter::on_wrap();
+}
+
+/// A fault is logged and fails the run.
+#[allow(unsafe_code)]
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    defmt::error!("hard fault at pc {=u32:#x}", frame.pc());
+    exit_failure()
+}
