@@ -58,10 +58,13 @@ impl Checked {
         }
     }
 
-    /// The same maximum, enforced or not.
+    /// The same maximum, enforced or not (never without a limit).
     #[must_use]
     pub fn enforce(self, enforced: bool) -> Self {
-        Checked { enforced, ..self }
+        Checked {
+            enforced: enforced && self.limit.is_some(),
+            ..self
+        }
     }
 
     /// Whether the maximum exceeds an enforced limit (the run fails).
