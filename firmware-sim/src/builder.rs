@@ -1,18 +1,31 @@
 //! Building a strak-curves curve from a [`CurveFile`], in the requested number format.
 //!
-//! The file's points become `[S; D]` arrays (D = 1 to 4 coordinates, S = f64, f32 or I32F32);
-//! each constructor's typed error is reported against the field it concerns.
+//! The file's points become `[S; D]` arrays (D = 1 to [`MAX_AXES`](crate::axes::MAX_AXES)
+//! coordinates, S = f64, f32 or I32F32); each constructor's typed error is reported against
+//! the field it concerns. The curves live in fixed-capacity storage as on the device: files
+//! of up to [`SMALL_CAPACITY`] points (and knots) are built with that capacity, larger ones
+//! with [`MAX_POINTS`], so that the common small curve stays small on the stack.
 
 use strak_curves::{
     BSpline, Bezier, BezierChain, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource,
-    Nurbs, ParabolicBlend, Parameterization, PieceDeriv, Point, Scalar, SplineBoundary,
+    Nurbs, ParabolicBlend, Parameterization, PieceDeriv, Scalar, SplineBoundary,
 };
 
-use crate::curve_file::{BoundaryName, CurveFile, FieldError, Kind};
+use crate::curve_file::{
+    BEZIER_MAX_POINTS, BoundaryName, BsplineFields, CubicSplineFields, CurveFile, FieldError, Kind,
+    MAX_KNOTS, MAX_POINTS, NurbsFields,
+};
 use crate::sample::{FixedScalar, Number, Sampled};
+use crate::summary::num;
 
-/// The largest number of points (control points, interpolation points) a file may have.
-pub const CAPACITY: usize = 256;
+/// The point capacity of the curves of files with at most this many points and knots.
+pub const SMALL_CAPACITY: usize = 256;
+
+/// The largest degree of a B-spline or NURBS in a file.
+pub use strak_curves::BSPLINE_MAX_DEGREE;
+
+/// The largest number of segments of a Bézier chain (points: `n·degree + 1`).
+pub const BEZIER_CHAIN_MAX_SEGMENTS: usize = MAX_POINTS;
 
 /// What to do with a built curve, whatever its concrete type: the builder hands each curve
 /// (with points `[S; D]`) to [`CurveVisitor::visit`].
@@ -44,118 +57,59 @@ impl CurveVisitor for BoxSampled {
 }
 
 /// Builds the curve of `file` in the number format `number`, boxed for sampling.
+///
+/// # Errors
+/// A [`FieldError`] naming the field the constructor rejected.
 pub fn build_curve(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
     visit_curve(file, number, BoxSampled)
 }
 
 /// Builds the curve of `file` in the number format `number` and hands it to `visitor`.
+///
+/// # Errors
+/// A [`FieldError`] naming the field: a coordinate out of the format's range
+/// (`points[3][1]`), or the field a constructor rejected.
 pub fn visit_curve<V: CurveVisitor>(
     file: &CurveFile,
     number: Number,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
-    check_finite(file)?;
+    file.check()?;
     match number {
-        Number::F64 => build_dim::<f64, V>(file, number, visitor),
-        Number::F32 => build_dim::<f32, V>(file, number, visitor),
-        Number::Fixed => build_dim::<FixedScalar, V>(file, number, visitor),
+        Number::F64 => by_capacity::<f64, V>(file, number, visitor),
+        Number::F32 => by_capacity::<f32, V>(file, number, visitor),
+        Number::Fixed => by_capacity::<FixedScalar, V>(file, number, visitor),
     }
 }
 
-fn build_dim<S: Scalar, V: CurveVisitor>(
+/// Closed B-splines store `g` more points; knot vectors hold up to `3g + 1` more entries.
+const G: usize = BSPLINE_MAX_DEGREE;
+
+fn by_capacity<S: Scalar, V: CurveVisitor>(
     file: &CurveFile,
     number: Number,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
-    match file.dim() {
-        1 => build::<S, 1, V>(file, number, visitor),
-        2 => build::<S, 2, V>(file, number, visitor),
-        3 => build::<S, 3, V>(file, number, visitor),
-        4 => build::<S, 4, V>(file, number, visitor),
-        d => Err(FieldError::new(
-            "points",
-            format!("points need 1 to 4 coordinates, not {d}"),
-        )),
+    let items = file
+        .points()
+        .len()
+        .max(file.knots().map_or(0, <[f64]>::len));
+    let err = || FieldError::new("points", "points need 1 to 6 coordinates");
+    if items <= SMALL_CAPACITY {
+        const C: usize = SMALL_CAPACITY;
+        crate::with_axes!(
+            file.dim(),
+            build::<S, V, C, { C + G }, { C + 3 * G + 1 }>(file, number, visitor),
+            Err(err())
+        )
+    } else {
+        const C: usize = MAX_POINTS;
+        crate::with_axes!(
+            file.dim(),
+            build::<S, V, C, { C + G }, { C + 3 * G + 1 }>(file, number, visitor),
+            Err(err())
+        )
     }
-}
-
-/// Non-finite values are reported against their own field before any constructor runs.
-fn check_finite(file: &CurveFile) -> Result<(), FieldError> {
-    let all_finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-    let fields: [(&'static str, bool); 7] = [
-        ("points", file.points.iter().all(|p| all_finite(p))),
-        ("knots", file.knots.as_deref().is_none_or(all_finite)),
-        ("weights", file.weights.as_deref().is_none_or(all_finite)),
-        ("params", file.params.as_deref().is_none_or(all_finite)),
-        (
-            "tangents",
-            file.tangents
-                .as_ref()
-                .is_none_or(|t| t.iter().all(|p| all_finite(p))),
-        ),
-        (
-            "start_tangent",
-            file.start_tangent.as_deref().is_none_or(all_finite),
-        ),
-        (
-            "end_tangent",
-            file.end_tangent.as_deref().is_none_or(all_finite),
-        ),
-    ];
-    match fields.iter().find(|(_, ok)| !ok) {
-        Some((field, _)) => Err(FieldError::new(field, "a value is NaN or infinite")),
-        None => Ok(()),
-    }
-}
-
-/// Converts a list of coordinate vectors to points of type `P`.
-fn points_of<P: Point>(
-    field: &'static str,
-    coords: &[Vec<f64>],
-    number: Number,
-) -> Result<Vec<P>, FieldError> {
-    coords
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            P::from_f64_slice(c)
-                .ok_or_else(|| out_of_range(field, &format!("{field}[{i}]"), number))
-        })
-        .collect()
-}
-
-/// One point of type `P` from an optional field (checked present by [`CurveFile::check`]).
-fn point_of<P: Point>(
-    field: &'static str,
-    coords: Option<&[f64]>,
-    number: Number,
-) -> Result<P, FieldError> {
-    let coords = coords.ok_or_else(|| FieldError::new(field, "required"))?;
-    P::from_f64_slice(coords).ok_or_else(|| out_of_range(field, field, number))
-}
-
-fn scalars_of<S: Scalar>(
-    field: &'static str,
-    values: &[f64],
-    number: Number,
-) -> Result<Vec<S>, FieldError> {
-    values
-        .iter()
-        .enumerate()
-        .map(|(i, v)| {
-            S::from_f64(*v).ok_or_else(|| out_of_range(field, &format!("{field}[{i}]"), number))
-        })
-        .collect()
-}
-
-fn out_of_range(field: &'static str, what: &str, number: Number) -> FieldError {
-    FieldError::new(
-        field,
-        format!(
-            "{what} is out of range for --number {}",
-            number_name(number)
-        ),
-    )
 }
 
 fn number_name(number: Number) -> &'static str {
@@ -164,6 +118,66 @@ fn number_name(number: Number) -> &'static str {
         Number::F32 => "f32",
         Number::Fixed => "fixed (I32F32)",
     }
+}
+
+/// `±limit` of a scalar type in full (integers for the fixed-point ranges).
+fn range_text(limit: f64) -> String {
+    if limit < 1e15 {
+        format!("±{limit:.0}")
+    } else {
+        format!("±{limit:e}")
+    }
+}
+
+/// `value` of `field` does not fit `S`.
+fn out_of_range<S: Scalar>(field: &str, value: f64, number: Number) -> FieldError {
+    FieldError::new(
+        field,
+        format!(
+            "{} is out of range for --number {}, which holds values within {} (half its \
+             range, kept as headroom for evaluation)",
+            num(value),
+            number_name(number),
+            range_text(S::LIMIT)
+        ),
+    )
+}
+
+/// One vector of `field` as a point `[S; D]`.
+fn vector<S: Scalar, const D: usize>(
+    field: &str,
+    coords: &[f64],
+    number: Number,
+) -> Result<[S; D], FieldError> {
+    let mut p = [S::ZERO; D];
+    for (j, c) in p.iter_mut().enumerate() {
+        let v = coords.get(j).copied().unwrap_or(0.0);
+        *c =
+            S::from_f64(v).ok_or_else(|| out_of_range::<S>(&format!("{field}[{j}]"), v, number))?;
+    }
+    Ok(p)
+}
+
+/// The vectors of `field` as points (`field[i][j]` named when out of range).
+fn vectors<S: Scalar, const D: usize>(
+    field: &str,
+    rows: &[Vec<f64>],
+    number: Number,
+) -> Result<Vec<[S; D]>, FieldError> {
+    rows.iter()
+        .enumerate()
+        .map(|(i, row)| vector(&format!("{field}[{i}]"), row, number))
+        .collect()
+}
+
+fn scalars<S: Scalar>(field: &str, values: &[f64], number: Number) -> Result<Vec<S>, FieldError> {
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            S::from_f64(*v).ok_or_else(|| out_of_range::<S>(&format!("{field}[{i}]"), *v, number))
+        })
+        .collect()
 }
 
 /// The field a constructor error is about, for the kind at hand.
@@ -190,34 +204,70 @@ fn field_of(kind: Kind, has_params: bool, error: Error) -> &'static str {
     }
 }
 
-fn constructor_error(file: &CurveFile, number: Number) -> impl Fn(Error) -> FieldError + '_ {
-    move |e| {
-        let field = field_of(file.kind, file.params.is_some(), e);
-        let message = match e {
-            Error::OutOfRange => format!(
-                "a value of the curve (or one its evaluation produces) is out of range for --number {}",
-                number_name(number)
-            ),
-            Error::InvalidArgument if file.boundary == Some(BoundaryName::Periodic) => {
-                "a periodic cubic spline needs the last point to repeat the first".to_owned()
+/// The message of a constructor error `e` in a file of `kind`.
+fn constructor_message<S: Scalar>(kind: Kind, periodic: bool, e: Error, number: Number) -> String {
+    match e {
+        Error::OutOfRange => format!(
+            "a value of the curve (or one its evaluation produces) is out of range for --number \
+             {}, which holds values within {}{}",
+            number_name(number),
+            range_text(S::LIMIT),
+            if matches!(kind, Kind::Bspline | Kind::Nurbs) {
+                " (the k-th derivative grows with the number of pieces to the k-th power over \
+                 the default knots in [0, 1]: give `knots` over a longer domain)"
+            } else {
+                ""
             }
-            other => other.to_string(),
-        };
-        FieldError::new(field, message)
+        ),
+        Error::InvalidArgument if periodic => {
+            "a periodic cubic spline needs the last point to repeat the first".to_owned()
+        }
+        Error::CapacityExceeded { capacity, required } => format!(
+            "the {} needs storage for {required} entries, strak-sim holds {capacity} (curves of \
+             up to {MAX_POINTS} points, knot vectors of up to {MAX_KNOTS} knots)",
+            kind.name()
+        ),
+        other => other.to_string(),
     }
 }
 
-fn build<S: Scalar, const D: usize, V: CurveVisitor>(
+fn constructor_error<S: Scalar>(
+    file: &CurveFile,
+    number: Number,
+) -> impl Fn(Error) -> FieldError + '_ {
+    let periodic = matches!(
+        file,
+        CurveFile::CubicSpline(CubicSplineFields {
+            boundary: BoundaryName::Periodic,
+            ..
+        })
+    );
+    move |e| {
+        let field = field_of(file.kind(), file.params().is_some(), e);
+        FieldError::new(
+            field,
+            constructor_message::<S>(file.kind(), periodic, e, number),
+        )
+    }
+}
+
+// Not inlined: the frame of each capacity class holds its own curves only, so that a small
+// curve needs a small stack.
+#[inline(never)]
+fn build<S, V, const C: usize, const CP: usize, const K: usize, const D: usize>(
     file: &CurveFile,
     number: Number,
     visitor: V,
-) -> Result<V::Output, FieldError> {
-    let err = constructor_error(file, number);
-    let points: Vec<[S; D]> = points_of("points", &file.points, number)?;
+) -> Result<V::Output, FieldError>
+where
+    S: Scalar,
+    V: CurveVisitor,
+{
+    let err = constructor_error::<S>(file, number);
+    let points: Vec<[S; D]> = vectors("points", file.points(), number)?;
     let params: Option<Vec<S>> = file
-        .params
-        .as_deref()
-        .map(|p| scalars_of("params", p, number))
+        .params()
+        .map(|p| scalars("params", p, number))
         .transpose()?;
     let nodes = || -> NodeSource<'_, S> {
         match &params {
@@ -225,51 +275,61 @@ fn build<S: Scalar, const D: usize, V: CurveVisitor>(
             None => NodeSource::Computed(Parameterization::ChordLength),
         }
     };
-    match file.kind {
-        Kind::Lagrange => {
-            Ok(visitor
-                .visit(LagrangeCurve::<[S; D], CAPACITY>::new(&points, nodes()).map_err(&err)?))
+    type Hermite<S, const D: usize, const C: usize> = HermiteSpline<[S; D], C>;
+    Ok(match file {
+        CurveFile::Lagrange(_) => {
+            visitor.visit(LagrangeCurve::<[S; D], C>::new(&points, nodes()).map_err(&err)?)
         }
-        Kind::Hermite => {
-            let tangents: Vec<[S; D]> = points_of(
-                "tangents",
-                file.tangents.as_deref().unwrap_or_default(),
-                number,
-            )?;
-            Ok(visitor.visit(
-                HermiteSpline::<[S; D], CAPACITY>::new(&points, &tangents, nodes())
-                    .map_err(&err)?,
-            ))
+        CurveFile::Hermite(h) => {
+            let tangents: Vec<[S; D]> = vectors("tangents", &h.tangents, number)?;
+            visitor.visit(Hermite::<S, D, C>::new(&points, &tangents, nodes()).map_err(&err)?)
         }
-        Kind::CatmullRom => Ok(visitor.visit(
-            HermiteSpline::<[S; D], CAPACITY>::catmull_rom(&points, nodes()).map_err(&err)?,
-        )),
-        Kind::CubicSpline => {
-            let boundary = match file.boundary.unwrap_or_default() {
-                BoundaryName::Natural => SplineBoundary::Natural,
-                BoundaryName::Periodic => SplineBoundary::Periodic,
-                BoundaryName::Clamped => SplineBoundary::Clamped {
-                    start: point_of("start_tangent", file.start_tangent.as_deref(), number)?,
-                    end: point_of("end_tangent", file.end_tangent.as_deref(), number)?,
-                },
-            };
-            Ok(visitor.visit(
-                CubicSpline::<[S; D], CAPACITY>::new(&points, nodes(), boundary).map_err(&err)?,
-            ))
+        CurveFile::CatmullRom(_) => {
+            visitor.visit(Hermite::<S, D, C>::catmull_rom(&points, nodes()).map_err(&err)?)
         }
-        Kind::ParabolicBlend => {
-            Ok(visitor.visit(ParabolicBlend::<[S; D], CAPACITY>::new(&points).map_err(&err)?))
+        CurveFile::CubicSpline(c) => {
+            let boundary = cubic_boundary(c, number)?;
+            visitor.visit(CubicSpline::<[S; D], C>::new(&points, nodes(), boundary).map_err(&err)?)
         }
-        Kind::Bezier => build_bezier(&points, &err, visitor),
-        Kind::BezierChain => build_bezier_chain(file.degree.unwrap_or(0), &points, &err, visitor),
-        Kind::Bspline | Kind::Nurbs => build_bspline(file, &points, number, &err, visitor),
-    }
+        CurveFile::ParabolicBlend(_) => {
+            visitor.visit(ParabolicBlend::<[S; D], C>::new(&points).map_err(&err)?)
+        }
+        CurveFile::Bezier(_) => return build_bezier(&points, &err, visitor),
+        CurveFile::BezierChain(c) => {
+            return build_bezier_chain::<S, D, C, V>(c.degree, &points, &err, visitor);
+        }
+        CurveFile::Bspline(b) => {
+            return build_bspline::<S, D, CP, K, V>(b, &points, number, &err, visitor);
+        }
+        CurveFile::Nurbs(f) => {
+            return build_nurbs::<S, D, CP, K, V>(f, &points, number, &err, visitor);
+        }
+    })
 }
 
-/// The largest number of control points of a Bézier curve in a file (degree 11).
-pub const BEZIER_MAX_POINTS: usize = 12;
+fn cubic_boundary<S: Scalar, const D: usize>(
+    c: &CubicSplineFields,
+    number: Number,
+) -> Result<SplineBoundary<[S; D]>, FieldError> {
+    let tangent = |field: &str, v: &Option<Vec<f64>>| match v {
+        Some(v) => vector::<S, D>(field, v, number),
+        None => Err(FieldError::new(
+            field,
+            "required with boundary = \"clamped\"",
+        )),
+    };
+    Ok(match c.boundary {
+        BoundaryName::Natural => SplineBoundary::Natural,
+        BoundaryName::Periodic => SplineBoundary::Periodic,
+        BoundaryName::Clamped => SplineBoundary::Clamped {
+            start: tangent("start_tangent", &c.start_tangent)?,
+            end: tangent("end_tangent", &c.end_tangent)?,
+        },
+    })
+}
 
 /// A Bézier curve with `N` control points, `N` being the length of `points`.
+#[inline(never)]
 fn bezier<S: Scalar, const D: usize, const N: usize, V: CurveVisitor>(
     points: &[[S; D]],
     err: &dyn Fn(Error) -> FieldError,
@@ -300,33 +360,17 @@ fn build_bezier<S: Scalar, const D: usize, V: CurveVisitor>(
     by_count!(1 2 3 4 5 6 7 8 9 10 11 12)
 }
 
-/// The largest segment degree of a Bézier chain in a file.
-pub const BEZIER_CHAIN_MAX_DEGREE: usize = 5;
-
-/// The largest number of segments of a Bézier chain in a file (points: `n·degree + 1` ≤
-/// [`CAPACITY`] + 1 at degree 1).
-pub const BEZIER_CHAIN_MAX_SEGMENTS: usize = CAPACITY;
-
-/// A Bézier chain of segments with `N` points each.
-fn bezier_chain<S: Scalar, const D: usize, const N: usize, V: CurveVisitor>(
+/// A Bézier chain of at most `C` segments with `N` points each.
+#[inline(never)]
+fn bezier_chain<S: Scalar, const D: usize, const N: usize, const C: usize, V: CurveVisitor>(
     points: &[[S; D]],
     err: &dyn Fn(Error) -> FieldError,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
-    let chain =
-        BezierChain::<[S; D], N, BEZIER_CHAIN_MAX_SEGMENTS>::new(points).map_err(|e| match e {
-            Error::CapacityExceeded { required, .. } => FieldError::new(
-                "points",
-                format!(
-                    "a Bézier chain takes at most {BEZIER_CHAIN_MAX_SEGMENTS} segments, not {required}"
-                ),
-            ),
-            e => err(e),
-        })?;
-    Ok(visitor.visit(chain))
+    Ok(visitor.visit(BezierChain::<[S; D], N, C>::new(points).map_err(err)?))
 }
 
-fn build_bezier_chain<S: Scalar, const D: usize, V: CurveVisitor>(
+fn build_bezier_chain<S: Scalar, const D: usize, const C: usize, V: CurveVisitor>(
     degree: usize,
     points: &[[S; D]],
     err: &dyn Fn(Error) -> FieldError,
@@ -335,12 +379,10 @@ fn build_bezier_chain<S: Scalar, const D: usize, V: CurveVisitor>(
     macro_rules! by_degree {
         ($($g:literal => $n:literal)*) => {
             match degree {
-                $($g => bezier_chain::<S, D, $n, V>(points, err, visitor),)*
+                $($g => bezier_chain::<S, D, $n, C, V>(points, err, visitor),)*
                 g => Err(FieldError::new(
                     "degree",
-                    format!(
-                        "a Bézier chain takes segments of degree 1 to {BEZIER_CHAIN_MAX_DEGREE}, not {g}"
-                    ),
+                    format!("a Bézier chain takes segments of degree 1 to 5, not {g}"),
                 )),
             }
         };
@@ -348,46 +390,109 @@ fn build_bezier_chain<S: Scalar, const D: usize, V: CurveVisitor>(
     by_degree!(1 => 2 2 => 3 3 => 4 4 => 5 5 => 6)
 }
 
-/// The largest degree of a B-spline or NURBS in a file.
-pub use strak_curves::BSPLINE_MAX_DEGREE;
+fn knots_of<S: Scalar>(
+    knots: Option<&[f64]>,
+    number: Number,
+) -> Result<Option<Vec<S>>, FieldError> {
+    knots.map(|k| scalars("knots", k, number)).transpose()
+}
 
-/// Knot capacity: the control points, plus the degree (closed curves repeat `g` points),
-/// plus `2g + 1` knots.
-const KNOT_CAPACITY: usize = CAPACITY + 3 * BSPLINE_MAX_DEGREE + 1;
-
-fn build_bspline<S: Scalar, const D: usize, V: CurveVisitor>(
-    file: &CurveFile,
+#[inline(never)]
+fn build_bspline<S: Scalar, const D: usize, const CP: usize, const K: usize, V: CurveVisitor>(
+    b: &BsplineFields,
     points: &[[S; D]],
     number: Number,
     err: &dyn Fn(Error) -> FieldError,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
-    let degree = file.degree.unwrap_or(0);
-    let knots: Option<Vec<S>> = file
-        .knots
-        .as_deref()
-        .map(|k| scalars_of("knots", k, number))
-        .transpose()?;
-    let (zero, one) = (S::ZERO, S::ONE);
-    // Closed curves store g extra points.
-    type Open<P> = BSpline<P, { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>;
-    if let Some(weights) = &file.weights {
-        let w: Vec<S> = scalars_of("weights", weights, number)?;
-        let curve = match &knots {
-            Some(k) => Nurbs::<[S; D], { CAPACITY + BSPLINE_MAX_DEGREE }, KNOT_CAPACITY>::new(
-                degree, points, &w, k,
-            ),
-            None => Nurbs::clamped_uniform(degree, points, &w, zero, one),
-        };
-        return Ok(visitor.visit(curve.map_err(err)?));
-    }
-    let curve: Result<Open<[S; D]>, Error> = if file.closed.unwrap_or(false) {
-        BSpline::closed(degree, points, knots.as_deref())
+    let knots = knots_of::<S>(b.knots.as_deref(), number)?;
+    let curve: Result<BSpline<[S; D], CP, K>, Error> = if b.closed {
+        BSpline::closed(b.degree, points, knots.as_deref())
     } else {
         match &knots {
-            Some(k) => BSpline::new(degree, points, k),
-            None => BSpline::clamped_uniform(degree, points, zero, one),
+            Some(k) => BSpline::new(b.degree, points, k),
+            None => BSpline::clamped_uniform(b.degree, points, S::ZERO, S::ONE),
         }
     };
     Ok(visitor.visit(curve.map_err(err)?))
+}
+
+#[inline(never)]
+fn build_nurbs<S: Scalar, const D: usize, const CP: usize, const K: usize, V: CurveVisitor>(
+    f: &NurbsFields,
+    points: &[[S; D]],
+    number: Number,
+    err: &dyn Fn(Error) -> FieldError,
+    visitor: V,
+) -> Result<V::Output, FieldError> {
+    let knots = knots_of::<S>(f.knots.as_deref(), number)?;
+    let w: Vec<S> = scalars("weights", &f.weights, number)?;
+    let curve: Result<Nurbs<[S; D], CP, K>, Error> = match &knots {
+        Some(k) => Nurbs::new(f.degree, points, &w, k),
+        None => Nurbs::clamped_uniform(f.degree, points, &w, S::ZERO, S::ONE),
+    };
+    Ok(visitor.visit(curve.map_err(err)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Domain;
+
+    impl CurveVisitor for Domain {
+        type Output = (f64, f64, usize);
+
+        fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+        where
+            S: Scalar,
+            C: PieceDeriv<Point = [S; D]> + 'static,
+        {
+            let (a, b) = curve.domain();
+            (a.to_f64(), b.to_f64(), D)
+        }
+    }
+
+    fn build(text: &str, number: Number) -> Result<(f64, f64, usize), FieldError> {
+        visit_curve(&CurveFile::parse(text).unwrap(), number, Domain)
+    }
+
+    #[test]
+    fn out_of_range_names_the_coordinate_and_the_range() {
+        let e = build(
+            "kind = \"bezier\"\npoints = [[0, 0], [1, 2], [3, 5e10]]",
+            Number::Fixed,
+        )
+        .unwrap_err();
+        assert_eq!(e.field, "points[2][1]");
+        assert!(
+            e.message.contains("5.000e10") && e.message.contains("1073741823"),
+            "{e}"
+        );
+        let e = build(
+            "kind = \"nurbs\"\ndegree = 1\npoints = [[0], [1]]\nweights = [1, 1e40]",
+            Number::F32,
+        )
+        .unwrap_err();
+        assert_eq!(e.field, "weights[1]");
+    }
+
+    #[test]
+    fn six_axes_and_many_points() {
+        assert_eq!(
+            build(
+                "kind = \"bezier\"\npoints = [[0,0,0,0,0,0], [1,2,3,4,5,6]]",
+                Number::F64
+            )
+            .unwrap()
+            .2,
+            6
+        );
+        let points: Vec<String> = (0..MAX_POINTS).map(|i| format!("[{i}, 0]")).collect();
+        let text = format!(
+            "kind = \"bspline\"\ndegree = 1\npoints = [{}]",
+            points.join(", ")
+        );
+        assert_eq!(build(&text, Number::F32).unwrap(), (0.0, 1.0, 2));
+    }
 }

@@ -7,20 +7,17 @@
 //!
 //! The playback format is chosen here, not by the job's `number`: [`Playback::F32`] builds the
 //! curve in `f32` and plays `Path<f32, …>`, [`Playback::Fixed`] builds it in `I32F32` and plays
-//! `Path<Q40, …>` (as [`JobNumber::curve_number`] pairs them). Planning ([`planning_limits`],
-//! [`plan_options`], [`plan_timing`]) and compiling ([`compile_options`]) are the functions
-//! `strak-sim run` uses; the path capacity is [`PIECES`].
+//! `Path<Q40, …>` (as [`JobNumber::curve_number`] pairs them). Planning and compiling are the
+//! [`pipeline`](crate::pipeline) of `strak-sim run`, and the events are played by the same
+//! [`EventPlayer`].
 
 use strak_curves::{I32F32, Scalar};
-use strak_trajectory::{CompileOptions, Limits, Number, Path, PlanOptions, Q40, Sampler, compile};
+use strak_trajectory::{CompileOptions, Limits, Number, Path, PlanOptions, Q40, Sampler};
 
-use crate::curve_file::Kind;
-use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Action, Job, JobError, JobNumber, ProfileKind};
-use crate::run::{
-    PIECES, apply_due_events, compile_error, compile_options, curve_error, plan_options,
-    plan_timing, planning_limits,
-};
+use crate::curve_file::CurveFile;
+use crate::job::{Action, Job, JobError, JobNumber};
+use crate::pipeline::{PIECES, Prepared, compile_options, is_planned, plan_options};
+use crate::player::EventPlayer;
 
 /// The number format a job is compiled and played in for firmware.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -166,16 +163,56 @@ where
     N::Out: OutBits,
     S: Scalar,
 {
-    match job.axes() {
-        1 => export_typed::<N, S, 1>(job, playback),
-        2 => export_typed::<N, S, 2>(job, playback),
-        3 => export_typed::<N, S, 3>(job, playback),
-        4 => export_typed::<N, S, 4>(job, playback),
-        d => Err(JobError::new(
+    crate::with_axes!(
+        job.axes(),
+        export_typed::<N, S>(job, playback),
+        Err(JobError::new(
             "path.points",
-            format!("points need 1 to 4 coordinates, not {d}"),
-        )),
+            "points need 1 to 6 coordinates"
+        ))
+    )
+}
+
+/// `path` as a blob, and the path read back from it (checked to equal `path`).
+#[allow(clippy::type_complexity)]
+fn to_blob<N: Number, const D: usize>(
+    path: &Path<N, D, PIECES>,
+) -> Result<(Vec<u8>, Box<Path<N, D, PIECES>>), JobError> {
+    let mut blob = vec![0_u8; path.blob_len()];
+    let written = path
+        .to_bytes(&mut blob)
+        .map_err(|e| JobError::new("path", format!("cannot serialize the path: {e}")))?;
+    blob.truncate(written);
+    let back: Box<Path<N, D, PIECES>> = Box::new(
+        Path::from_bytes(&blob)
+            .map_err(|e| JobError::new("path", format!("the blob does not read back: {e}")))?,
+    );
+    if *back != *path {
+        return Err(JobError::new(
+            "path",
+            "the blob reads back as a different path",
+        ));
     }
+    Ok((blob, back))
+}
+
+/// Plays `path` with the job's events as `strak-sim run` does; every sample's bits, and
+/// whether the sampler finished.
+fn play_bits<N, const D: usize>(job: &Job, path: &Path<N, D, PIECES>) -> (Vec<u64>, bool)
+where
+    N: Number,
+    N::Out: OutBits,
+{
+    let events = job.timed_events();
+    let mut player = EventPlayer::new(&events, path.ticks());
+    let mut sampler = Sampler::new(path);
+    let mut bits = Vec::with_capacity(3 * D * (path.ticks() as usize + 1));
+    while let Some(s) = player.step(&mut sampler) {
+        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
+            bits.push(v.out_bits());
+        }
+    }
+    (bits, player.stop(&sampler) == crate::player::Stop::Finished)
 }
 
 fn export_typed<N, S, const D: usize>(job: &Job, playback: Playback) -> Result<Export, JobError>
@@ -184,69 +221,20 @@ where
     N::Out: OutBits,
     S: Scalar,
 {
-    let curve: DynCurve<S, D> =
-        build_dyn(&job.path, job.number.curve_number()).map_err(curve_error)?;
-    let limits = planning_limits::<D>(job)?;
-    let timing = plan_timing(job, &curve, &limits)?;
-    let max_abs = job
-        .path
-        .points
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, x| m.max(x.abs()));
-    let options = compile_options(job);
-    let path: Box<Path<N, D, PIECES>> = Box::new(
-        compile(&curve, &*timing, job.rate_hz, &options)
-            .map_err(|e| compile_error(job, e, timing.duration(), max_abs))?,
-    );
-    let mut blob = vec![0_u8; path.blob_len()];
-    let written = path
-        .to_bytes(&mut blob)
-        .map_err(|e| JobError::new("path", format!("cannot serialize the path: {e}")))?;
-    blob.truncate(written);
-    // The blob is the path, bit for bit (what firmware plays is what was compiled).
-    let back: Box<Path<N, D, PIECES>> = Box::new(
-        Path::from_bytes(&blob)
-            .map_err(|e| JobError::new("path", format!("the blob does not read back: {e}")))?,
-    );
-    if back != path {
-        return Err(JobError::new(
-            "path",
-            "the blob reads back as a different path",
-        ));
-    }
-
-    // Play exactly as `strak-sim run` does.
-    let events = job.sorted_events();
-    let last_event = events.last().map_or(0, |e| e.0);
-    let ticks = u64::from(path.ticks());
-    let guard = 10 * (ticks + 1) + last_event + 1;
-    let mut sampler = Sampler::new(&*back);
-    let mut bits = Vec::with_capacity(3 * D * usize::try_from(ticks + 1).unwrap_or(0));
-    let mut next_event = 0;
-    let mut samples: u64 = 0;
-    let finished = loop {
-        apply_due_events(&mut sampler, &events, &mut next_event, samples);
-        let s = sampler.next();
-        samples += 1;
-        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
-            bits.push(v.out_bits());
-        }
-        if sampler.is_finished() {
-            break true;
-        }
-        if samples >= guard {
-            break false;
-        }
-    };
-    let recipe = recipe::<D>(job, &limits);
+    let prepared = Prepared::<S, D>::new(job)?;
+    let compiled = prepared.compile::<N>(job)?;
+    let path = &*compiled.path;
+    // What firmware plays is what was compiled: the blob reads back as the path.
+    let (blob, back) = to_blob(path)?;
+    let (bits, finished) = play_bits(job, &back);
     Ok(Export {
         playback,
         axes: D,
         blob,
         pieces: path.pieces().len(),
         ticks: path.ticks(),
-        events: events
+        events: job
+            .sorted_events()
             .into_iter()
             .map(|(t, a)| match a {
                 Action::Feed(f) => (t, Action::Feed(f64::from(f as f32))),
@@ -255,28 +243,22 @@ where
             .collect(),
         bits,
         finished,
-        recipe,
+        recipe: recipe::<D>(job, &prepared.limits),
     })
 }
 
 /// The device recipe of a clamped uniform B-spline job planned as trapezoid or S-curve.
 fn recipe<const D: usize>(job: &Job, limits: &Limits<D>) -> Option<DeviceRecipe> {
-    let p = &job.path;
-    let plain_bspline = p.kind == Kind::Bspline
-        && p.knots.is_none()
-        && p.weights.is_none()
-        && !p.closed.unwrap_or(false);
-    let planned = matches!(
-        job.profile.kind,
-        ProfileKind::Trapezoid | ProfileKind::SCurve
-    );
-    if !(plain_bspline && planned) {
+    let CurveFile::Bspline(b) = &job.path else {
+        return None;
+    };
+    if b.knots.is_some() || b.closed || !is_planned(job) {
         return None;
     }
     Some(DeviceRecipe {
         rate_hz: job.rate_hz,
-        degree: p.degree.unwrap_or(0),
-        points: p.points.clone(),
+        degree: b.degree,
+        points: b.points.clone(),
         limits: [limits.velocity(), limits.acceleration(), limits.jerk()],
         axis_velocity: limits.axis_velocity().to_vec(),
         axis_acceleration: limits.axis_acceleration().to_vec(),

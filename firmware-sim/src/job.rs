@@ -1,5 +1,5 @@
 //! The job file of `strak-sim run`: a path, a control rate, a number format, limits, a time law
-//! and optional feed events, in TOML, checked field by field.
+//! and optional feed events, in TOML.
 //!
 //! ```toml
 //! rate_hz = 1000              # control rate, 100 ..= 100000 Hz
@@ -36,21 +36,134 @@
 //! feed = 0.5                  # or: hold = true | resume = true | abort = true
 //! ```
 //!
-//! Every problem is reported as one [`JobError`] naming the field (`limits.velocity`,
-//! `events[1].feed`, `path.points`, …).
+//! The path and the time law are serde enums tagged by `kind`; every range is checked while
+//! deserializing. What serde cannot say ([`Job::check`]: the path's lists, per-axis limits of
+//! one entry per axis, one action per event) is checked after. Every problem is reported as
+//! one [`JobError`] naming the field (`limits.velocity`, `events[1].feed`,
+//! `path.points[3][1]`, …).
 
 use std::fmt;
 
-use serde::Deserialize;
+use serde::{Deserialize, Deserializer, de::Error as _};
 
 use crate::curve_file::CurveFile;
+use crate::player::{Event, TimedEvent};
 use crate::sample::Number as CurveNumber;
+use crate::toml_error::{Tagged, locate};
 
 /// The lowest and highest control rates in Hz.
 pub const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);
 
 /// The largest number of planner sampling intervals (`profile.samples`).
 pub const MAX_PLAN_SAMPLES: usize = 1 << 20;
+
+/// Range checks run while deserializing, so that the error carries the value's place.
+mod range {
+    use super::{Deserialize, Deserializer, MAX_PLAN_SAMPLES, RATE_RANGE};
+    use serde::de::Error as _;
+
+    fn check<'de, D: Deserializer<'de>, T: Deserialize<'de> + Copy>(
+        d: D,
+        ok: impl Fn(T) -> bool,
+        says: impl Fn(T) -> String,
+    ) -> Result<T, D::Error> {
+        let v = T::deserialize(d)?;
+        if ok(v) {
+            Ok(v)
+        } else {
+            Err(D::Error::custom(says(v)))
+        }
+    }
+
+    fn positive_f64(x: f64) -> bool {
+        x.is_finite() && x > 0.0
+    }
+
+    pub(super) fn positive<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        check(d, positive_f64, |v: f64| {
+            format!("must be finite and > 0, not {v}")
+        })
+    }
+
+    pub(super) fn some_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        positive(d).map(Some)
+    }
+
+    pub(super) fn rate<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        check(
+            d,
+            |v: f64| v >= RATE_RANGE.0 && v <= RATE_RANGE.1,
+            |v: f64| format!("the control rate must be between 100 Hz and 100 kHz, not {v} Hz"),
+        )
+    }
+
+    /// A share strictly between 0 and 1.
+    pub(super) fn some_share<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        check(
+            d,
+            |v: f64| v > 0.0 && v < 1.0,
+            |v: f64| format!("must be between 0 and 1 (exclusive), not {v}"),
+        )
+        .map(Some)
+    }
+
+    pub(super) fn some_feed<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        check(
+            d,
+            |v: f64| (0.0..=1.0).contains(&v),
+            |v: f64| format!("the feed override must be between 0 and 1, not {v}"),
+        )
+        .map(Some)
+    }
+
+    pub(super) fn some_samples<'de, D: Deserializer<'de>>(d: D) -> Result<Option<usize>, D::Error> {
+        check(
+            d,
+            |n: usize| (1..=MAX_PLAN_SAMPLES).contains(&n),
+            |n: usize| format!("must be between 1 and {MAX_PLAN_SAMPLES}, not {n}"),
+        )
+        .map(Some)
+    }
+
+    pub(super) fn some_non_negative<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<f64>, D::Error> {
+        check(
+            d,
+            |v: f64| v.is_finite() && v >= 0.0,
+            |v: f64| format!("must be finite and ≥ 0, not {v}"),
+        )
+        .map(Some)
+    }
+
+    pub(super) fn some_ticks<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u32>, D::Error> {
+        check(d, |n: u32| n >= 1, |_| "must be at least 1".to_owned()).map(Some)
+    }
+
+    /// `true` (an action flag: leave the event out otherwise).
+    pub(super) fn flag<'de, D: Deserializer<'de>>(d: D) -> Result<Option<bool>, D::Error> {
+        check(
+            d,
+            |b: bool| b,
+            |_| "must be true (leave the event out otherwise)".to_owned(),
+        )
+        .map(Some)
+    }
+
+    /// Per-axis limits: each > 0, `inf` for none.
+    pub(super) fn some_axis_limits<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<Vec<f64>>, D::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        match v.iter().position(|x| x.is_nan() || *x <= 0.0) {
+            Some(i) => Err(D::Error::custom(format!(
+                "limit {i} must be > 0 (inf for none), not {}",
+                v[i]
+            ))),
+            None => Ok(Some(v)),
+        }
+    }
+}
 
 /// The number format of playback.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -85,24 +198,28 @@ impl JobNumber {
 }
 
 /// The `[limits]` table.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JobLimits {
     /// Path velocity limit (units/s).
+    #[serde(deserialize_with = "range::positive")]
     pub velocity: f64,
     /// Acceleration limit (units/s²): the norm of the acceleration in space.
+    #[serde(deserialize_with = "range::positive")]
     pub acceleration: f64,
     /// Jerk limit (units/s³): the norm of the jerk in space (S-curve).
+    #[serde(deserialize_with = "range::positive")]
     pub jerk: f64,
     /// Per-axis velocity limits, one per axis (`inf`: none).
+    #[serde(default, deserialize_with = "range::some_axis_limits")]
     pub axis_velocity: Option<Vec<f64>>,
     /// Per-axis acceleration limits, one per axis (`inf`: none).
+    #[serde(default, deserialize_with = "range::some_axis_limits")]
     pub axis_acceleration: Option<Vec<f64>>,
 }
 
 /// The time laws.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ProfileKind {
     /// The curve parameter at a constant rate over `duration` seconds.
     Parameter,
@@ -124,56 +241,128 @@ impl ProfileKind {
             ProfileKind::SCurve => "s-curve",
         }
     }
+
+    /// Whether the law is planned under the limits (trapezoid, S-curve): only then does a
+    /// run fail when its samples exceed a limit.
+    pub fn is_planned(self) -> bool {
+        matches!(self, ProfileKind::Trapezoid | ProfileKind::SCurve)
+    }
 }
 
-/// The `[profile]` table.
-#[derive(Clone, Debug, Deserialize)]
+/// `kind = "parameter"`.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct JobProfile {
-    /// The time law.
-    pub kind: ProfileKind,
-    /// Parameter law: the duration in seconds.
-    pub duration: Option<f64>,
-    /// Constant speed: the speed (default `limits.velocity`).
+pub struct ParameterLaw {
+    /// The duration in seconds.
+    #[serde(deserialize_with = "range::positive")]
+    pub duration: f64,
+}
+
+/// `kind = "constant-speed"`.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstantSpeedLaw {
+    /// The speed (default `limits.velocity`).
+    #[serde(default, deserialize_with = "range::some_positive")]
     pub speed: Option<f64>,
-    /// Trapezoid, S-curve: planner sampling intervals (default 1024).
+}
+
+/// `kind = "trapezoid"` and `kind = "s-curve"`: the planner's optional settings.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlannerSettings {
+    /// Planner sampling intervals (default 1024).
+    #[serde(default, deserialize_with = "range::some_samples")]
     pub samples: Option<usize>,
-    /// Trapezoid, S-curve: relative spread of the speed limit inside one zone (default 0.05).
+    /// Relative spread of the speed limit inside one zone (default 0.05).
+    #[serde(default, deserialize_with = "range::some_non_negative")]
     pub zone_tolerance: Option<f64>,
-    /// Trapezoid, S-curve: the share of the acceleration and jerk limits (path and per
-    /// axis) the turning of the path may take (default 0.5).
+    /// The share of the acceleration and jerk limits (path and per axis) the turning of the
+    /// path may take (default 0.5).
+    #[serde(default, deserialize_with = "range::some_share")]
     pub centripetal_share: Option<f64>,
-    /// Trapezoid, S-curve: the smallest turn of the tangent at a join that counts as a
-    /// corner, where the motion stops (radians, default 10⁻⁴).
+    /// The smallest turn of the tangent at a join that counts as a corner, where the motion
+    /// stops (radians, default 10⁻⁴).
+    #[serde(default, deserialize_with = "range::some_positive")]
     pub corner_angle: Option<f64>,
 }
 
+/// The `[profile]` table: the time law, tagged by `kind`.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Profile {
+    /// The curve parameter at a constant rate.
+    Parameter(ParameterLaw),
+    /// Constant speed along the arc length.
+    ConstantSpeed(ConstantSpeedLaw),
+    /// Trapezoidal speed under the limits (jerk not limited).
+    Trapezoid(PlannerSettings),
+    /// Jerk-limited S-curve under the limits.
+    SCurve(PlannerSettings),
+}
+
+impl Profile {
+    /// The kind of time law.
+    pub fn kind(&self) -> ProfileKind {
+        match self {
+            Profile::Parameter(_) => ProfileKind::Parameter,
+            Profile::ConstantSpeed(_) => ProfileKind::ConstantSpeed,
+            Profile::Trapezoid(_) => ProfileKind::Trapezoid,
+            Profile::SCurve(_) => ProfileKind::SCurve,
+        }
+    }
+
+    /// The planner settings of a trapezoid or S-curve.
+    pub fn planner(&self) -> Option<&PlannerSettings> {
+        match self {
+            Profile::Trapezoid(p) | Profile::SCurve(p) => Some(p),
+            _ => None,
+        }
+    }
+
+    fn diagnose(kind: &str, text: &str) -> Option<toml::de::Error> {
+        match kind {
+            "parameter" => toml::from_str::<ParameterLaw>(text).err(),
+            "constant-speed" => toml::from_str::<ConstantSpeedLaw>(text).err(),
+            "trapezoid" | "s-curve" => toml::from_str::<PlannerSettings>(text).err(),
+            _ => None,
+        }
+    }
+}
+
 /// The optional `[compile]` table.
-#[derive(Clone, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JobCompile {
     /// Absolute position tolerance in units (default: 1e-4 of the path's extent).
+    #[serde(default, deserialize_with = "range::some_positive")]
     pub tolerance: Option<f64>,
     /// The longest piece in ticks (default 256).
+    #[serde(default, deserialize_with = "range::some_ticks")]
     pub max_piece_ticks: Option<u32>,
     /// The share of acceleration and jerk reserved for feed changes (default 0.25).
+    #[serde(default, deserialize_with = "range::some_share")]
     pub feed_share: Option<f64>,
 }
 
 /// One `[[events]]` entry: at `tick`, exactly one action.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JobEvent {
     /// The wall-clock tick (sample number, counted from 0, holds included) before whose
     /// sample the action is applied.
     pub tick: u64,
     /// Feed override in `[0, 1]`.
+    #[serde(default, deserialize_with = "range::some_feed")]
     pub feed: Option<f64>,
     /// Feed hold (`true`).
+    #[serde(default, deserialize_with = "range::flag")]
     pub hold: Option<bool>,
     /// Resume after a hold (`true`).
+    #[serde(default, deserialize_with = "range::flag")]
     pub resume: Option<bool>,
     /// Abort (`true`).
+    #[serde(default, deserialize_with = "range::flag")]
     pub abort: Option<bool>,
 }
 
@@ -203,22 +392,33 @@ impl JobEvent {
     }
 }
 
+fn non_empty<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
+    let s = String::deserialize(d)?;
+    if s.trim().is_empty() {
+        Err(D::Error::custom("must not be empty"))
+    } else {
+        Ok(Some(s))
+    }
+}
+
 /// A job file.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Job {
     /// Control rate in Hz.
+    #[serde(deserialize_with = "range::rate")]
     pub rate_hz: f64,
     /// Number format of the curve and of playback.
     pub number: JobNumber,
     /// The length unit, for display (default "units").
+    #[serde(default, deserialize_with = "non_empty")]
     pub unit: Option<String>,
     /// The curve.
     pub path: CurveFile,
     /// Kinematic limits.
     pub limits: JobLimits,
     /// The time law.
-    pub profile: JobProfile,
+    pub profile: Profile,
     /// Compiler settings.
     #[serde(default)]
     pub compile: JobCompile,
@@ -254,133 +454,25 @@ impl fmt::Display for JobError {
 
 impl std::error::Error for JobError {}
 
-fn positive(x: f64) -> bool {
-    x.is_finite() && x > 0.0
-}
-
-/// The table a byte offset of `text` lies in (`limits`, `events[2]`, or "" at the top), from
-/// the headers before it.
-fn table_at(text: &str, offset: usize) -> String {
-    let mut table = String::new();
-    let mut arrays: Vec<(String, usize)> = Vec::new();
-    for line in text[..offset].lines() {
-        let l = line.trim();
-        if let Some(name) = l.strip_prefix("[[").and_then(|r| r.split("]]").next()) {
-            let name = name.trim().to_owned();
-            let index = match arrays.iter_mut().find(|(n, _)| *n == name) {
-                Some((_, count)) => {
-                    *count += 1;
-                    *count - 1
-                }
-                None => {
-                    arrays.push((name.clone(), 1));
-                    0
-                }
-            };
-            table = format!("{name}[{index}]");
-        } else if let Some(name) = l.strip_prefix('[').and_then(|r| r.split(']').next()) {
-            table = name.trim().to_owned();
-        }
-    }
-    table
-}
-
-fn join(table: &str, key: &str) -> String {
-    if table.is_empty() {
-        key.to_owned()
-    } else {
-        format!("{table}.{key}")
-    }
-}
-
-/// The required fields of each table of a job file.
-const REQUIRED: [(&str, &[&str]); 5] = [
-    ("", &["rate_hz", "number", "path", "limits", "profile"]),
-    ("path", &["kind", "points"]),
-    ("limits", &["velocity", "acceleration", "jerk"]),
-    ("profile", &["kind"]),
-    ("events", &["tick"]),
+/// The tables of a job tagged by `kind`.
+const TAGGED: [Tagged; 2] = [
+    Tagged {
+        table: "path",
+        diagnose: CurveFile::diagnose,
+    },
+    Tagged {
+        table: "profile",
+        diagnose: Profile::diagnose,
+    },
 ];
-
-/// The table (as `limits`, `events[1]`, or "" for the top level) that lacks the required field
-/// `field`, found in the parsed document.
-fn table_missing(text: &str, field: &str) -> Option<String> {
-    let doc: toml::Table = toml::from_str(text).ok()?;
-    for (table, required) in REQUIRED {
-        if !required.contains(&field) {
-            continue;
-        }
-        match table {
-            "" => {
-                if !doc.contains_key(field) {
-                    return Some(String::new());
-                }
-            }
-            "events" => {
-                let events = doc.get("events").and_then(toml::Value::as_array)?;
-                for (i, e) in events.iter().enumerate() {
-                    if e.as_table().is_some_and(|t| !t.contains_key(field)) {
-                        return Some(format!("events[{i}]"));
-                    }
-                }
-            }
-            name => {
-                if let Some(t) = doc.get(name).and_then(toml::Value::as_table)
-                    && !t.contains_key(field)
-                {
-                    return Some(name.to_owned());
-                }
-            }
-        }
-    }
-    None
-}
-
-/// One error line naming the field, from toml's error (its message spans several lines with a
-/// source excerpt: only the first is kept).
-fn parse_error(text: &str, e: &toml::de::Error) -> JobError {
-    let msg = e
-        .message()
-        .trim()
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .to_owned();
-    let quoted = |prefix: &str| {
-        msg.strip_prefix(prefix)
-            .and_then(|r| r.split('`').next())
-            .map(str::to_owned)
-    };
-    if let Some(field) = quoted("missing field `") {
-        let table = table_missing(text, &field).unwrap_or_default();
-        return JobError::new(join(&table, &field), msg);
-    }
-    let Some(span) = e.span() else {
-        return JobError::new("job", msg);
-    };
-    let start = span.start.min(text.len());
-    let line = text[..start].lines().count().max(1);
-    let table = table_at(text, start);
-    if let Some(field) = quoted("unknown field `") {
-        return JobError::new(join(&table, &field), format!("line {line}: {msg}"));
-    }
-    // The key of the line the error is on.
-    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
-    let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
-    let line_text = &text[line_start..line_end];
-    match line_text.split_once('=') {
-        Some((key, _)) if !key.trim().is_empty() && !key.contains('[') => {
-            JobError::new(join(&table, key.trim()), format!("line {line}: {msg}"))
-        }
-        _ if !table.is_empty() => JobError::new(table, format!("line {line}: {msg}")),
-        _ => JobError::new("job", format!("line {line}: {msg}")),
-    }
-}
 
 impl Job {
     /// Parses TOML text and checks every field; the error names the field.
     pub fn parse(text: &str) -> Result<Self, JobError> {
-        let job: Job = toml::from_str(text).map_err(|e| parse_error(text, &e))?;
+        let job: Job = toml::from_str(text).map_err(|e| {
+            let at = locate(text, &e, &TAGGED);
+            JobError::new(at.field, at.message)
+        })?;
         job.check()?;
         Ok(job)
     }
@@ -413,225 +505,57 @@ impl Job {
         events
     }
 
-    /// Checks every field that does not need the curve built.
+    /// The events as the event player takes them: sorted by tick, the feed as `f32` (the
+    /// sampler's type).
+    pub fn timed_events(&self) -> Vec<TimedEvent> {
+        self.sorted_events()
+            .into_iter()
+            .map(|(tick, action)| TimedEvent {
+                tick,
+                event: match action {
+                    Action::Feed(f) => Event::Feed(f as f32),
+                    Action::Hold => Event::Hold,
+                    Action::Resume => Event::Resume,
+                    Action::Abort => Event::Abort,
+                },
+            })
+            .collect()
+    }
+
+    /// Checks what serde cannot: the path's lists ([`CurveFile::check`]), one per-axis limit
+    /// per axis, and exactly one action per event.
     pub fn check(&self) -> Result<(), JobError> {
         self.path
             .check()
             .map_err(|e| JobError::new(format!("path.{}", e.field), e.message))?;
         let dim = self.axes();
-        if !positive(self.rate_hz) {
-            return Err(JobError::new(
-                "rate_hz",
-                format!("must be a positive rate in Hz, not {}", self.rate_hz),
-            ));
-        }
-        if !(self.rate_hz >= RATE_RANGE.0 && self.rate_hz <= RATE_RANGE.1) {
-            return Err(JobError::new(
-                "rate_hz",
-                format!(
-                    "the control rate must be between 100 Hz and 100 kHz, not {} Hz",
-                    self.rate_hz
-                ),
-            ));
-        }
-        if let Some(u) = &self.unit
-            && u.trim().is_empty()
-        {
-            return Err(JobError::new("unit", "must not be empty"));
-        }
-        let l = &self.limits;
-        for (field, v) in [
-            ("limits.velocity", l.velocity),
-            ("limits.acceleration", l.acceleration),
-            ("limits.jerk", l.jerk),
+        for (field, axes) in [
+            ("limits.axis_velocity", &self.limits.axis_velocity),
+            ("limits.axis_acceleration", &self.limits.axis_acceleration),
         ] {
-            if !positive(v) {
+            if let Some(axes) = axes
+                && axes.len() != dim
+            {
                 return Err(JobError::new(
                     field,
-                    format!("must be finite and > 0, not {v}"),
+                    format!(
+                        "one limit per axis: the path has {dim} axes, {} limits given",
+                        axes.len()
+                    ),
                 ));
             }
         }
-        for (field, axes) in [
-            ("limits.axis_velocity", &l.axis_velocity),
-            ("limits.axis_acceleration", &l.axis_acceleration),
-        ] {
-            if let Some(axes) = axes {
-                if axes.len() != dim {
-                    return Err(JobError::new(
-                        field,
-                        format!(
-                            "one limit per axis: the path has {dim} axes, {} limits given",
-                            axes.len()
-                        ),
-                    ));
-                }
-                if let Some((i, v)) = axes
-                    .iter()
-                    .enumerate()
-                    .find(|(_, v)| v.is_nan() || **v <= 0.0)
-                {
-                    return Err(JobError::new(
-                        field,
-                        format!("limit {i} must be > 0 (inf for none), not {v}"),
-                    ));
-                }
-            }
-        }
-        self.check_profile()?;
-        self.check_compile()?;
-        self.check_events()
-    }
-
-    fn check_profile(&self) -> Result<(), JobError> {
-        use ProfileKind::*;
-        let p = &self.profile;
-        let k = p.kind;
-        let uses = |field: &str, present: bool, allowed: &[ProfileKind]| {
-            if present && !allowed.contains(&k) {
-                Err(JobError::new(
-                    format!("profile.{field}"),
-                    format!("does not apply to kind `{}`", k.name()),
-                ))
-            } else {
-                Ok(())
-            }
-        };
-        uses("duration", p.duration.is_some(), &[Parameter])?;
-        uses("speed", p.speed.is_some(), &[ConstantSpeed])?;
-        uses("samples", p.samples.is_some(), &[Trapezoid, SCurve])?;
-        uses(
-            "zone_tolerance",
-            p.zone_tolerance.is_some(),
-            &[Trapezoid, SCurve],
-        )?;
-        uses(
-            "centripetal_share",
-            p.centripetal_share.is_some(),
-            &[Trapezoid, SCurve],
-        )?;
-        uses(
-            "corner_angle",
-            p.corner_angle.is_some(),
-            &[Trapezoid, SCurve],
-        )?;
-        match (k, p.duration) {
-            (Parameter, None) => {
-                return Err(JobError::new(
-                    "profile.duration",
-                    "required for kind `parameter` (seconds)",
-                ));
-            }
-            (_, Some(d)) if !positive(d) => {
-                return Err(JobError::new(
-                    "profile.duration",
-                    format!("must be finite and > 0 seconds, not {d}"),
-                ));
-            }
-            _ => {}
-        }
-        if let Some(v) = p.speed
-            && !positive(v)
-        {
-            return Err(JobError::new(
-                "profile.speed",
-                format!("must be finite and > 0, not {v}"),
-            ));
-        }
-        if let Some(n) = p.samples
-            && !(1..=MAX_PLAN_SAMPLES).contains(&n)
-        {
-            return Err(JobError::new(
-                "profile.samples",
-                format!("must be between 1 and {MAX_PLAN_SAMPLES}, not {n}"),
-            ));
-        }
-        if let Some(t) = p.zone_tolerance
-            && !(t.is_finite() && t >= 0.0)
-        {
-            return Err(JobError::new(
-                "profile.zone_tolerance",
-                format!("must be finite and ≥ 0, not {t}"),
-            ));
-        }
-        if let Some(s) = p.centripetal_share
-            && !(s > 0.0 && s < 1.0)
-        {
-            return Err(JobError::new(
-                "profile.centripetal_share",
-                format!("must be between 0 and 1 (exclusive), not {s}"),
-            ));
-        }
-        if let Some(a) = p.corner_angle
-            && !positive(a)
-        {
-            return Err(JobError::new(
-                "profile.corner_angle",
-                format!("must be finite and > 0 radians, not {a}"),
-            ));
-        }
-        Ok(())
-    }
-
-    fn check_compile(&self) -> Result<(), JobError> {
-        let c = &self.compile;
-        if let Some(t) = c.tolerance
-            && !positive(t)
-        {
-            return Err(JobError::new(
-                "compile.tolerance",
-                format!("must be finite and > 0, not {t}"),
-            ));
-        }
-        if c.max_piece_ticks == Some(0) {
-            return Err(JobError::new(
-                "compile.max_piece_ticks",
-                "must be at least 1",
-            ));
-        }
-        if let Some(s) = c.feed_share
-            && !(s > 0.0 && s < 1.0)
-        {
-            return Err(JobError::new(
-                "compile.feed_share",
-                format!("must be between 0 and 1 (exclusive), not {s}"),
-            ));
-        }
-        Ok(())
-    }
-
-    fn check_events(&self) -> Result<(), JobError> {
         for (i, e) in self.events.iter().enumerate() {
-            let set = [
-                e.feed.is_some(),
-                e.hold.is_some(),
-                e.resume.is_some(),
-                e.abort.is_some(),
-            ]
-            .iter()
-            .filter(|s| **s)
-            .count();
-            if set != 1 {
+            if e.action().is_none() {
+                let set = [e.feed.is_some(), e.hold.is_some(), e.resume.is_some()]
+                    .into_iter()
+                    .chain([e.abort.is_some()])
+                    .filter(|s| *s)
+                    .count();
                 return Err(JobError::new(
                     format!("events[{i}]"),
                     format!("give exactly one of feed, hold, resume, abort (found {set})"),
                 ));
-            }
-            if let Some(f) = e.feed
-                && !(0.0..=1.0).contains(&f)
-            {
-                return Err(JobError::new(
-                    format!("events[{i}].feed"),
-                    format!("the feed override must be between 0 and 1, not {f}"),
-                ));
-            }
-            for (name, v) in [("hold", e.hold), ("resume", e.resume), ("abort", e.abort)] {
-                if v == Some(false) {
-                    return Err(JobError::new(
-                        format!("events[{i}].{name}"),
-                        "must be true (leave the event out otherwise)",
-                    ));
-                }
             }
         }
         Ok(())
@@ -666,49 +590,106 @@ kind = "s-curve"
         assert_eq!(job.rate_hz, 1000.0);
         assert_eq!(job.number, JobNumber::F64);
         assert_eq!(job.axes(), 2);
-        assert_eq!(job.profile.kind, ProfileKind::SCurve);
+        assert_eq!(job.profile.kind(), ProfileKind::SCurve);
+        assert_eq!(job.profile.planner(), Some(&PlannerSettings::default()));
         assert_eq!(job.feed_share(), 0.25);
         assert!(job.events.is_empty());
     }
 
     #[test]
     fn errors_name_the_field() {
-        assert_eq!(err(&GOOD.replace("rate_hz = 1000\n", "")).field, "rate_hz");
-        assert_eq!(
-            err(&GOOD.replace("velocity = 100\n", "")).field,
-            "limits.velocity"
-        );
-        assert_eq!(
-            err(&GOOD.replace("rate_hz = 1000", "rate_hz = 0")).field,
-            "rate_hz"
-        );
-        assert_eq!(
-            err(&GOOD.replace("jerk = 10000", "jerk = -1")).field,
-            "limits.jerk"
-        );
-        assert_eq!(
-            err(&GOOD.replace("jerk = 10000", "jerk = 1\ncolour = 3")).field,
-            "limits.colour"
-        );
-        assert_eq!(
-            err(&GOOD.replace("points = [[0, 0], [10, 0], [10, 10]]", "points = []")).field,
-            "path.points"
-        );
-        assert_eq!(err(&GOOD.replace("\"f64\"", "\"f16\"")).field, "number");
-        assert_eq!(
-            err(&format!("{GOOD}[[events]]\ntick = 3\nfeed = 2\n")).field,
-            "events[0].feed"
-        );
-        assert_eq!(
-            err(&format!(
-                "{GOOD}[[events]]\ntick = 3\nfeed = 0.5\n[[events]]\ntick = 4\n"
-            ))
-            .field,
-            "events[1]"
-        );
-        assert_eq!(
-            err(&GOOD.replace("kind = \"s-curve\"", "kind = \"parameter\"")).field,
-            "profile.duration"
-        );
+        let cases = [
+            (GOOD.replace("rate_hz = 1000\n", ""), "rate_hz"),
+            (GOOD.replace("velocity = 100\n", ""), "limits.velocity"),
+            (GOOD.replace("rate_hz = 1000", "rate_hz = 0"), "rate_hz"),
+            (GOOD.replace("jerk = 10000", "jerk = -1"), "limits.jerk"),
+            (
+                GOOD.replace("jerk = 10000", "jerk = 1\ncolour = 3"),
+                "limits.colour",
+            ),
+            (
+                GOOD.replace("[[0, 0], [10, 0], [10, 10]]", "[]"),
+                "path.points",
+            ),
+            (
+                GOOD.replace("[[0, 0], [10, 0], [10, 10]]", "[[0, 0], [1, nan]]"),
+                "path.points[1][1]",
+            ),
+            (GOOD.replace("\"f64\"", "\"f16\""), "number"),
+            (
+                format!("{GOOD}[[events]]\ntick = 3\nfeed = 2\n"),
+                "events[0].feed",
+            ),
+            (
+                format!("{GOOD}[[events]]\ntick = 3\nfeed = 0.5\n[[events]]\ntick = 4\n"),
+                "events[1]",
+            ),
+            (
+                format!("{GOOD}[[events]]\ntick = 3\nhold = false\n"),
+                "events[0].hold",
+            ),
+            (
+                GOOD.replace("kind = \"s-curve\"", "kind = \"parameter\""),
+                "profile.duration",
+            ),
+            (
+                GOOD.replace("kind = \"s-curve\"", "kind = \"parameter\"\nduration = -2"),
+                "profile.duration",
+            ),
+            (
+                GOOD.replace("kind = \"s-curve\"", "kind = \"s-curve\"\nsamples = 0"),
+                "profile.samples",
+            ),
+            (
+                GOOD.replace("kind = \"s-curve\"", "kind = \"s-curve\"\nspeed = 3"),
+                "profile.speed",
+            ),
+            (
+                GOOD.replace(
+                    "kind = \"s-curve\"",
+                    "kind = \"s-curve\"\nsamples = \"many\"",
+                ),
+                "profile.samples",
+            ),
+            (
+                GOOD.replace("kind = \"s-curve\"", "kind = \"spiral\""),
+                "profile.kind",
+            ),
+            (
+                GOOD.replace("kind = \"bezier\"", "kind = \"bspline\""),
+                "path.degree",
+            ),
+            (
+                GOOD.replace("kind = \"bezier\"", "kind = \"bezier\"\nknots = [0, 1]"),
+                "path.knots",
+            ),
+            (
+                GOOD.replace("kind = \"bezier\"", "kind = \"bezier\"\ndegree = \"two\""),
+                "path.degree",
+            ),
+            (GOOD.replace("kind = \"bezier\"\n", ""), "path.kind"),
+            (
+                GOOD.replace("[profile]\nkind = \"s-curve\"", "").replace(
+                    "number = \"f64\"",
+                    "number = \"f64\"\nprofile = { kind = \"s-curve\", samples = -1 }",
+                ),
+                "profile.samples",
+            ),
+            (
+                format!("{GOOD}[compile]\nfeed_share = 1.0\n"),
+                "compile.feed_share",
+            ),
+            (
+                GOOD.replace("jerk = 10000", "jerk = 10000\naxis_velocity = [1, 0]"),
+                "limits.axis_velocity",
+            ),
+            (
+                GOOD.replace("jerk = 10000", "jerk = 10000\naxis_velocity = [1]"),
+                "limits.axis_velocity",
+            ),
+        ];
+        for (text, field) in cases {
+            assert_eq!(err(&text).field, field, "{text}");
+        }
     }
 }

@@ -3,12 +3,17 @@
 //!
 //! The binary is a thin clap front end; tests call these functions directly.
 
+pub mod axes;
 pub mod builder;
 pub mod curve_file;
 pub mod dyn_curve;
 pub mod export;
 pub mod job;
+pub mod measure;
+pub mod pipeline;
+pub mod player;
 pub mod plot;
 pub mod run;
 pub mod sample;
 pub mod summary;
+pub mod toml_error;

@@ -2,13 +2,13 @@
 //!
 //! ```text
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
-//! strak-sim run [JOB.toml] [--out DIR]
+//! strak-sim run [JOB.toml] [--out DIR]      # exit 3: a planned motion exceeded a limit
 //! strak-sim compile JOB.toml --number f32|fixed --out FILE.strk
 //! ```
 
 use std::fs;
 use std::io::{self, Write};
-use std::path::PathBuf;
+use std::path::{Path as FsPath, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
@@ -51,6 +51,8 @@ enum Command {
     /// Plan, compile and play a job through the sampler firmware uses; write samples.csv,
     /// summary.json, path.svg and motion.svg, and print the summary. Without JOB it runs the
     /// bundled example (a 3-axis pick-and-place move at 1 kHz with an S-curve profile).
+    /// Exit code 3 (one error line per quantity) when a trapezoid or S-curve exceeds a limit
+    /// it is planned under or the accuracy bound, measured from the samples.
     Run {
         /// The job file (TOML); the bundled example when omitted.
         job: Option<PathBuf>,
@@ -74,10 +76,27 @@ enum Command {
     },
 }
 
+/// The exit code of a run whose planned motion exceeded a limit or the accuracy bound.
+const EXIT_EXCEEDED: u8 = 3;
+
+/// How a command ended without an error.
+enum Outcome {
+    /// Everything held.
+    Done,
+    /// `strak-sim run`: the planned motion failed these checks (one line each).
+    Exceeded(String, Vec<String>),
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Outcome::Done) => ExitCode::SUCCESS,
+        Ok(Outcome::Exceeded(label, violations)) => {
+            for v in violations {
+                eprintln!("strak-sim: error: {label}: limit exceeded: {v}");
+            }
+            ExitCode::from(EXIT_EXCEEDED)
+        }
         Err(e) => {
             eprintln!("strak-sim: error: {e:#}");
             ExitCode::FAILURE
@@ -85,7 +104,7 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(cli: Cli) -> anyhow::Result<()> {
+fn run(cli: Cli) -> anyhow::Result<Outcome> {
     match cli.command {
         Command::Sample {
             curve,
@@ -94,72 +113,89 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             number,
             out,
         } => {
-            let text = fs::read_to_string(&curve)
-                .with_context(|| format!("cannot read {}", curve.display()))?;
-            let file =
-                CurveFile::parse(&text).map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
             let options = SampleOptions {
                 count: count as usize,
                 derivatives,
                 number,
             };
-            let csv = sample_to_csv(&file, &options)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
-            match out {
-                Some(path) => fs::write(&path, csv)
-                    .with_context(|| format!("cannot write {}", path.display()))?,
-                None => io::stdout().lock().write_all(csv.as_bytes())?,
-            }
-            Ok(())
+            sample(&curve, &options, out.as_deref())
         }
-        Command::Run { job, out } => {
-            let (name, text, label) = match &job {
-                Some(path) => {
-                    let text = fs::read_to_string(path)
-                        .with_context(|| format!("cannot read {}", path.display()))?;
-                    let name = path
-                        .file_stem()
-                        .map_or_else(|| "job".to_owned(), |s| s.to_string_lossy().into_owned());
-                    (name, text, path.display().to_string())
-                }
-                None => (
-                    BUNDLED_NAME.to_owned(),
-                    BUNDLED_JOB.to_owned(),
-                    format!("bundled {BUNDLED_NAME}.toml"),
-                ),
-            };
-            let job = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-            let options = RunOptions {
-                out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
-                name,
-                progress: true,
-            };
-            let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-            println!("{summary}");
-            if !summary.finished {
-                eprintln!("strak-sim: warning: {}", summary.stop);
-            }
-            Ok(())
-        }
-        Command::Compile { job, number, out } => {
-            let label = job.display().to_string();
-            let text = fs::read_to_string(&job).with_context(|| format!("cannot read {label}"))?;
-            let parsed = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-            let playback = Playback::from_name(&number)
-                .ok_or_else(|| anyhow::anyhow!("--number must be f32 or fixed"))?;
-            let compiled =
-                export(&parsed, playback).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-            fs::write(&out, &compiled.blob)
-                .with_context(|| format!("cannot write {}", out.display()))?;
-            println!(
-                "{}: {} bytes, {} axes, {} pieces, {} ticks ({number})",
-                out.display(),
-                compiled.blob.len(),
-                compiled.axes,
-                compiled.pieces,
-                compiled.ticks
-            );
-            Ok(())
-        }
+        Command::Run { job, out } => run_command(job.as_deref(), out),
+        Command::Compile { job, number, out } => compile_command(&job, &number, &out),
     }
+}
+
+/// `strak-sim sample`.
+fn sample(
+    curve: &FsPath,
+    options: &SampleOptions,
+    out: Option<&FsPath>,
+) -> anyhow::Result<Outcome> {
+    let text =
+        fs::read_to_string(curve).with_context(|| format!("cannot read {}", curve.display()))?;
+    let file = CurveFile::parse(&text).map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
+    let csv =
+        sample_to_csv(&file, options).map_err(|e| anyhow::anyhow!("{}: {e}", curve.display()))?;
+    match out {
+        Some(path) => {
+            fs::write(path, csv).with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        None => io::stdout().lock().write_all(csv.as_bytes())?,
+    }
+    Ok(Outcome::Done)
+}
+
+/// `strak-sim run`: the summary on standard output; the violations, if any, for the exit.
+fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Outcome> {
+    let (name, text, label) = match job {
+        Some(path) => {
+            let text = fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            let name = path
+                .file_stem()
+                .map_or_else(|| "job".to_owned(), |s| s.to_string_lossy().into_owned());
+            (name, text, path.display().to_string())
+        }
+        None => (
+            BUNDLED_NAME.to_owned(),
+            BUNDLED_JOB.to_owned(),
+            format!("bundled {BUNDLED_NAME}.toml"),
+        ),
+    };
+    let job = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    let options = RunOptions {
+        out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
+        name,
+        progress: true,
+    };
+    let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    println!("{summary}");
+    if !summary.finished {
+        eprintln!("strak-sim: warning: {}", summary.stop);
+    }
+    if summary.violations.is_empty() {
+        Ok(Outcome::Done)
+    } else {
+        Ok(Outcome::Exceeded(label, summary.violations))
+    }
+}
+
+/// `strak-sim compile`.
+fn compile_command(job: &FsPath, number: &str, out: &FsPath) -> anyhow::Result<Outcome> {
+    let label = job.display().to_string();
+    let text = fs::read_to_string(job).with_context(|| format!("cannot read {label}"))?;
+    let parsed = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    let playback = Playback::from_name(number)
+        .ok_or_else(|| anyhow::anyhow!("--number must be f32 or fixed"))?;
+    let compiled = export(&parsed, playback).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    fs::write(out, &compiled.blob).with_context(|| format!("cannot write {}", out.display()))?;
+    println!(
+        "{}: {} bytes, {} axes, {} pieces, {} ticks ({number})",
+        out.display(),
+        compiled.blob.len(),
+        compiled.axes,
+        compiled.pieces,
+        compiled.ticks
+    );
+    Ok(Outcome::Done)
 }

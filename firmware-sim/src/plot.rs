@@ -9,17 +9,21 @@
 use std::path::Path as FsPath;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 /// The number of buckets a series is reduced to (about; holds can add more).
 pub const PLOT_BUCKETS: u64 = 2_000;
 
-const AXIS_NAMES: [&str; 4] = ["x", "y", "z", "w"];
-const AXIS_COLORS: [RGBColor; 4] = [
+use crate::axes::{AXIS_NAMES, MAX_AXES};
+
+const AXIS_COLORS: [RGBColor; MAX_AXES] = [
     RGBColor(31, 119, 180),
     RGBColor(44, 160, 44),
     RGBColor(255, 127, 14),
     RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(23, 190, 207),
 ];
 const NORM_COLOR: RGBColor = RGBColor(0, 0, 0);
 const LIMIT_COLOR: RGBColor = RGBColor(214, 39, 40);
@@ -227,13 +231,8 @@ pub fn write_motion(
     root.present().map_err(err)
 }
 
-fn motion_panel(
-    area: &DrawingArea<SVGBackend<'_>, Shift>,
-    rec: &Recorder,
-    q: Quantity,
-    label: &str,
-    limit: Option<f64>,
-) -> PlotResult {
+/// The lines of a quantity's panel: each axis and (for v, a, j) the norm.
+fn panel_lines(rec: &Recorder, q: Quantity) -> Vec<Line> {
     let (first, norm) = rec.channel(q);
     let axes = rec.axes.min(AXIS_NAMES.len());
     let mut lines: Vec<Line> = (0..axes)
@@ -252,21 +251,61 @@ fn motion_panel(
             rec.series(first + rec.axes),
         ));
     }
+    lines
+}
+
+/// The value range of `lines`, widened to show the limit when the data comes near it (within
+/// a factor of 3), and padded.
+fn value_range(lines: &[Line], limit: Option<f64>) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (_, _, pts) in &lines {
+    for (_, _, pts) in lines {
         for (_, v) in pts {
             lo = lo.min(*v);
             hi = hi.max(*v);
         }
     }
-    if let Some(l) = limit {
-        // Show the limits when the data comes near them (within a factor of 3).
-        if hi.abs().max(lo.abs()) * 3.0 >= l {
-            hi = hi.max(l);
-            lo = lo.min(if lo < 0.0 { -l } else { lo });
+    if let Some(l) = limit
+        && hi.abs().max(lo.abs()) * 3.0 >= l
+    {
+        hi = hi.max(l);
+        lo = lo.min(if lo < 0.0 { -l } else { lo });
+    }
+    padded(lo, hi)
+}
+
+type Chart<'a> = ChartContext<'a, SVGBackend<'a>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The dashed lines at `±limit` that fall within `y0 ..= y1`.
+fn draw_limit(chart: &mut Chart<'_>, limit: f64, t: (f64, f64), y: (f64, f64)) -> PlotResult {
+    for (i, v) in [limit, -limit].into_iter().enumerate() {
+        if v >= y.0 && v <= y.1 {
+            let series = chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(t.0, v), (t.1, v)],
+                    8,
+                    6,
+                    LIMIT_COLOR.stroke_width(1),
+                ))
+                .map_err(err)?;
+            if i == 0 {
+                series.label("limit").legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], LIMIT_COLOR.stroke_width(1))
+                });
+            }
         }
     }
-    let (y0, y1) = padded(lo, hi);
+    Ok(())
+}
+
+fn motion_panel(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    rec: &Recorder,
+    q: Quantity,
+    label: &str,
+    limit: Option<f64>,
+) -> PlotResult {
+    let lines = panel_lines(rec, q);
+    let (y0, y1) = value_range(&lines, limit);
     let (t0, t1) = rec.time_range();
     let mut chart = ChartBuilder::on(area)
         .margin(8)
@@ -295,23 +334,7 @@ fn motion_panel(
             });
     }
     if let Some(l) = limit {
-        for (i, v) in [l, -l].into_iter().enumerate() {
-            if v >= y0 && v <= y1 {
-                let series = chart
-                    .draw_series(DashedLineSeries::new(
-                        vec![(t0, v), (t1, v)],
-                        8,
-                        6,
-                        LIMIT_COLOR.stroke_width(1),
-                    ))
-                    .map_err(err)?;
-                if i == 0 {
-                    series.label("limit").legend(|(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], LIMIT_COLOR.stroke_width(1))
-                    });
-                }
-            }
-        }
+        draw_limit(&mut chart, l, (t0, t1), (y0, y1))?;
     }
     chart
         .configure_series_labels()

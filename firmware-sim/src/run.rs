@@ -1,25 +1,20 @@
 //! `strak-sim run`: plan, compile and play a job through the sampler firmware uses, and write
 //! the samples, a summary and plots.
 //!
-//! # Pipeline
-//! 1. **Curves.** The `[path]` is built in the job's number format (`f64`, `f32`, or `I32F32`
-//!    for `fixed`) — the curve firmware would hold — and once more in `f64` as the reference.
-//! 2. **Time law** (`[profile]`), planned in `f64` from the curve in the job's format:
-//!    `parameter` ([`ParameterTiming::over`]), `constant-speed`
-//!    ([`PathTiming::constant_speed`]), `trapezoid` and `s-curve` ([`PathTiming::plan`] with
-//!    [`ProfileShape::Trapezoid`] / [`ProfileShape::SCurve`]: curvature and per-axis limits
-//!    included). Trapezoid and S-curve are planned with the job's acceleration and jerk limits
-//!    (path and per axis) **reduced by the feed share** `s` (`[compile] feed_share`, default
-//!    ¼): `(1 − s)·a`, `(1 − s)·j`, `(1 − s)·aᵢ`; the velocity limits (path and per axis)
-//!    are reduced by [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler
-//!    is given `min(a, aᵢ)` and `j` as the limits of feed changes, so a feed ramp adds at
-//!    most `s·min(a, aᵢ)` (or what the plan left free) to the acceleration: the samples respect
-//!    the job's acceleration limits, path and per axis, even while a feed ramp runs.
-//! 3. **Compile** ([`compile`]) into a [`Path`] of at most [`PIECES`] pieces (boxed: a path is
-//!    large), in the playback format (`f64`, `f32`, [`Q40`]).
-//! 4. **Play** with [`Sampler`], one `next()` per control tick, applying the `[[events]]` before
-//!    the sample of their tick, until the sampler is finished — or, guarding against a hold
-//!    without resume, after `10·(ticks + 1) + last event tick + 1` samples.
+//! 1. **Plan and compile** with the [`pipeline`](crate::pipeline) `strak-sim compile` uses;
+//!    the curve is built once more in `f64` as the reference.
+//! 2. **Play** with [`Sampler`], one `next()` per control tick, the `[[events]]` applied by the
+//!    [`EventPlayer`] before the sample of their tick, until the sampler is finished, or,
+//!    guarding against a hold without resume, after `10·(ticks + 1) + last event tick + 1`
+//!    samples.
+//! 3. **Measure** every sample ([`Measure`]): the sampled velocity and acceleration, their
+//!    finite differences, the jerk, the components along the path, and the distance from the
+//!    curve, each against its limit ([`crate::measure`] states the tolerance).
+//! 4. **Report**: a time law planned under the limits (trapezoid, S-curve) whose samples
+//!    exceed a limit it plans for, or whose distance from the curve exceeds the compiled
+//!    path's bound, lists the quantities in [`Summary::violations`] (and `strak-sim run`
+//!    exits with code 3). The trapezoid does not plan the jerk; the parameter and
+//!    constant-speed laws plan none of the limits: the summary reports them without failing.
 //!
 //! Everything runs on a thread with a [`STACK_BYTES`] stack (planning and compiling keep
 //! their work arrays on the stack).
@@ -31,33 +26,22 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strak_curves::{I32F32, ParamCurve, ParamCurveDeriv, Scalar, arc_length};
-use strak_trajectory::{
-    CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
-    PlanOptions, ProfileShape, Q40, Sampler, Timing, compile,
-};
+use strak_trajectory::{Number, Q40, Sample, Sampler};
 
 use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Action, Job, JobError, JobNumber, ProfileKind};
+use crate::job::{Job, JobError, JobNumber, ProfileKind};
+use crate::measure::{Measure, Observed, distance, norm, to_f64};
+use crate::pipeline::{Compiled, PIECES, Prepared, axis_array, curve_error, is_planned};
+use crate::player::{EventPlayer, Stop};
 use crate::plot::{self, PlotLimits, Recorder};
 use crate::sample::Number as CurveNumber;
 use crate::summary::{
-    AlongPath, Checked, EndPoint, Maxima, PlannedLimits, ReferenceDistance, Summary, WallTime,
+    Accuracy, AlongPath, CheckRule, Checked, Differences, EndPoint, FiniteDifferences, Maxima,
+    PlannedLimits, ReferenceDistance, Summary, WallTime,
 };
 
-/// Piece capacity of a compiled path (a path of `A` axes in `f64` takes about
-/// `PIECES · (8 + 72·A)` bytes).
-pub const PIECES: usize = 16_384;
-/// Zone capacity of a planned motion (the planner's default 1024 sampling intervals never
-/// need more).
-pub const ZONES: usize = 1_024;
-/// Samples of the arc-length table.
-pub const TABLE: usize = 1_024;
 /// The stack of the thread a job runs on.
 pub const STACK_BYTES: usize = 256 << 20;
-/// The share of the velocity limits (path and per axis) a planned motion leaves unused:
-/// the compiled spline follows the planned velocity to about 10⁻³ of it (measured: 5·10⁻⁴
-/// on a line cruising at an axis limit), so a plan at the full limit would overshoot it.
-pub const VELOCITY_RESERVE: f64 = 0.005;
 /// Runs expected to take at least this many samples show a progress bar (on a terminal).
 pub const PROGRESS_MIN_SAMPLES: u64 = 200_000;
 
@@ -66,11 +50,12 @@ pub const BUNDLED_JOB: &str = include_str!("../examples/jobs/pick-and-place.toml
 /// The bundled example's name.
 pub const BUNDLED_NAME: &str = "pick-and-place";
 
-const AXIS_NAMES: [&str; 4] = ["x", "y", "z", "w"];
-
 /// How the reference point of each sample is chosen (reported in the summary).
 pub const REFERENCE_METHOD: &str =
     "f64 curve at the same planned parameter u(t) of the sample's playback point";
+/// How the curve point of the accuracy check is chosen (reported in the summary).
+pub const ACCURACY_METHOD: &str = "the curve in the job's number format at the same planned \
+     parameter u(t), against the compile tolerance plus the playback bound";
 
 /// Where and how to run.
 #[derive(Clone, Debug)]
@@ -143,7 +128,7 @@ impl CsvCell for I32F32 {
 
 /// The CSV header: `tick,t,x,y[,z…],vx,vy[,vz…],ax,ay[,az…]`.
 pub fn csv_header(axes: usize) -> String {
-    let names = &AXIS_NAMES[..axes.min(AXIS_NAMES.len())];
+    let names = crate::axes::names(axes);
     let mut h = vec!["tick".to_owned(), "t".to_owned()];
     h.extend(names.iter().map(|n| (*n).to_owned()));
     h.extend(names.iter().map(|n| format!("v{n}")));
@@ -152,7 +137,8 @@ pub fn csv_header(axes: usize) -> String {
 }
 
 /// Runs `job`, writes `samples.csv`, `summary.json`, `path.svg` and `motion.svg` into
-/// `options.out_dir` and returns the summary.
+/// `options.out_dir` and returns the summary (its [`Summary::violations`] name the enforced
+/// checks the run failed).
 ///
 /// # Errors
 /// [`RunError::Job`] naming the field for a job that cannot be planned or compiled;
@@ -170,302 +156,44 @@ pub fn run_job(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
 }
 
 fn dispatch(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
-    macro_rules! by_dim {
-        ($n:ty, $s:ty) => {
-            match job.axes() {
-                1 => run_typed::<$n, $s, 1>(job, options),
-                2 => run_typed::<$n, $s, 2>(job, options),
-                3 => run_typed::<$n, $s, 3>(job, options),
-                4 => run_typed::<$n, $s, 4>(job, options),
-                d => Err(JobError::new(
-                    "path.points",
-                    format!("points need 1 to 4 coordinates, not {d}"),
-                )
-                .into()),
-            }
-        };
-    }
+    let axes =
+        || -> RunError { JobError::new("path.points", "points need 1 to 6 coordinates").into() };
     match job.number {
-        JobNumber::F64 => by_dim!(f64, f64),
-        JobNumber::F32 => by_dim!(f32, f32),
-        JobNumber::Fixed => by_dim!(Q40, I32F32),
-    }
-}
-
-/// Applies the events due before the sample of tick `tick` (`events` sorted by tick,
-/// `next` the first not yet applied); `true` when one of them was an abort. The one place
-/// that defines how `strak-sim run` (and the firmware comparison) apply `[[events]]`.
-pub fn apply_due_events<N: Number, const D: usize>(
-    sampler: &mut Sampler<'_, N, D>,
-    events: &[(u64, Action)],
-    next: &mut usize,
-    tick: u64,
-) -> bool {
-    let mut aborted = false;
-    while let Some(&(at, action)) = events.get(*next) {
-        if at > tick {
-            break;
+        JobNumber::F64 => {
+            crate::with_axes!(job.axes(), run_typed::<f64, f64>(job, options), Err(axes()))
         }
-        match action {
-            Action::Feed(f) => sampler.set_feed(f as f32),
-            Action::Hold => sampler.hold(),
-            Action::Resume => sampler.resume(),
-            Action::Abort => {
-                sampler.abort();
-                aborted = true;
-            }
+        JobNumber::F32 => {
+            crate::with_axes!(job.axes(), run_typed::<f32, f32>(job, options), Err(axes()))
         }
-        *next += 1;
-    }
-    aborted
-}
-
-/// The job's per-axis limits as an array (`inf` where none is given).
-fn axis_array<const D: usize>(v: Option<&[f64]>) -> [f64; D] {
-    let mut out = [f64::INFINITY; D];
-    if let Some(v) = v {
-        for (o, x) in out.iter_mut().zip(v) {
-            *o = *x;
-        }
-    }
-    out
-}
-
-/// The limits the time law is planned with: the job's, with acceleration and jerk (path and
-/// per axis) scaled by `1 − feed_share` and velocities by `1 − VELOCITY_RESERVE`.
-///
-/// # Errors
-/// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
-pub fn planning_limits<const D: usize>(job: &Job) -> Result<Limits<D>, JobError> {
-    let l = &job.limits;
-    let keep = 1.0 - job.feed_share();
-    let bad = |field: &str| {
-        let field = field.to_owned();
-        move |e: TrajError| JobError::new(field.clone(), e.to_string())
-    };
-    let v_keep = 1.0 - VELOCITY_RESERVE;
-    Limits::<D>::new(l.velocity * v_keep, l.acceleration * keep, l.jerk * keep)
-        .map_err(bad("limits"))?
-        .with_axis_velocity(axis_array::<D>(l.axis_velocity.as_deref()).map(|v| v * v_keep))
-        .map_err(bad("limits.axis_velocity"))?
-        .with_axis_acceleration(axis_array::<D>(l.axis_acceleration.as_deref()).map(|a| a * keep))
-        .map_err(bad("limits.axis_acceleration"))
-}
-
-/// The compiler settings of the job: `[compile]`, and the feed-change limits `min(a, aᵢ)`, `j`.
-pub fn compile_options(job: &Job) -> CompileOptions {
-    let l = &job.limits;
-    let a_feed = l
-        .axis_acceleration
-        .iter()
-        .flatten()
-        .fold(l.acceleration, |m, a| m.min(*a));
-    let mut o = CompileOptions::new()
-        .with_feed_share(job.feed_share())
-        .with_limits(a_feed, l.jerk);
-    if let Some(t) = job.compile.tolerance {
-        o = o.with_tolerance(t);
-    }
-    if let Some(m) = job.compile.max_piece_ticks {
-        o = o.with_max_piece_ticks(m);
-    }
-    o
-}
-
-/// The planner settings of a trapezoid or S-curve profile.
-pub fn plan_options(job: &Job) -> PlanOptions {
-    let p = &job.profile;
-    let mut o = PlanOptions::new().with_shape(if p.kind == ProfileKind::Trapezoid {
-        ProfileShape::Trapezoid
-    } else {
-        ProfileShape::SCurve
-    });
-    if let Some(n) = p.samples {
-        o = o.with_samples(n);
-    }
-    if let Some(t) = p.zone_tolerance {
-        o = o.with_zone_tolerance(t);
-    }
-    if let Some(s) = p.centripetal_share {
-        o = o.with_centripetal_share(s);
-    }
-    if let Some(a) = p.corner_angle {
-        o = o.with_corner_angle(a);
-    }
-    o
-}
-
-/// The time law of `job` along `curve` (built in the job's number format), planned with
-/// `limits` ([`planning_limits`]) as `strak-sim run` plans it.
-///
-/// # Errors
-/// A [`JobError`] naming the field for a profile that cannot be planned.
-pub fn plan_timing<'c, S: Scalar, const D: usize>(
-    job: &Job,
-    curve: &'c DynCurve<S, D>,
-    limits: &Limits<D>,
-) -> Result<Box<dyn Timing + 'c>, JobError> {
-    Ok(match job.profile.kind {
-        ProfileKind::Parameter => Box::new(
-            ParameterTiming::over(curve, job.profile.duration.unwrap_or(1.0))
-                .map_err(|e| plan_error(job, e))?,
-        ),
-        ProfileKind::ConstantSpeed => Box::new(
-            PathTiming::<_, TABLE, ZONES>::constant_speed(
-                curve,
-                job.profile.speed.unwrap_or(job.limits.velocity),
+        JobNumber::Fixed => {
+            crate::with_axes!(
+                job.axes(),
+                run_typed::<Q40, I32F32>(job, options),
+                Err(axes())
             )
-            .map_err(|e| plan_error(job, e))?,
-        ),
-        ProfileKind::Trapezoid | ProfileKind::SCurve => Box::new(
-            PathTiming::<_, TABLE, ZONES>::plan(curve, limits, &plan_options(job))
-                .map_err(|e| plan_error(job, e))?,
-        ),
-    })
-}
-
-/// A curve file error as an error on the job's `path.…` field.
-pub fn curve_error(e: crate::curve_file::FieldError) -> JobError {
-    JobError::new(
-        format!("path.{}", e.field),
-        e.message.replace("--number ", "number = "),
-    )
-}
-
-fn plan_error(job: &Job, e: TrajError) -> JobError {
-    match e {
-        TrajError::EmptyPath => JobError::new(
-            "path",
-            "the path has zero length (its points coincide): there is nothing to play",
-        ),
-        TrajError::CapacityExceeded { capacity, required } => JobError::new(
-            "profile.zone_tolerance",
-            format!(
-                "the speed limit along the path needs {required} zones, the simulator holds \
-                 {capacity}: raise profile.zone_tolerance or lower profile.samples"
-            ),
-        ),
-        TrajError::InvalidLimit => JobError::new(
-            "profile",
-            format!(
-                "the `{}` profile rejected a setting: {e}",
-                job.profile.kind.name()
-            ),
-        ),
-        TrajError::Curve(c) => JobError::new(
-            "path",
-            format!("the curve cannot be planned along (arc length or derivatives): {c}"),
-        ),
-        other => JobError::new("profile", other.to_string()),
-    }
-}
-
-/// A compile error as an error on the job field that causes it (`max_abs`: the largest
-/// coordinate of the path's points, for the fixed-point range message).
-pub fn compile_error(job: &Job, e: TrajError, duration: f64, max_abs: f64) -> JobError {
-    let rate = job.rate_hz;
-    match e {
-        TrajError::InvalidRate => JobError::new("rate_hz", e.to_string()),
-        TrajError::TooLong => JobError::new(
-            "rate_hz",
-            format!("the motion ({duration} s at {rate} Hz) takes more ticks than a u32 counts"),
-        ),
-        TrajError::EmptyPath => JobError::new("path", "the motion has zero duration"),
-        TrajError::CapacityExceeded { capacity, required } => {
-            let per_piece = f64::from(
-                job.compile
-                    .max_piece_ticks
-                    .unwrap_or(CompileOptions::DEFAULT_MAX_PIECE_TICKS),
-            );
-            let at_least = (duration * rate / per_piece).ceil();
-            if at_least > capacity as f64 {
-                JobError::new(
-                    "rate_hz",
-                    format!(
-                        "the motion ({} s at {} Hz, pieces of at most {per_piece} ticks) needs at \
-                         least {required} pieces, the simulator holds {capacity}: lower rate_hz, \
-                         raise compile.max_piece_ticks or split the path",
-                        crate::summary::num(duration),
-                        crate::summary::num(rate)
-                    ),
-                )
-            } else {
-                JobError::new(
-                    "compile.tolerance",
-                    format!(
-                        "the compiled path needs at least {required} pieces to meet the \
-                         tolerance, the simulator holds {capacity}: raise compile.tolerance"
-                    ),
-                )
-            }
-        }
-        TrajError::OutOfRange => JobError::new(
-            "number",
-            format!(
-                "the compiled path does not fit `{}` playback ({}; the path's coordinates reach \
-                 {}): move or scale the path, or use number = \"f64\"",
-                job.number.name(),
-                match job.number {
-                    JobNumber::Fixed => {
-                        "Q40 keeps every position, velocity and acceleration within ±4194304 units"
-                    }
-                    _ => "a value exceeds the format's range",
-                },
-                crate::summary::num(max_abs)
-            ),
-        ),
-        TrajError::InvalidLimit => JobError::new("compile", e.to_string()),
-        TrajError::Curve(c) => JobError::new("path", format!("compiling the curve failed: {c}")),
-        other => JobError::new("path", other.to_string()),
-    }
-}
-
-/// `|a − b|` over the axes.
-fn distance<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt()
-}
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// Running maxima of one quantity: norm and per axis.
-#[derive(Clone, Debug)]
-struct Peak<const D: usize> {
-    norm: (f64, f64),
-    axes: [(f64, f64); D],
-}
-
-impl<const D: usize> Peak<D> {
-    fn new() -> Self {
-        Peak {
-            norm: (0.0, 0.0),
-            axes: [(0.0, 0.0); D],
-        }
-    }
-
-    fn push(&mut self, t: f64, v: &[f64; D]) {
-        let n = norm(v);
-        if n > self.norm.0 {
-            self.norm = (n, t);
-        }
-        for (p, x) in self.axes.iter_mut().zip(v) {
-            if x.abs() > p.0 {
-                *p = (x.abs(), t);
-            }
         }
     }
 }
 
-fn out_f64<T: Scalar, const D: usize>(v: &[T; D]) -> [f64; D] {
-    v.map(Scalar::to_f64)
+/// The curves of a run: in the job's format, and the `f64` reference.
+struct Curves<'a, S: Scalar, const D: usize> {
+    curve: &'a DynCurve<S, D>,
+    reference: &'a DynCurve<f64, D>,
 }
 
-#[allow(clippy::too_many_lines)]
+/// What playing a path produced.
+struct Played<const D: usize> {
+    measure: Measure<D>,
+    recorder: Recorder,
+    samples: u64,
+    stop: Stop,
+    aborted: bool,
+    applied: usize,
+    ignored: usize,
+    last_position: [f64; D],
+    exact_end: bool,
+}
+
 fn run_typed<N, S, const D: usize>(job: &Job, options: &RunOptions) -> Result<Summary, RunError>
 where
     N: Number,
@@ -473,234 +201,333 @@ where
     S: Scalar,
 {
     let started = Instant::now();
-    let curve: DynCurve<S, D> =
-        build_dyn(&job.path, job.number.curve_number()).map_err(curve_error)?;
+    let prepared = Prepared::<S, D>::new(job)?;
     let reference: DynCurve<f64, D> =
         build_dyn(&job.path, CurveNumber::F64).map_err(curve_error)?;
-    let limits = planning_limits::<D>(job)?;
-
-    // The time law.
-    let timing = plan_timing(job, &curve, &limits)?;
-    let planned = started.elapsed();
-
-    // Compile.
-    let max_abs = job
-        .path
-        .points
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, x| m.max(x.abs()));
-    let path: Box<Path<N, D, PIECES>> = Box::new(
-        compile(&curve, &*timing, job.rate_hz, &compile_options(job))
-            .map_err(|e| compile_error(job, e, timing.duration(), max_abs))?,
-    );
-    let compiled = started.elapsed();
-
+    let built = started.elapsed();
+    let compiled = prepared.compile::<N>(job)?;
+    let curves = Curves {
+        curve: &prepared.curve,
+        reference: &reference,
+    };
     let out = &options.out_dir;
     fs::create_dir_all(out).map_err(io_error(out))?;
+    let play_started = Instant::now();
+    let played = play(job, &compiled, &curves, out, options.progress)?;
+    let wall = WallTime {
+        plan_s: (built + compiled.plan_time).as_secs_f64(),
+        compile_s: compiled.compile_time.as_secs_f64(),
+        play_s: play_started.elapsed().as_secs_f64(),
+        plots_s: 0.0,
+        total_s: 0.0,
+    };
+    let mut summary = summarize(job, options, &compiled, &curves, &played, wall);
+    let plots_started = Instant::now();
+    write_plots(job, options, &summary, &played.recorder)?;
+    summary.wall_time.plots_s = plots_started.elapsed().as_secs_f64();
+    summary.wall_time.total_s = started.elapsed().as_secs_f64();
+    let json_path = out.join("summary.json");
+    let json = serde_json::to_string_pretty(&summary)
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))?;
+    fs::write(&json_path, json + "\n").map_err(io_error(&json_path))?;
+    Ok(summary)
+}
+
+/// A progress bar for runs expected to take `expected` samples, when it should be shown.
+fn progress_bar(show: bool, expected: u64) -> Option<ProgressBar> {
+    if !(show && std::io::stderr().is_terminal() && expected >= PROGRESS_MIN_SAMPLES) {
+        return None;
+    }
+    let bar = ProgressBar::with_draw_target(Some(expected), ProgressDrawTarget::stderr());
+    if let Ok(style) =
+        ProgressStyle::with_template("{spinner} playing {bar:40} {pos}/{len} ticks, {eta} left")
+    {
+        bar.set_style(style);
+    }
+    Some(bar)
+}
+
+/// One CSV row: `tick,t`, positions, velocities, accelerations.
+fn write_row<T: CsvCell, const D: usize>(row: &mut String, k: u64, t: f64, s: &Sample<T, D>) {
+    use std::fmt::Write as _;
+    row.clear();
+    let _ = write!(row, "{k},{t:?}");
+    for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
+        row.push(',');
+        v.write_cell(row);
+    }
+    row.push('\n');
+}
+
+/// The sample in `f64` with the curve points at its planned parameter (`progress`: the
+/// sampler's progress before the sample).
+fn observe<N: Number, S: Scalar, const D: usize>(
+    t: f64,
+    s: &Sample<N::Out, D>,
+    progress: f64,
+    compiled: &Compiled<'_, N, D>,
+    curves: &Curves<'_, S, D>,
+) -> Observed<D> {
+    let u = compiled.timing.param(compiled.path.plan_time(progress)).0;
+    let (lo, hi) = curves.curve.domain();
+    let (lo, hi) = (lo.to_f64(), hi.to_f64());
+    let u_s = S::from_f64(u.clamp(lo, hi)).unwrap_or(S::ZERO);
+    Observed {
+        t,
+        position: to_f64(&s.position),
+        velocity: to_f64(&s.velocity),
+        acceleration: to_f64(&s.acceleration),
+        reference: curves.reference.eval(u),
+        curve: to_f64(&curves.curve.eval(u_s)),
+        tangent: curves.reference.deriv(u, 1),
+    }
+}
+
+/// The plot channels of one sample (see [`Recorder`]).
+fn channels<const D: usize>(s: &Observed<D>, jerk: Option<[f64; D]>, values: &mut Vec<f64>) {
+    values.clear();
+    values.extend_from_slice(&s.position);
+    values.extend_from_slice(&s.velocity);
+    values.push(norm(&s.velocity));
+    values.extend_from_slice(&s.acceleration);
+    values.push(norm(&s.acceleration));
+    match &jerk {
+        Some(j) => {
+            values.extend_from_slice(j);
+            values.push(norm(j));
+        }
+        None => values.extend(std::iter::repeat_n(f64::NAN, D + 1)),
+    }
+}
+
+/// Plays the compiled path with the job's events, writing `samples.csv` and measuring.
+fn play<N, S, const D: usize>(
+    job: &Job,
+    compiled: &Compiled<'_, N, D>,
+    curves: &Curves<'_, S, D>,
+    out: &FsPath,
+    progress: bool,
+) -> Result<Played<D>, RunError>
+where
+    N: Number,
+    N::Out: CsvCell,
+    S: Scalar,
+{
     let csv_path = out.join("samples.csv");
     let mut csv = BufWriter::new(File::create(&csv_path).map_err(io_error(&csv_path))?);
     writeln!(csv, "{}", csv_header(D)).map_err(io_error(&csv_path))?;
-
-    // Play.
-    let events = job.sorted_events();
-    let last_event = events.last().map_or(0, |e| e.0);
-    let ticks = u64::from(path.ticks());
-    let guard = 10 * (ticks + 1) + last_event + 1;
-    let expected = (ticks + 1).max(last_event + 1);
-    let rate = job.rate_hz;
-    let bar = (options.progress
-        && std::io::stderr().is_terminal()
-        && expected >= PROGRESS_MIN_SAMPLES)
-        .then(|| {
-            let bar = ProgressBar::with_draw_target(Some(expected), ProgressDrawTarget::stderr());
-            if let Ok(style) = ProgressStyle::with_template(
-                "{spinner} playing {bar:40} {pos}/{len} ticks, {eta} left",
-            ) {
-                bar.set_style(style);
-            }
-            bar
-        });
-
-    let mut sampler = Sampler::new(&*path);
+    let events = job.timed_events();
+    let path = &*compiled.path;
+    let mut player = EventPlayer::new(&events, path.ticks());
+    let last_event = events.last().map_or(0, |e| e.tick);
+    let expected = (u64::from(path.ticks()) + 1).max(last_event + 1);
+    let bar = progress_bar(progress, expected);
+    let mut sampler = Sampler::new(path);
+    let mut measure = Measure::<D>::new(job.rate_hz);
     let mut recorder = Recorder::new(D, expected);
-    let (mut vel, mut acc, mut jerk) = (Peak::<D>::new(), Peak::<D>::new(), Peak::<D>::new());
-    let mut worst_ref = (0.0_f64, 0.0_f64);
-    // Along the path: tangential and centripetal acceleration, tangential jerk.
-    let (mut at_max, mut an_max, mut jt_max) = ((0.0_f64, 0.0), (0.0_f64, 0.0), (0.0_f64, 0.0));
-    let mut tangent: Option<[f64; D]> = None;
-    let mut prev_at: Option<f64> = None;
-    let mut prev_acc: Option<[f64; D]> = None;
-    let mut last_position: [f64; D];
-    let mut last_out: [N::Out; D];
-    let mut next_event = 0;
-    let mut aborted = false;
-    let mut samples: u64 = 0;
-    let mut row = String::new();
-    let mut values: Vec<f64> = Vec::with_capacity(4 * D + 3);
-    let finished = loop {
-        aborted |= apply_due_events(&mut sampler, &events, &mut next_event, samples);
-        let progress = sampler.progress();
-        let s = sampler.next();
-        let k = samples;
-        samples += 1;
-        let t = k as f64 / rate;
-
-        row.clear();
-        {
-            use std::fmt::Write as _;
-            let _ = write!(row, "{k},{t:?}");
-        }
-        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
-            row.push(',');
-            v.write_cell(&mut row);
-        }
-        row.push('\n');
+    let (mut row, mut values) = (String::new(), Vec::with_capacity(4 * D + 3));
+    let mut last = None;
+    while !player.is_over(&sampler) {
+        player.apply_due(&mut sampler);
+        let before = sampler.progress();
+        let Some(s) = player.step(&mut sampler) else {
+            break;
+        };
+        let k = player.samples() - 1;
+        let t = k as f64 / job.rate_hz;
+        write_row(&mut row, k, t, &s);
         csv.write_all(row.as_bytes()).map_err(io_error(&csv_path))?;
-
-        let p = out_f64(&s.position);
-        let v = out_f64(&s.velocity);
-        let a = out_f64(&s.acceleration);
-        vel.push(t, &v);
-        acc.push(t, &a);
-        let j = prev_acc.map(|pa| {
-            let mut j = [0.0; D];
-            for ((jj, x), y) in j.iter_mut().zip(&a).zip(&pa) {
-                *jj = (x - y) * rate;
-            }
-            j
-        });
-        if let Some(j) = &j {
-            jerk.push(t, j);
-        }
-        prev_acc = Some(a);
-        // The reference: the f64 curve at the planned parameter of this sample's playback point.
-        let u = timing.param(path.plan_time(progress)).0;
-        let r = reference.eval(u);
-        let d = distance(&p, &r);
-        if d > worst_ref.0 {
-            worst_ref = (d, t);
-        }
-        // The unit tangent of the reference curve there (the last one where c'(u) = 0).
-        let dc = reference.deriv(u, 1);
-        let dn = norm(&dc);
-        if dn > 0.0 && dn.is_finite() {
-            tangent = Some(dc.map(|x| x / dn));
-        }
-        if let Some(tv) = &tangent {
-            let at: f64 = a.iter().zip(tv).map(|(x, y)| x * y).sum();
-            let mut normal = a;
-            for (n, y) in normal.iter_mut().zip(tv) {
-                *n -= at * y;
-            }
-            let an = norm(&normal);
-            if at.abs() > at_max.0 {
-                at_max = (at.abs(), t);
-            }
-            if an > an_max.0 {
-                an_max = (an, t);
-            }
-            if let Some(pa) = prev_at {
-                let jt = ((at - pa) * rate).abs();
-                if jt > jt_max.0 {
-                    jt_max = (jt, t);
-                }
-            }
-            prev_at = Some(at);
-        }
-        values.clear();
-        values.extend_from_slice(&p);
-        values.extend_from_slice(&v);
-        values.push(norm(&v));
-        values.extend_from_slice(&a);
-        values.push(norm(&a));
-        match &j {
-            Some(j) => {
-                values.extend_from_slice(j);
-                values.push(norm(j));
-            }
-            None => values.extend(std::iter::repeat_n(f64::NAN, D + 1)),
-        }
+        let observed = observe(t, &s, before, compiled, curves);
+        channels(&observed, measure.push(&observed), &mut values);
         recorder.push(t, &values);
-        last_position = p;
-        last_out = s.position;
-
+        last = Some((observed.position, s.position));
         if let Some(bar) = &bar
-            && samples.is_multiple_of(8192)
+            && player.samples().is_multiple_of(8192)
         {
-            if samples > expected {
-                bar.set_length(samples.min(guard));
-            }
-            bar.set_position(samples);
+            bar.set_length(player.samples().max(expected).min(player.guard()));
+            bar.set_position(player.samples());
         }
-        if sampler.is_finished() {
-            break true;
-        }
-        if samples >= guard {
-            break false;
-        }
-    };
+    }
     csv.flush().map_err(io_error(&csv_path))?;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    let played = started.elapsed();
+    let (last_position, last_out) = last.ok_or_else(|| RunError::Io("no sample".to_owned()))?;
+    Ok(Played {
+        measure,
+        recorder,
+        samples: player.samples(),
+        stop: player.stop(&sampler),
+        aborted: player.aborted(),
+        applied: player.applied(),
+        ignored: player.ignored(),
+        last_position,
+        exact_end: last_out == path.end_position(),
+    })
+}
 
-    // Summary.
+/// The limit checks of the sampled maxima, the finite differences and the components along
+/// the path.
+fn maxima<const D: usize>(
+    job: &Job,
+    m: &Measure<D>,
+) -> (Maxima, Vec<Maxima>, FiniteDifferences, AlongPath) {
     let l = &job.limits;
+    let planned = is_planned(job);
+    let jerk_planned = job.profile.kind() == ProfileKind::SCurve;
     let axis_v = axis_array::<D>(l.axis_velocity.as_deref());
     let axis_a = axis_array::<D>(l.axis_acceleration.as_deref());
-    let path_max = Maxima {
-        name: "path".to_owned(),
-        velocity: Checked::new(vel.norm.0, vel.norm.1, Some(l.velocity)),
-        acceleration: Checked::new(acc.norm.0, acc.norm.1, Some(l.acceleration)),
-        jerk: Checked::new(jerk.norm.0, jerk.norm.1, Some(l.jerk)),
+    let check = |w: crate::measure::Worst, limit: f64, slack: f64, enforced: bool| {
+        Checked::new(w.max, w.at_s, Some(limit))
+            .allowing(slack)
+            .enforce(enforced)
     };
-    let per_axis: Vec<Maxima> = (0..D)
+    let slack = |magnitude: f64, norm: bool| m.slack(job.number, magnitude, norm);
+    let (sx, sv, sa) = (
+        m.position.magnitude,
+        m.velocity.magnitude,
+        m.acceleration.magnitude,
+    );
+    let path = Maxima {
+        name: "path".to_owned(),
+        velocity: check(m.velocity.norm, l.velocity, 0.0, planned),
+        acceleration: check(m.acceleration.norm, l.acceleration, 0.0, planned),
+        jerk: check(m.jerk.norm, l.jerk, slack(sa, true), jerk_planned),
+    };
+    let names = crate::axes::names(D);
+    let per_axis = (0..D)
         .map(|i| Maxima {
-            name: AXIS_NAMES[i].to_owned(),
-            velocity: Checked::new(vel.axes[i].0, vel.axes[i].1, Some(axis_v[i])),
-            acceleration: Checked::new(acc.axes[i].0, acc.axes[i].1, Some(axis_a[i])),
-            jerk: Checked::new(jerk.axes[i].0, jerk.axes[i].1, None),
+            name: names[i].to_owned(),
+            velocity: check(m.velocity.axes[i], axis_v[i], 0.0, planned),
+            acceleration: check(m.acceleration.axes[i], axis_a[i], 0.0, planned),
+            jerk: Checked::new(m.jerk.axes[i].max, m.jerk.axes[i].at_s, None),
         })
         .collect();
-    let along_path = AlongPath {
-        tangential_acceleration: Checked::new(at_max.0, at_max.1, Some(l.acceleration)),
-        centripetal_acceleration: Checked::new(an_max.0, an_max.1, Some(l.acceleration)),
-        tangential_jerk: Checked::new(jt_max.0, jt_max.1, Some(l.jerk)),
-    };
-    let path_end = out_f64(&path.end_position());
-    let reference_end = reference.eval(reference.domain().1);
-    let exact_end = last_out == path.end_position();
-    let stop = if !finished {
-        format!(
-            "stopped by the guard after {samples} samples: the sampler did not finish (a hold without resume?)"
-        )
-    } else if aborted && !exact_end {
-        "aborted (stopped on the path before its end)".to_owned()
-    } else {
-        "end of path".to_owned()
-    };
-    let keep = 1.0 - job.feed_share();
-    let length_estimate = {
-        let (a, b) = reference.domain();
-        (0..64)
-            .map(|k| {
-                let u = |k: usize| a + (b - a) * (k as f64 / 64.0);
-                distance(&reference.eval(u(k)), &reference.eval(u(k + 1)))
+    let differences = FiniteDifferences {
+        path: Differences {
+            name: "path".to_owned(),
+            velocity: check(m.dx.norm, l.velocity, slack(sx, true), planned),
+            acceleration: check(m.dv.norm, l.acceleration, slack(sv, true), planned),
+        },
+        per_axis: (0..D)
+            .map(|i| Differences {
+                name: names[i].to_owned(),
+                velocity: check(m.dx.axes[i], axis_v[i], slack(sx, false), planned),
+                acceleration: check(m.dv.axes[i], axis_a[i], slack(sv, false), planned),
             })
-            .sum::<f64>()
+            .collect(),
     };
-    let path_length = if length_estimate > 0.0 {
-        arc_length(&reference, 1e-10 * length_estimate).unwrap_or(f64::NAN)
+    let along = AlongPath {
+        tangential_acceleration: check(m.tangential_acceleration, l.acceleration, 0.0, false),
+        centripetal_acceleration: check(m.centripetal_acceleration, l.acceleration, 0.0, false),
+        tangential_jerk: check(m.tangential_jerk, l.jerk, 0.0, false),
+    };
+    (path, per_axis, differences, along)
+}
+
+/// The arc length of the reference curve (0 for a curve of zero length).
+fn path_length<const D: usize>(reference: &DynCurve<f64, D>) -> f64 {
+    let (a, b) = reference.domain();
+    let u = |k: usize| a + (b - a) * (k as f64 / 64.0);
+    let estimate: f64 = (0..64)
+        .map(|k| distance(&reference.eval(u(k)), &reference.eval(u(k + 1))))
+        .sum();
+    if estimate > 0.0 {
+        arc_length(reference, 1e-10 * estimate).unwrap_or(f64::NAN)
     } else {
         0.0
+    }
+}
+
+fn stop_text<const D: usize>(played: &Played<D>) -> String {
+    match played.stop {
+        Stop::Guard => format!(
+            "stopped by the guard after {} samples: the sampler did not finish (a hold without resume?)",
+            played.samples
+        ),
+        Stop::Finished if played.aborted && !played.exact_end => {
+            "aborted (stopped on the path before its end)".to_owned()
+        }
+        Stop::Finished => "end of path".to_owned(),
+    }
+}
+
+fn check_rule(job: &Job) -> CheckRule {
+    let kind = job.profile.kind();
+    let rule = match kind {
+        ProfileKind::SCurve => "the s-curve is planned under every limit: exceeding one, or the \
+             accuracy bound, fails the run"
+            .to_owned(),
+        ProfileKind::Trapezoid => "the trapezoid is planned under the velocity and acceleration \
+             limits (not the jerk): exceeding one, or the accuracy bound, fails the run"
+            .to_owned(),
+        _ => format!(
+            "the {} law is not planned under the limits: the summary reports them without \
+             failing",
+            kind.name()
+        ),
     };
-    let mut files: Vec<String> = ["samples.csv", "summary.json", "path.svg", "motion.svg"]
-        .iter()
-        .map(|f| out.join(f).display().to_string())
-        .collect();
-    files.truncate(4);
+    CheckRule {
+        enforced: kind.is_planned(),
+        rule,
+        relative_tolerance: crate::measure::RELATIVE_TOLERANCE,
+    }
+}
+
+/// The limits the time law is planned with, as reported.
+fn planned_with<const D: usize>(job: &Job) -> PlannedLimits {
+    let keep = 1.0 - job.feed_share();
+    let axis_a = axis_array::<D>(job.limits.axis_acceleration.as_deref());
+    PlannedLimits {
+        velocity: job.limits.velocity * (1.0 - crate::pipeline::VELOCITY_RESERVE),
+        acceleration: job.limits.acceleration * keep,
+        jerk: job.limits.jerk * keep,
+        axis_acceleration: axis_a
+            .iter()
+            .map(|a| Some(a * keep).filter(|x| x.is_finite()))
+            .collect(),
+    }
+}
+
+/// The last sample against the path's end and the reference curve's.
+fn end_point<N: Number, const D: usize>(
+    path: &strak_trajectory::Path<N, D, PIECES>,
+    reference: &DynCurve<f64, D>,
+    last: &[f64; D],
+) -> EndPoint {
+    let path_end = to_f64(&path.end_position());
+    let reference_end = reference.eval(reference.domain().1);
+    EndPoint {
+        last_sample: last.to_vec(),
+        path_end: path_end.to_vec(),
+        reference_end: reference_end.to_vec(),
+        error_to_path_end: distance(last, &path_end),
+        error_to_reference_end: distance(last, &reference_end),
+    }
+}
+
+/// The distance from the curve against `tolerance + playback bound`.
+fn accuracy<const D: usize>(job: &Job, m: &Measure<D>, bound: f64) -> Accuracy {
+    let slack = (D as f64).sqrt() * crate::measure::resolution(job.number, m.position.magnitude);
+    Accuracy {
+        method: ACCURACY_METHOD.to_owned(),
+        distance: Checked::new(m.curve.max, m.curve.at_s, Some(bound))
+            .allowing(slack)
+            .enforce(is_planned(job)),
+    }
+}
+
+fn summarize<N: Number, S: Scalar, const D: usize>(
+    job: &Job,
+    options: &RunOptions,
+    compiled: &Compiled<'_, N, D>,
+    curves: &Curves<'_, S, D>,
+    played: &Played<D>,
+    wall_time: WallTime,
+) -> Summary {
+    let path = &*compiled.path;
+    let m = &played.measure;
+    let (path_max, per_axis, finite_differences, along_path) = maxima(job, m);
     let mut summary = Summary {
         job: options.name.clone(),
         number: job.number.name().to_owned(),
@@ -710,28 +537,20 @@ where
         },
         axes: D,
         unit: job.unit().to_owned(),
-        rate_hz: rate,
-        profile: job.profile.kind.name().to_owned(),
+        rate_hz: job.rate_hz,
+        profile: job.profile.kind().name().to_owned(),
         feed_share: job.feed_share(),
-        planned_with: PlannedLimits {
-            velocity: limits.velocity(),
-            acceleration: limits.acceleration(),
-            jerk: limits.jerk(),
-            axis_acceleration: axis_a
-                .iter()
-                .map(|a| Some(a * keep).filter(|x| x.is_finite()))
-                .collect(),
-        },
+        planned_with: planned_with::<D>(job),
         duration_s: path.duration(),
         plan_duration_s: path.plan_duration(),
         ticks: path.ticks(),
-        samples,
-        run_time_s: samples.saturating_sub(1) as f64 / rate,
-        stop,
-        finished,
-        events_applied: next_event,
-        events_ignored: events.len() - next_event,
-        path_length,
+        samples: played.samples,
+        run_time_s: played.samples.saturating_sub(1) as f64 / job.rate_hz,
+        stop: stop_text(played),
+        finished: played.stop == Stop::Finished,
+        events_applied: played.applied,
+        events_ignored: played.ignored,
+        path_length: path_length(curves.reference),
         pieces: path.pieces().len(),
         piece_capacity: PIECES,
         tolerance: path.tolerance(),
@@ -740,72 +559,73 @@ where
         along_path,
         per_axis,
         limits_respected: false,
+        finite_differences,
+        accuracy: accuracy(job, m, path.tolerance() + path.playback_bound()),
+        check: check_rule(job),
+        violations: Vec::new(),
         reference_distance: ReferenceDistance {
             method: REFERENCE_METHOD.to_owned(),
-            max: worst_ref.0,
-            at_s: worst_ref.1,
+            max: m.reference.max,
+            at_s: m.reference.at_s,
         },
-        end_point: EndPoint {
-            last_sample: last_position.to_vec(),
-            path_end: path_end.to_vec(),
-            reference_end: reference_end.to_vec(),
-            error_to_path_end: distance(&last_position, &path_end),
-            error_to_reference_end: distance(&last_position, &reference_end),
-        },
-        wall_time: WallTime {
-            plan_s: planned.as_secs_f64(),
-            compile_s: (compiled - planned).as_secs_f64(),
-            play_s: (played - compiled).as_secs_f64(),
-            plots_s: 0.0,
-            total_s: 0.0,
-        },
-        files,
+        end_point: end_point(path, curves.reference, &played.last_position),
+        wall_time,
+        files: ["samples.csv", "summary.json", "path.svg", "motion.svg"]
+            .iter()
+            .map(|f| options.out_dir.join(f).display().to_string())
+            .collect(),
     };
-
     summary.limits_respected = summary
         .all_checked()
         .iter()
         .all(|c| c.within != Some(false));
+    summary.violations = summary.find_violations();
+    summary
+}
 
-    // Plots.
+fn write_plots(
+    job: &Job,
+    options: &RunOptions,
+    summary: &Summary,
+    recorder: &Recorder,
+) -> Result<(), RunError> {
     let title = format!(
         "{} — {} {}, {} Hz, {}",
         options.name,
-        job.profile.kind.name(),
+        summary.profile,
         summary.playback,
-        crate::summary::num(rate),
-        if finished { "finished" } else { "not finished" }
+        crate::summary::num(job.rate_hz),
+        if summary.finished {
+            "finished"
+        } else {
+            "not finished"
+        }
     );
+    let l = &job.limits;
     let plot_limits = PlotLimits {
         velocity: Some(l.velocity),
         acceleration: Some(l.acceleration),
         jerk: Some(l.jerk),
     };
+    let out = &options.out_dir;
     let path_svg = out.join("path.svg");
-    plot::write_path(&path_svg, &recorder, job.unit(), &title)
+    plot::write_path(&path_svg, recorder, job.unit(), &title)
         .map_err(|e| RunError::Io(format!("cannot write {}: {e}", path_svg.display())))?;
     let motion_svg = out.join("motion.svg");
-    plot::write_motion(&motion_svg, &recorder, job.unit(), plot_limits, &title)
-        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", motion_svg.display())))?;
-    let total = started.elapsed();
-    summary.wall_time.plots_s = (total - played).as_secs_f64();
-    summary.wall_time.total_s = total.as_secs_f64();
-
-    let json_path = out.join("summary.json");
-    let json = serde_json::to_string_pretty(&summary)
-        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))?;
-    fs::write(&json_path, json + "\n").map_err(io_error(&json_path))?;
-    Ok(summary)
+    plot::write_motion(&motion_svg, recorder, job.unit(), plot_limits, &title)
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", motion_svg.display())))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pipeline::{VELOCITY_RESERVE, planning_limits};
 
     #[test]
     fn header_names_every_axis() {
         assert_eq!(csv_header(2), "tick,t,x,y,vx,vy,ax,ay");
         assert_eq!(csv_header(3), "tick,t,x,y,z,vx,vy,vz,ax,ay,az");
+        assert!(csv_header(6).ends_with(",aw,ax5,ax6"));
     }
 
     #[test]
@@ -829,7 +649,7 @@ mod tests {
         let job = Job::parse(BUNDLED_JOB).unwrap();
         assert_eq!(job.axes(), 3);
         assert_eq!(job.rate_hz, 1000.0);
-        assert_eq!(job.profile.kind, ProfileKind::SCurve);
+        assert_eq!(job.profile.kind(), ProfileKind::SCurve);
         let limits = planning_limits::<3>(&job).unwrap();
         assert_eq!(limits.acceleration(), job.limits.acceleration * 0.75);
         assert_eq!(

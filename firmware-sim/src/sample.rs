@@ -77,12 +77,11 @@ pub fn parameters(a: f64, b: f64, count: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The CSV header: `u,x,y[,z[,w]]` then `d1x,d1y,…` up to `dKx,…`.
+/// The CSV header: `u,x,y[,z[,w[,x5[,x6]]]]` then `d1x,d1y,…` up to `dKx,…`.
 pub fn header(dim: usize, derivatives: usize) -> Vec<String> {
-    const AXES: [&str; 4] = ["x", "y", "z", "w"];
     let mut h = vec!["u".to_owned()];
     for k in 0..=derivatives {
-        for axis in AXES.iter().take(dim) {
+        for axis in crate::axes::names(dim) {
             h.push(if k == 0 {
                 (*axis).to_owned()
             } else {
@@ -156,5 +155,6 @@ mod tests {
         assert_eq!(header(2, 1), ["u", "x", "y", "d1x", "d1y"]);
         assert_eq!(header(3, 0), ["u", "x", "y", "z"]);
         assert_eq!(header(1, 2), ["u", "x", "d1x", "d2x"]);
+        assert_eq!(header(6, 0)[4..], ["w", "x5", "x6"]);
     }
 }

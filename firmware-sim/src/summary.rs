@@ -1,8 +1,10 @@
 //! The summary of a `strak-sim run`: written as `summary.json` and printed.
 
-use std::fmt::{self, Write as _};
+use std::fmt;
 
 use serde::Serialize;
+
+use crate::measure::RELATIVE_TOLERANCE;
 
 /// A maximum over the run, where it happened, and the limit it is checked against.
 #[derive(Clone, Debug, Serialize, PartialEq)]
@@ -13,27 +15,111 @@ pub struct Checked {
     pub at_s: f64,
     /// The job's limit, if there is one.
     pub limit: Option<f64>,
-    /// `max ≤ limit` (up to a relative 1e-9 for rounding); `None` without a limit.
+    /// `max ≤ limit + tolerance`; `None` without a limit.
     pub within: Option<bool>,
+    /// What the check allows above the limit: the relative 10⁻⁹ of the `f64` arithmetic, and
+    /// for finite differences the resolution of the samples (see [`crate::measure`]).
+    pub tolerance: f64,
+    /// Whether exceeding the limit fails the run (a limit the time law is planned under).
+    pub enforced: bool,
 }
 
 impl Checked {
-    /// A maximum checked against `limit` (`None` or `inf`: no limit).
+    /// A maximum checked against `limit` (`None` or `inf`: no limit), with the relative
+    /// tolerance only, not enforced.
+    ///
+    /// ```
+    /// use strak_sim::summary::Checked;
+    /// let c = Checked::new(2.5, 0.1, Some(2.0)).allowing(0.5).enforce(true);
+    /// assert_eq!((c.within, c.enforced, c.exceeds()), (Some(true), true, false));
+    /// assert!(Checked::new(2.5, 0.1, Some(2.0)).enforce(true).exceeds());
+    /// ```
     pub fn new(max: f64, at_s: f64, limit: Option<f64>) -> Self {
         let limit = limit.filter(|l| l.is_finite());
+        let tolerance = limit.map_or(0.0, |l| l * RELATIVE_TOLERANCE);
         Checked {
             max,
             at_s,
             limit,
-            within: limit.map(|l| max <= l * (1.0 + 1e-9)),
+            within: limit.map(|l| max <= l + tolerance),
+            tolerance,
+            enforced: false,
         }
     }
+
+    /// The same maximum, allowing `slack` more above the limit.
+    #[must_use]
+    pub fn allowing(self, slack: f64) -> Self {
+        let tolerance = self.tolerance + slack;
+        Checked {
+            within: self.limit.map(|l| self.max <= l + tolerance),
+            tolerance,
+            ..self
+        }
+    }
+
+    /// The same maximum, enforced or not (never without a limit).
+    #[must_use]
+    pub fn enforce(self, enforced: bool) -> Self {
+        Checked {
+            enforced: enforced && self.limit.is_some(),
+            ..self
+        }
+    }
+
+    /// Whether the maximum exceeds an enforced limit (the run fails).
+    pub fn exceeds(&self) -> bool {
+        self.enforced && self.within == Some(false)
+    }
+}
+
+/// Finite differences of the samples of one axis (or the norms over the axes): the
+/// velocity `Δx·f` and the acceleration `Δv·f`, next to the sampled values of [`Maxima`].
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Differences {
+    /// `x`, `y`, `z`, `w`, `x5`, `x6`, or `path`.
+    pub name: String,
+    /// `|Δx|·f`.
+    pub velocity: Checked,
+    /// `|Δv|·f`.
+    pub acceleration: Checked,
+}
+
+/// The finite differences of the run: the path norms and each axis.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct FiniteDifferences {
+    /// The norms over the axes.
+    pub path: Differences,
+    /// Each axis.
+    pub per_axis: Vec<Differences>,
+}
+
+/// The distance of the samples from the curve in the job's number format, against the bound
+/// the compiled path promises: the compile tolerance plus the playback bound.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Accuracy {
+    /// How the curve point of a sample is chosen.
+    pub method: String,
+    /// The distance against `tolerance + playback_bound`.
+    pub distance: Checked,
+}
+
+/// Which checks fail a run.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct CheckRule {
+    /// The time law is planned under the limits (trapezoid, S-curve): exceeding an enforced
+    /// limit or the accuracy bound fails the run (exit code 3).
+    pub enforced: bool,
+    /// In words.
+    pub rule: String,
+    /// The relative tolerance of every check.
+    pub relative_tolerance: f64,
 }
 
 /// The maxima of one axis (or of the path: the Euclidean norms over the axes).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Maxima {
-    /// `x`, `y`, `z`, `w`, or `path`.
+    /// `x`, `y`, `z`, `w`, `x5`, `x6`, or `path`.
     pub name: String,
     /// Velocity (from the samples).
     pub velocity: Checked,
@@ -170,6 +256,14 @@ pub struct Summary {
     pub per_axis: Vec<Maxima>,
     /// Every maximum with a limit is within it.
     pub limits_respected: bool,
+    /// The finite differences of the samples.
+    pub finite_differences: FiniteDifferences,
+    /// The distance from the curve against the compiled path's bound.
+    pub accuracy: Accuracy,
+    /// Which checks fail the run.
+    pub check: CheckRule,
+    /// The enforced checks the run failed, one line each (empty: it passed).
+    pub violations: Vec<String>,
     /// Distance from the f64 reference curve.
     pub reference_distance: ReferenceDistance,
     /// The end point.
@@ -202,11 +296,25 @@ pub fn num(x: f64) -> String {
 }
 
 fn check_mark(c: &Checked) -> &'static str {
-    match c.within {
-        Some(true) => "ok",
-        Some(false) => "EXCEEDED",
-        None => "",
+    match (c.within, c.enforced) {
+        (Some(true), _) => "ok",
+        (Some(false), true) => "EXCEEDED",
+        (Some(false), false) => "exceeded (not enforced)",
+        (None, _) => "",
     }
+}
+
+/// One row of the maxima table.
+fn row(f: &mut fmt::Formatter<'_>, what: &str, unit: &str, c: &Checked) -> fmt::Result {
+    let line = format!(
+        "  {:<22}{:>14}{:>12}{:>14}  {}",
+        format!("{what} [{unit}]"),
+        num(c.max),
+        num(c.at_s),
+        c.limit.map_or("-".to_owned(), num),
+        check_mark(c)
+    );
+    writeln!(f, "{}", line.trim_end())
 }
 
 impl Summary {
@@ -215,23 +323,78 @@ impl Summary {
         std::iter::once(&self.path).chain(self.per_axis.iter())
     }
 
-    /// Every checked figure: path norms, components along the path, each axis.
-    pub fn all_checked(&self) -> Vec<&Checked> {
-        let mut all: Vec<&Checked> = self
-            .all_maxima()
-            .flat_map(|m| [&m.velocity, &m.acceleration, &m.jerk])
-            .collect();
-        all.extend([
-            &self.along_path.tangential_acceleration,
-            &self.along_path.centripetal_acceleration,
-            &self.along_path.tangential_jerk,
-        ]);
+    /// Every limit check with the name of its quantity: path norms and each axis (samples,
+    /// then finite differences), then the components along the path.
+    pub fn named_checks(&self) -> Vec<(String, &Checked)> {
+        let mut all = Vec::new();
+        for m in self.all_maxima() {
+            let (v, a, j) = match m.name.as_str() {
+                "path" => ("|v|".to_owned(), "|a|".to_owned(), "|j|".to_owned()),
+                x => (format!("v_{x}"), format!("a_{x}"), format!("j_{x}")),
+            };
+            all.push((format!("velocity {v}"), &m.velocity));
+            all.push((format!("acceleration {a}"), &m.acceleration));
+            all.push((format!("jerk {j} (Δa·f)"), &m.jerk));
+        }
+        let fd = &self.finite_differences;
+        for d in std::iter::once(&fd.path).chain(&fd.per_axis) {
+            let x = if d.name == "path" {
+                String::new()
+            } else {
+                format!("_{}", d.name)
+            };
+            all.push((format!("velocity |Δx{x}|·f"), &d.velocity));
+            all.push((format!("acceleration |Δv{x}|·f"), &d.acceleration));
+        }
+        let along = &self.along_path;
+        all.push((
+            "tangential acceleration a_t".to_owned(),
+            &along.tangential_acceleration,
+        ));
+        all.push((
+            "centripetal acceleration a_n".to_owned(),
+            &along.centripetal_acceleration,
+        ));
+        all.push(("tangential jerk j_t".to_owned(), &along.tangential_jerk));
         all
     }
-}
 
-impl fmt::Display for Summary {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    /// Every checked figure: path norms, each axis, finite differences, components along the
+    /// path.
+    pub fn all_checked(&self) -> Vec<&Checked> {
+        self.named_checks().into_iter().map(|(_, c)| c).collect()
+    }
+
+    /// One line for each enforced check the run failed, naming the quantity (the limits,
+    /// then the accuracy bound).
+    pub fn find_violations(&self) -> Vec<String> {
+        let exceeded = |name: &str, c: &Checked| {
+            let limit = c.limit.unwrap_or(f64::NAN);
+            format!(
+                "{name} = {} at t = {} s exceeds {} by {} % (tolerance {})",
+                num(c.max),
+                num(c.at_s),
+                num(limit),
+                num(100.0 * (c.max / limit - 1.0)),
+                num(c.tolerance)
+            )
+        };
+        let mut lines: Vec<String> = self
+            .named_checks()
+            .into_iter()
+            .filter(|(_, c)| c.exceeds())
+            .map(|(name, c)| exceeded(&name, c))
+            .collect();
+        if self.accuracy.distance.exceeds() {
+            lines.push(exceeded(
+                "accuracy: distance to the curve (bound: tolerance + playback bound)",
+                &self.accuracy.distance,
+            ));
+        }
+        lines
+    }
+
+    fn fmt_head(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let u = &self.unit;
         writeln!(
             f,
@@ -250,17 +413,17 @@ impl fmt::Display for Summary {
             num(self.plan_duration_s),
             num(self.path_length)
         )?;
+        let ignored = if self.events_ignored > 0 {
+            format!(", {} after the end ignored", self.events_ignored)
+        } else {
+            String::new()
+        };
         writeln!(
             f,
-            "  run        {} samples, last at {} s, {} event(s) applied{}; stop: {}",
+            "  run        {} samples, last at {} s, {} event(s) applied{ignored}; stop: {}",
             self.samples,
             num(self.run_time_s),
             self.events_applied,
-            if self.events_ignored > 0 {
-                format!(", {} after the end ignored", self.events_ignored)
-            } else {
-                String::new()
-            },
             self.stop
         )?;
         writeln!(
@@ -278,72 +441,67 @@ impl fmt::Display for Summary {
             num(self.planned_with.acceleration),
             num(self.planned_with.jerk),
             num(1.0 - self.feed_share)
-        )?;
+        )
+    }
+
+    fn fmt_table(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let u = &self.unit;
         writeln!(
             f,
             "  {:<22}{:>14}{:>12}{:>14}",
             "maximum", "value", "at t [s]", "limit"
         )?;
         let units = [format!("{u}/s"), format!("{u}/s²"), format!("{u}/s³")];
-        let along = [
-            (
-                "a_t tangential",
-                &self.along_path.tangential_acceleration,
-                &units[1],
-            ),
-            (
-                "a_n centripetal",
-                &self.along_path.centripetal_acceleration,
-                &units[1],
-            ),
-            (
-                "j_t tangential",
-                &self.along_path.tangential_jerk,
-                &units[2],
-            ),
-        ];
-        for (q, c, unit) in along {
-            let line = format!(
-                "  {:<22}{:>14}{:>12}{:>14}  {}",
-                format!("{q} [{unit}]"),
-                num(c.max),
-                num(c.at_s),
-                c.limit.map_or("-".to_owned(), num),
-                check_mark(c)
-            );
-            writeln!(f, "{}", line.trim_end())?;
-        }
+        let along = &self.along_path;
+        row(
+            f,
+            "a_t tangential",
+            &units[1],
+            &along.tangential_acceleration,
+        )?;
+        row(
+            f,
+            "a_n centripetal",
+            &units[1],
+            &along.centripetal_acceleration,
+        )?;
+        row(f, "j_t tangential", &units[2], &along.tangential_jerk)?;
         for m in self.all_maxima() {
             let name = if m.name == "path" {
-                "|·|".to_owned()
+                "|·|"
             } else {
-                m.name.clone()
+                m.name.as_str()
             };
-            for ((q, c), unit) in [("v", &m.velocity), ("a", &m.acceleration), ("j", &m.jerk)]
-                .into_iter()
-                .zip(&units)
-            {
-                let mut line = String::new();
-                let _ = write!(
-                    line,
-                    "  {:<22}{:>14}{:>12}{:>14}  {}",
-                    format!("{q} {name} [{unit}]"),
-                    num(c.max),
-                    num(c.at_s),
-                    c.limit.map_or("-".to_owned(), num),
-                    check_mark(c)
-                );
-                writeln!(f, "{}", line.trim_end())?;
-            }
+            row(f, &format!("v {name}"), &units[0], &m.velocity)?;
+            row(f, &format!("a {name}"), &units[1], &m.acceleration)?;
+            row(f, &format!("j {name}"), &units[2], &m.jerk)?;
         }
+        let fd = &self.finite_differences.path;
+        row(f, "|Δx|·f", &units[0], &fd.velocity)?;
+        row(f, "|Δv|·f", &units[1], &fd.acceleration)
+    }
+
+    fn fmt_tail(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let u = &self.unit;
+        let limits = match (self.limits_respected, self.check.enforced) {
+            (true, _) => "all respected",
+            (false, true) if self.violations.is_empty() => {
+                "exceeded only in checks that are not enforced (see above)"
+            }
+            (false, true) => "EXCEEDED (see above)",
+            (false, false) => {
+                "exceeded (see above; not enforced: the time law is not planned under the limits)"
+            }
+        };
+        writeln!(f, "  limits     {limits}")?;
+        let a = &self.accuracy.distance;
         writeln!(
             f,
-            "  limits     {}",
-            if self.limits_respected {
-                "all respected"
-            } else {
-                "EXCEEDED (see above)"
-            }
+            "  accuracy   max distance {} {u} from the curve at t = {} s, bound {} {u} (tolerance + playback bound) {}",
+            num(a.max),
+            num(a.at_s),
+            a.limit.map_or("-".to_owned(), num),
+            check_mark(a)
         )?;
         writeln!(
             f,
@@ -372,6 +530,14 @@ impl fmt::Display for Summary {
     }
 }
 
+impl fmt::Display for Summary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.fmt_head(f)?;
+        self.fmt_table(f)?;
+        self.fmt_tail(f)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -391,5 +557,9 @@ mod tests {
         assert_eq!(Checked::new(3.0, 0.0, Some(2.0)).within, Some(false));
         assert_eq!(Checked::new(3.0, 0.0, Some(f64::INFINITY)).within, None);
         assert_eq!(Checked::new(3.0, 0.0, None).limit, None);
+        let c = Checked::new(2.0 + 3e-9, 0.0, Some(2.0));
+        assert_eq!((c.within, c.tolerance), (Some(false), 2e-9));
+        assert_eq!(c.clone().allowing(1e-9).within, Some(true));
+        assert!(!c.exceeds() && c.enforce(true).exceeds());
     }
 }

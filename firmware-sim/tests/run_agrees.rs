@@ -15,7 +15,7 @@ use strak_trajectory::{
     CompileOptions, Limits, Number, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
 };
 
-use strak_sim::run::{PIECES, TABLE, ZONES};
+use strak_sim::pipeline::{PIECES, TABLE, ZONES};
 
 fn jobs_dir() -> PathBuf {
     FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs")

@@ -203,7 +203,7 @@ fn capacity_too_small_for_the_motion() {
         "kind = \"parameter\"\nduration = 200.0",
     );
     let e = fails_naming(&text, "rate_hz");
-    assert!(e.contains("16384"), "{e}");
+    assert!(e.contains("hold 16384 pieces"), "{e}");
 }
 
 #[test]
@@ -232,7 +232,7 @@ kind = "constant-speed"
 tolerance = 1e-15
 "#;
     let e = fails_naming(text, "compile.tolerance");
-    assert!(e.contains("16384"), "{e}");
+    assert!(e.contains("hold 16384 pieces"), "{e}");
 }
 
 #[test]
@@ -248,7 +248,7 @@ fn zone_capacity_too_small() {
         "kind = \"s-curve\"\nsamples = 8192\nzone_tolerance = 0.0",
     );
     let e = fails_naming(&text, "profile.zone_tolerance");
-    assert!(e.contains("1024"), "{e}");
+    assert!(e.contains("at most 1024 zones"), "{e}");
 }
 
 #[test]
@@ -258,8 +258,20 @@ fn range_too_large_for_fixed_point() {
         "points = [[0, 0], [10, 0], [10, 10]]",
         "points = [[5000000, 0], [5000010, 0], [5000010, 10]]",
     );
-    let e = fails_naming(&text, "number");
-    assert!(e.contains("4194304"), "{e}");
+    let e = fails_naming(&text, "path.points[0][0]");
+    assert!(e.contains("5000000") && e.contains("4194304"), "{e}");
+}
+
+#[test]
+fn a_far_point_is_named_not_the_rate() {
+    // A long motion from a point outside the Q40 range: the coordinate is the error, not the
+    // number of pieces the motion would need.
+    let text = with("number = \"f64\"", "number = \"fixed\"").replace(
+        "points = [[0, 0], [10, 0], [10, 10]]",
+        "points = [[0, 0], [10, 0], [10, 4194310], [4194000, 20]]",
+    );
+    let e = fails_naming(&text, "path.points[2][1]");
+    assert!(e.contains("4194310") && e.contains("±4194304"), "{e}");
 }
 
 #[test]
@@ -268,7 +280,69 @@ fn range_too_large_for_the_fixed_point_curve() {
         "points = [[0, 0], [10, 0], [10, 10]]",
         "points = [[0, 0], [1e10, 0], [10, 10]]",
     );
-    fails_naming(&text, "path.points");
+    fails_naming(&text, "path.points[1][0]");
+}
+
+#[test]
+fn range_too_large_for_an_f32_curve() {
+    let text = with("number = \"f64\"", "number = \"f32\"").replace(
+        "points = [[0, 0], [10, 0], [10, 10]]",
+        "points = [[0, 0], [10, 1e39], [10, 10]]",
+    );
+    let e = fails_naming(&text, "path.points[1][1]");
+    assert!(e.contains("number = f32"), "{e}");
+}
+
+#[test]
+fn point_of_the_wrong_dimension() {
+    fails_naming(
+        &with("[10, 0], [10, 10]]", "[10, 0, 1], [10, 10]]"),
+        "path.points[1]",
+    );
+}
+
+#[test]
+fn seven_axes() {
+    let e = fails_naming(
+        &with(
+            "points = [[0, 0], [10, 0], [10, 10]]",
+            "points = [[0, 0, 0, 0, 0, 0, 0], [1, 1, 1, 1, 1, 1, 1]]",
+        ),
+        "path.points[0]",
+    );
+    assert!(e.contains("1 to 6 coordinates"), "{e}");
+}
+
+#[test]
+fn too_many_points() {
+    let points: Vec<String> = (0..4097).map(|i| format!("[{i}, 0]")).collect();
+    let text = with("kind = \"bezier\"", "kind = \"bspline\"\ndegree = 1").replace(
+        "points = [[0, 0], [10, 0], [10, 10]]",
+        &format!("points = [{}]", points.join(", ")),
+    );
+    let e = fails_naming(&text, "path.points");
+    assert!(
+        e.contains("4097 points") && e.contains("at most 4096"),
+        "{e}"
+    );
+}
+
+#[test]
+fn mistyped_field_in_a_tagged_table() {
+    fails_naming(
+        &with(
+            "kind = \"bezier\"",
+            "kind = \"bspline\"\ndegree = \"three\"",
+        ),
+        "path.degree",
+    );
+    fails_naming(
+        &with(
+            "kind = \"s-curve\"",
+            "kind = \"s-curve\"\nsamples = \"many\"",
+        ),
+        "profile.samples",
+    );
 }
 
 #[test]

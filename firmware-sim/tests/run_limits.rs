@@ -111,6 +111,54 @@ fn cruising_at_axis_velocity_limits() {
     }
 }
 
+/// A 6-axis cubic B-spline of `n` de Boor points: a circle of radius 100 in x–y rising in z,
+/// the other three axes moving alongside.
+fn six_axis_job(n: usize, number: &str) -> String {
+    let points: Vec<String> = (0..n)
+        .map(|i| {
+            let t = i as f64 / (n - 1) as f64;
+            let a = std::f64::consts::TAU * t;
+            format!(
+                "[{}, {}, {}, {}, {}, {}]",
+                100.0 * a.cos(),
+                100.0 * a.sin(),
+                50.0 * t,
+                20.0 * t,
+                10.0 * (std::f64::consts::PI * t).sin(),
+                -30.0 * t
+            )
+        })
+        .collect();
+    format!(
+        r#"
+        rate_hz = 1000
+        number = "{number}"
+        [path]
+        kind = "bspline"
+        degree = 3
+        points = [{}]
+        [limits]
+        velocity = 200
+        acceleration = 2000
+        jerk = 50000
+        axis_velocity = [200, 200, 200, 100, 100, 100]
+        [profile]
+        kind = "s-curve"
+    "#,
+        points.join(", ")
+    )
+}
+
+/// Six axes, and the largest path strak-sim builds (4096 de Boor points): every limit holds.
+#[test]
+fn six_axes_and_many_points() {
+    for (n, number) in [(4096, "f64"), (600, "f32")] {
+        let job = Job::parse(&six_axis_job(n, number)).unwrap();
+        assert_eq!((job.axes(), job.path.points().len()), (6, n));
+        check_job(&format!("six axes, {n} points, {number}"), &job);
+    }
+}
+
 /// Runs `job` and checks every limit from its samples.
 fn check_job(name: &str, job: &Job) {
     {

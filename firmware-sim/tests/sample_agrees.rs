@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use strak_ref as r;
-use strak_sim::curve_file::{BoundaryName, CurveFile, Kind};
+use strak_sim::curve_file::{BoundaryName, CurveFile};
 use strak_sim::sample::{Number, SampleOptions, header, sample_rows};
 
 const DERIVATIVES: usize = 2;
@@ -37,56 +37,75 @@ struct Reference {
 }
 
 fn nodes_or_chord(file: &CurveFile) -> Vec<f64> {
-    file.params
-        .clone()
-        .unwrap_or_else(|| r::chord_length_nodes(&file.points))
+    file.params()
+        .map(<[f64]>::to_vec)
+        .unwrap_or_else(|| r::chord_length_nodes(file.points()))
+}
+
+/// A B-spline or NURBS: degree, knots, closed, weights.
+fn bspline_reference(
+    pts: Vec<Vec<f64>>,
+    g: usize,
+    knots: Option<Vec<f64>>,
+    closed: bool,
+    weights: Option<Vec<f64>>,
+) -> Reference {
+    let n = pts.len();
+    if closed {
+        let knots = knots.unwrap_or_else(|| r::periodic_uniform_knots(n));
+        let domain = (knots[0], knots[n]);
+        return Reference {
+            domain,
+            eval: Box::new(move |u, k| r::closed_bspline_deriv(g, &pts, &knots, u, k)),
+        };
+    }
+    let knots = knots.unwrap_or_else(|| r::clamped_uniform_knots(g, n, 0.0, 1.0));
+    let domain = r::bspline_domain(&knots, g);
+    Reference {
+        domain,
+        eval: Box::new(move |u, k| match &weights {
+            Some(w) => r::nurbs_deriv(&knots, g, &pts, w, u, k),
+            None => r::bspline_deriv(&knots, g, &pts, u, k),
+        }),
+    }
+}
+
+/// A Hermite spline through the nodes with the given (or Catmull-Rom) tangents.
+fn hermite_reference(file: &CurveFile, tangents: Option<Vec<Vec<f64>>>) -> Reference {
+    let pts = file.points().to_vec();
+    let nodes = nodes_or_chord(file);
+    let n = pts.len();
+    let tangents = tangents.unwrap_or_else(|| r::catmull_rom_tangents(&nodes, &pts));
+    Reference {
+        domain: (nodes[0], nodes[n - 1]),
+        eval: Box::new(move |u, k| r::hermite_spline_deriv(&nodes, &pts, &tangents, u, k)),
+    }
 }
 
 fn reference(file: &CurveFile) -> Reference {
-    let pts = file.points.clone();
+    let pts = file.points().to_vec();
     let n = pts.len();
-    match file.kind {
-        Kind::Bezier => Reference {
+    match file {
+        CurveFile::Bezier(_) => Reference {
             domain: (0.0, 1.0),
             eval: Box::new(move |u, k| r::bezier_deriv(&pts, u, k)),
         },
-        Kind::BezierChain => {
-            let g = file.degree.unwrap();
+        CurveFile::BezierChain(c) => {
+            let g = c.degree;
             Reference {
                 domain: (0.0, ((n - 1) / g) as f64),
                 eval: Box::new(move |u, k| r::bezier_chain_deriv(&pts, g, u, k)),
             }
         }
-        Kind::Bspline | Kind::Nurbs => {
-            let g = file.degree.unwrap();
-            let closed = file.closed.unwrap_or(false);
-            let weights = file.weights.clone();
-            if closed {
-                let knots = file
-                    .knots
-                    .clone()
-                    .unwrap_or_else(|| r::periodic_uniform_knots(n));
-                let domain = (knots[0], knots[n]);
-                Reference {
-                    domain,
-                    eval: Box::new(move |u, k| r::closed_bspline_deriv(g, &pts, &knots, u, k)),
-                }
-            } else {
-                let knots = file
-                    .knots
-                    .clone()
-                    .unwrap_or_else(|| r::clamped_uniform_knots(g, n, 0.0, 1.0));
-                let domain = r::bspline_domain(&knots, g);
-                Reference {
-                    domain,
-                    eval: Box::new(move |u, k| match &weights {
-                        Some(w) => r::nurbs_deriv(&knots, g, &pts, w, u, k),
-                        None => r::bspline_deriv(&knots, g, &pts, u, k),
-                    }),
-                }
-            }
-        }
-        Kind::Lagrange => {
+        CurveFile::Bspline(b) => bspline_reference(pts, b.degree, b.knots.clone(), b.closed, None),
+        CurveFile::Nurbs(f) => bspline_reference(
+            pts,
+            f.degree,
+            f.knots.clone(),
+            false,
+            Some(f.weights.clone()),
+        ),
+        CurveFile::Lagrange(_) => {
             let nodes = nodes_or_chord(file);
             Reference {
                 domain: (nodes[0], nodes[n - 1]),
@@ -95,26 +114,17 @@ fn reference(file: &CurveFile) -> Reference {
                 }),
             }
         }
-        Kind::Hermite | Kind::CatmullRom => {
+        CurveFile::Hermite(h) => hermite_reference(file, Some(h.tangents.clone())),
+        CurveFile::CatmullRom(_) => hermite_reference(file, None),
+        CurveFile::CubicSpline(c) => {
             let nodes = nodes_or_chord(file);
-            let tangents = match &file.tangents {
-                Some(t) => t.clone(),
-                None => r::catmull_rom_tangents(&nodes, &pts),
-            };
-            Reference {
-                domain: (nodes[0], nodes[n - 1]),
-                eval: Box::new(move |u, k| r::hermite_spline_deriv(&nodes, &pts, &tangents, u, k)),
-            }
-        }
-        Kind::CubicSpline => {
-            let nodes = nodes_or_chord(file);
-            let spline = match file.boundary.unwrap_or_default() {
+            let spline = match c.boundary {
                 BoundaryName::Natural => r::CubicSplineRef::natural(&nodes, &pts),
                 BoundaryName::Clamped => r::CubicSplineRef::clamped(
                     &nodes,
                     &pts,
-                    file.start_tangent.as_ref().unwrap(),
-                    file.end_tangent.as_ref().unwrap(),
+                    c.start_tangent.as_ref().unwrap(),
+                    c.end_tangent.as_ref().unwrap(),
                 ),
                 BoundaryName::Periodic => r::CubicSplineRef::periodic(&nodes, &pts),
             };
@@ -123,7 +133,7 @@ fn reference(file: &CurveFile) -> Reference {
                 eval: Box::new(move |u, k| spline.deriv(u, k)),
             }
         }
-        Kind::ParabolicBlend => Reference {
+        CurveFile::ParabolicBlend(_) => Reference {
             domain: (0.0, (n - 1) as f64),
             eval: Box::new(move |u, k| r::parabolic_blend_deriv(&pts, u, k)),
         },
@@ -155,7 +165,7 @@ fn relative_errors(file: &CurveFile, number: Number) -> Vec<f64> {
     let rows = sample_rows(file, &options).unwrap();
     let reference = reference(file);
     let dim = file.dim();
-    let ext = extent(&file.points);
+    let ext = extent(file.points());
     let (a, b) = reference.domain;
     assert_eq!(rows.len(), COUNT);
     // The domain ends are computed in the curve's own number type (chord lengths, knots), so
@@ -233,6 +243,9 @@ fn one_and_four_coordinates() {
         "kind = \"bezier-chain\"\ndegree = 2\npoints = [[0.0], [2.0], [1.0], [0.0], [3.0]]",
         "kind = \"bezier-chain\"\ndegree = 1\npoints = [[0,0,0,0],[1,2,3,4],[2,0,1,0]]",
         "kind = \"bspline\"\ndegree = 2\npoints = [[0,0,0,0],[1,2,3,4],[2,0,1,0],[3,1,0,2]]",
+        "kind = \"bspline\"\ndegree = 2\npoints = [[0,0,0,0,0],[1,2,3,4,5],[2,0,1,0,2],[3,1,0,2,0]]",
+        "kind = \"bezier-chain\"\ndegree = 3\npoints = [[0,0,0,0,0,0],[1,2,3,4,5,6],[2,0,1,0,2,1],[3,1,0,2,0,3]]",
+        "kind = \"nurbs\"\ndegree = 2\npoints = [[0,0,0,0,0,0],[1,2,3,4,5,6],[2,0,1,0,2,1]]\nweights = [1, 0.5, 1]",
     ] {
         let file = CurveFile::parse(text).unwrap();
         for (number, tol) in [
@@ -242,6 +255,43 @@ fn one_and_four_coordinates() {
         ] {
             for (k, e) in relative_errors(&file, number).iter().enumerate() {
                 assert!(*e <= tol, "{text}: derivative {k} {number:?}: {e:e}");
+            }
+        }
+    }
+}
+
+/// More points than the small capacity (256), within the bounds of the example files: a wavy
+/// cubic B-spline of 300 de Boor points and a Catmull-Rom spline through 300 points, in every
+/// format. Knots and nodes are integers, exact in every format (fine knots of a unit domain
+/// would add their own rounding, `~n·ε` relative in the derivatives).
+#[test]
+fn more_than_256_points() {
+    let n = 300;
+    let list = |v: Vec<String>| v.join(", ");
+    let wave = list(
+        (0..n)
+            .map(|i| format!("[{i}, {}]", (i as f64 * 0.3).sin()))
+            .collect(),
+    );
+    let knots = list(
+        (0..n + 4)
+            .map(|i| (i.clamp(3, n) - 3).to_string())
+            .collect(),
+    );
+    let nodes = list((0..n).map(|i| i.to_string()).collect());
+    for text in [
+        format!("kind = \"bspline\"\ndegree = 3\npoints = [{wave}]\nknots = [{knots}]"),
+        format!("kind = \"catmull-rom\"\npoints = [{wave}]\nparams = [{nodes}]"),
+    ] {
+        let file = CurveFile::parse(&text).unwrap();
+        assert_eq!(file.points().len(), n);
+        for (number, tol) in [
+            (Number::F64, 1e-10),
+            (Number::F32, 1e-5),
+            (Number::Fixed, 1e-8),
+        ] {
+            for (k, e) in relative_errors(&file, number).iter().enumerate() {
+                assert!(*e <= tol, "{n} points: derivative {k} {number:?}: {e:e}");
             }
         }
     }

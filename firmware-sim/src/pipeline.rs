@@ -1,0 +1,416 @@
+//! The pipeline `strak-sim run` and `strak-sim compile` share: build the curve, plan the time
+//! law, compile the path.
+//!
+//! 1. **Curve.** The `[path]` is built in the job's number format (`f64`, `f32`, or `I32F32`
+//!    for `fixed`): the curve firmware would hold. In `fixed`, every point must lie within the
+//!    Q40 playback range first ([`check_playback_range`]).
+//! 2. **Time law** (`[profile]`), planned in `f64` from that curve: `parameter`
+//!    ([`ParameterTiming::over`]), `constant-speed` ([`PathTiming::constant_speed`]),
+//!    `trapezoid` and `s-curve` ([`PathTiming::plan`] with [`ProfileShape::Trapezoid`] /
+//!    [`ProfileShape::SCurve`]: curvature and per-axis limits included). Trapezoid and
+//!    S-curve are planned with the job's acceleration and jerk limits (path and per axis)
+//!    **reduced by the feed share** `s` (`[compile] feed_share`, default ¼): `(1 − s)·a`,
+//!    `(1 − s)·j`, `(1 − s)·aᵢ`; the velocity limits (path and per axis) are reduced by
+//!    [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler is given
+//!    `min(a, aᵢ)` and `j` as the limits of feed changes, so a feed ramp adds at most
+//!    `s·min(a, aᵢ)` (or what the plan left free) to the acceleration.
+//! 3. **Compile** ([`compile`]) into a [`Path`] of at most [`PIECES`] pieces (boxed: a path
+//!    is large), in the playback format (`f64`, `f32`, [`Q40`]).
+//!
+//! Every error is a [`JobError`] on the field that causes it.
+
+use std::time::{Duration, Instant};
+
+use strak_curves::Scalar;
+use strak_trajectory::{
+    CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
+    PlanOptions, ProfileShape, Q40, Timing, compile,
+};
+
+use crate::dyn_curve::{DynCurve, build_dyn};
+use crate::job::{Job, JobError, JobNumber, Profile, ProfileKind};
+use crate::summary::num;
+
+/// Piece capacity of a compiled path (a path of `A` axes in `f64` takes about
+/// `PIECES · (8 + 72·A)` bytes).
+pub const PIECES: usize = 16_384;
+/// Zone capacity of a planned motion (the planner's default 1024 sampling intervals never
+/// need more).
+pub const ZONES: usize = 1_024;
+/// Samples of the arc-length table.
+pub const TABLE: usize = 1_024;
+/// The share of the velocity limits (path and per axis) a planned motion leaves unused:
+/// the compiled spline follows the planned velocity to about 10⁻³ of it, so a plan at the
+/// full limit would overshoot it.
+pub const VELOCITY_RESERVE: f64 = 0.005;
+
+/// The job's per-axis limits as an array (`inf` where none is given).
+pub fn axis_array<const D: usize>(v: Option<&[f64]>) -> [f64; D] {
+    let mut out = [f64::INFINITY; D];
+    if let Some(v) = v {
+        for (o, x) in out.iter_mut().zip(v) {
+            *o = *x;
+        }
+    }
+    out
+}
+
+/// The limits the time law is planned with: the job's, with acceleration and jerk (path and
+/// per axis) scaled by `1 − feed_share` and velocities by `1 − VELOCITY_RESERVE`.
+///
+/// # Errors
+/// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
+pub fn planning_limits<const D: usize>(job: &Job) -> Result<Limits<D>, JobError> {
+    let l = &job.limits;
+    let keep = 1.0 - job.feed_share();
+    let bad = |field: &'static str| move |e: TrajError| JobError::new(field, e.to_string());
+    let v_keep = 1.0 - VELOCITY_RESERVE;
+    Limits::<D>::new(l.velocity * v_keep, l.acceleration * keep, l.jerk * keep)
+        .map_err(bad("limits"))?
+        .with_axis_velocity(axis_array::<D>(l.axis_velocity.as_deref()).map(|v| v * v_keep))
+        .map_err(bad("limits.axis_velocity"))?
+        .with_axis_acceleration(axis_array::<D>(l.axis_acceleration.as_deref()).map(|a| a * keep))
+        .map_err(bad("limits.axis_acceleration"))
+}
+
+/// The compiler settings of the job: `[compile]`, and the feed-change limits `min(a, aᵢ)`, `j`.
+pub fn compile_options(job: &Job) -> CompileOptions {
+    let l = &job.limits;
+    let a_feed = l
+        .axis_acceleration
+        .iter()
+        .flatten()
+        .fold(l.acceleration, |m, a| m.min(*a));
+    let mut o = CompileOptions::new()
+        .with_feed_share(job.feed_share())
+        .with_limits(a_feed, l.jerk);
+    if let Some(t) = job.compile.tolerance {
+        o = o.with_tolerance(t);
+    }
+    if let Some(m) = job.compile.max_piece_ticks {
+        o = o.with_max_piece_ticks(m);
+    }
+    o
+}
+
+/// The planner settings of a trapezoid or S-curve profile (the defaults for the others).
+pub fn plan_options(job: &Job) -> PlanOptions {
+    let mut o = PlanOptions::new().with_shape(match job.profile {
+        Profile::Trapezoid(_) => ProfileShape::Trapezoid,
+        _ => ProfileShape::SCurve,
+    });
+    let Some(p) = job.profile.planner() else {
+        return o;
+    };
+    if let Some(n) = p.samples {
+        o = o.with_samples(n);
+    }
+    if let Some(t) = p.zone_tolerance {
+        o = o.with_zone_tolerance(t);
+    }
+    if let Some(s) = p.centripetal_share {
+        o = o.with_centripetal_share(s);
+    }
+    if let Some(a) = p.corner_angle {
+        o = o.with_corner_angle(a);
+    }
+    o
+}
+
+/// The time law of `job` along `curve` (built in the job's number format), planned with
+/// `limits` ([`planning_limits`]).
+///
+/// # Errors
+/// A [`JobError`] naming the field for a profile that cannot be planned.
+pub fn plan_timing<'c, S: Scalar, const D: usize>(
+    job: &Job,
+    curve: &'c DynCurve<S, D>,
+    limits: &Limits<D>,
+) -> Result<Box<dyn Timing + 'c>, JobError> {
+    let err = |e| plan_error(job, e);
+    Ok(match &job.profile {
+        Profile::Parameter(p) => Box::new(ParameterTiming::over(curve, p.duration).map_err(err)?),
+        Profile::ConstantSpeed(c) => Box::new(
+            PathTiming::<_, TABLE, ZONES>::constant_speed(
+                curve,
+                c.speed.unwrap_or(job.limits.velocity),
+            )
+            .map_err(err)?,
+        ),
+        Profile::Trapezoid(_) | Profile::SCurve(_) => Box::new(
+            PathTiming::<_, TABLE, ZONES>::plan(curve, limits, &plan_options(job)).map_err(err)?,
+        ),
+    })
+}
+
+/// A curve file error as an error on the job's `path.…` field.
+pub fn curve_error(e: crate::curve_file::FieldError) -> JobError {
+    JobError::new(
+        format!("path.{}", e.field),
+        e.message.replace("--number ", "number = "),
+    )
+}
+
+fn plan_error(job: &Job, e: TrajError) -> JobError {
+    match e {
+        TrajError::EmptyPath => JobError::new(
+            "path",
+            "the path has zero length (its points coincide): there is nothing to play",
+        ),
+        TrajError::CapacityExceeded { capacity, required } => JobError::new(
+            "profile.zone_tolerance",
+            format!(
+                "the speed limit along the path needs {required} zones, the simulator plans \
+                 with at most {capacity} zones: raise profile.zone_tolerance or lower \
+                 profile.samples"
+            ),
+        ),
+        TrajError::InvalidLimit => JobError::new(
+            "profile",
+            format!(
+                "the `{}` profile rejected a setting: {e}",
+                job.profile.kind().name()
+            ),
+        ),
+        TrajError::Curve(c) => JobError::new(
+            "path",
+            format!("the curve cannot be planned along (arc length or derivatives): {c}"),
+        ),
+        other => JobError::new("profile", other.to_string()),
+    }
+}
+
+/// The largest coordinate of the path's points.
+fn max_abs(job: &Job) -> f64 {
+    job.path
+        .points()
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// In `fixed`, every point within the range of Q40 playback, `±`[`Q40`]`::LIMIT` (2²²):
+/// the error names the first coordinate outside it (`path.points[3][1]`). Points within the
+/// range keep a B-spline, Bézier or NURBS curve inside it (the convex hull); an interpolating
+/// curve may still overshoot between its points ([`compile_error`]).
+///
+/// # Errors
+/// A [`JobError`] on the coordinate.
+pub fn check_playback_range(job: &Job) -> Result<(), JobError> {
+    if job.number != JobNumber::Fixed {
+        return Ok(());
+    }
+    let limit = <Q40 as Number>::LIMIT;
+    for (i, p) in job.path.points().iter().enumerate() {
+        if let Some(j) = p.iter().position(|x| x.abs() > limit) {
+            return Err(JobError::new(
+                format!("path.points[{i}][{j}]"),
+                format!(
+                    "{} is outside the range of number = \"fixed\": Q40 playback holds \
+                     positions, velocities and accelerations within ±{} units (2²²); move or \
+                     scale the path, or use number = \"f64\"",
+                    num(p[j]),
+                    num(limit)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A compile error as an error on the job field that causes it.
+pub fn compile_error(job: &Job, e: TrajError, duration: f64) -> JobError {
+    let rate = job.rate_hz;
+    match e {
+        TrajError::InvalidRate => JobError::new("rate_hz", e.to_string()),
+        TrajError::TooLong => JobError::new(
+            "rate_hz",
+            format!("the motion ({duration} s at {rate} Hz) takes more ticks than a u32 counts"),
+        ),
+        TrajError::EmptyPath => JobError::new("path", "the motion has zero duration"),
+        TrajError::CapacityExceeded { capacity, required } => {
+            capacity_error(job, capacity, required, duration)
+        }
+        TrajError::OutOfRange => JobError::new(
+            "number",
+            format!(
+                "the compiled path does not fit `{}` playback ({}; the path's points reach {}, \
+                 the curve between them goes further): move or scale the path, or use number \
+                 = \"f64\"",
+                job.number.name(),
+                match job.number {
+                    JobNumber::Fixed => format!(
+                        "Q40 keeps every position, velocity and acceleration within ±{} units",
+                        num(<Q40 as Number>::LIMIT)
+                    ),
+                    _ => "a value exceeds the format's range".to_owned(),
+                },
+                num(max_abs(job))
+            ),
+        ),
+        TrajError::InvalidLimit => JobError::new("compile", e.to_string()),
+        TrajError::Curve(c) => JobError::new("path", format!("compiling the curve failed: {c}")),
+        other => JobError::new("path", other.to_string()),
+    }
+}
+
+/// More pieces than a path holds: from the motion's length (`rate_hz`) or the tolerance.
+fn capacity_error(job: &Job, capacity: usize, required: usize, duration: f64) -> JobError {
+    let rate = job.rate_hz;
+    let per_piece = f64::from(
+        job.compile
+            .max_piece_ticks
+            .unwrap_or(CompileOptions::DEFAULT_MAX_PIECE_TICKS),
+    );
+    let at_least = (duration * rate / per_piece).ceil();
+    if at_least > capacity as f64 {
+        JobError::new(
+            "rate_hz",
+            format!(
+                "the motion ({} s at {} Hz, pieces of at most {per_piece} ticks) needs at least \
+                 {required} pieces, the simulator's paths hold {capacity} pieces: lower \
+                 rate_hz, raise compile.max_piece_ticks or split the path",
+                num(duration),
+                num(rate)
+            ),
+        )
+    } else {
+        JobError::new(
+            "compile.tolerance",
+            format!(
+                "the compiled path needs at least {required} pieces to meet the tolerance, the \
+                 simulator's paths hold {capacity} pieces: raise compile.tolerance"
+            ),
+        )
+    }
+}
+
+/// The curve of a job in its number format and the limits it is planned with.
+pub struct Prepared<S: Scalar, const D: usize> {
+    /// The curve in the job's number format.
+    pub curve: DynCurve<S, D>,
+    /// The planning limits ([`planning_limits`]).
+    pub limits: Limits<D>,
+}
+
+impl<S: Scalar, const D: usize> std::fmt::Debug for Prepared<S, D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Prepared")
+            .field("curve", &self.curve)
+            .field("limits", &self.limits)
+            .finish()
+    }
+}
+
+/// A job planned and compiled.
+pub struct Compiled<'c, N: Number, const D: usize> {
+    /// The time law.
+    pub timing: Box<dyn Timing + 'c>,
+    /// The compiled path.
+    pub path: Box<Path<N, D, PIECES>>,
+    /// The wall-clock time of planning.
+    pub plan_time: Duration,
+    /// The wall-clock time of compiling.
+    pub compile_time: Duration,
+}
+
+impl<N: Number, const D: usize> std::fmt::Debug for Compiled<'_, N, D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Compiled")
+            .field("duration", &self.timing.duration())
+            .field("pieces", &self.path.pieces().len())
+            .field("ticks", &self.path.ticks())
+            .finish()
+    }
+}
+
+impl<S: Scalar, const D: usize> Prepared<S, D> {
+    /// Checks the range, builds the curve of `job` in its number format (whose scalar must be
+    /// `S`, with `D` axes) and the planning limits.
+    ///
+    /// # Errors
+    /// A [`JobError`] naming the field.
+    pub fn new(job: &Job) -> Result<Self, JobError> {
+        check_playback_range(job)?;
+        let curve = build_dyn(&job.path, job.number.curve_number()).map_err(curve_error)?;
+        let limits = planning_limits::<D>(job)?;
+        Ok(Prepared { curve, limits })
+    }
+
+    /// Plans the time law and compiles the path in the playback format `N`.
+    ///
+    /// # Errors
+    /// A [`JobError`] naming the field for a job that cannot be planned or compiled.
+    pub fn compile<N: Number>(&self, job: &Job) -> Result<Compiled<'_, N, D>, JobError> {
+        let started = Instant::now();
+        let timing = plan_timing(job, &self.curve, &self.limits)?;
+        let plan_time = started.elapsed();
+        let path: Box<Path<N, D, PIECES>> = Box::new(
+            compile(&self.curve, &*timing, job.rate_hz, &compile_options(job))
+                .map_err(|e| compile_error(job, e, timing.duration()))?,
+        );
+        Ok(Compiled {
+            timing,
+            path,
+            plan_time,
+            compile_time: started.elapsed() - plan_time,
+        })
+    }
+}
+
+/// Whether the job's time law is planned under its limits.
+pub fn is_planned(job: &Job) -> bool {
+    ProfileKind::is_planned(job.profile.kind())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const JOB: &str = r#"
+rate_hz = 1000
+number = "fixed"
+[path]
+kind = "bezier"
+points = [[0, 0], [10, 0], [10, 10]]
+[limits]
+velocity = 100
+acceleration = 1000
+jerk = 10000
+[profile]
+kind = "s-curve"
+"#;
+
+    #[test]
+    fn a_point_outside_q40_is_named() {
+        let job = Job::parse(&JOB.replace("[10, 0]", "[10, 4194305]")).unwrap();
+        let e = check_playback_range(&job).unwrap_err();
+        assert_eq!(e.field, "path.points[1][1]");
+        assert!(
+            e.message.contains("4194305") && e.message.contains("4194304"),
+            "{e}"
+        );
+        let inside = Job::parse(&JOB.replace("[10, 0]", "[10, 4194304]")).unwrap();
+        assert!(check_playback_range(&inside).is_ok());
+        let f64_job = Job::parse(
+            &JOB.replace("[10, 0]", "[10, 4194305]")
+                .replace("\"fixed\"", "\"f64\""),
+        )
+        .unwrap();
+        assert!(check_playback_range(&f64_job).is_ok());
+    }
+
+    #[test]
+    fn planning_limits_keep_the_reserves() {
+        let job = Job::parse(&JOB.replace(
+            "jerk = 10000",
+            "jerk = 10000\naxis_acceleration = [800, inf]",
+        ))
+        .unwrap();
+        let l = planning_limits::<2>(&job).unwrap();
+        assert_eq!(l.acceleration(), 750.0);
+        assert_eq!(l.velocity(), 100.0 * (1.0 - VELOCITY_RESERVE));
+        assert_eq!(l.axis_acceleration(), [600.0, f64::INFINITY]);
+        assert_eq!(compile_options(&job).limits(), Some((800.0, 10000.0)));
+    }
+}

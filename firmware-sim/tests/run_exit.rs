@@ -1,0 +1,210 @@
+//! The exit code of `strak-sim run`: 3, with one error line naming each quantity, when a time
+//! law planned under the limits (trapezoid, S-curve) exceeds a limit it plans for or the
+//! accuracy bound in its samples; 0 when everything holds, and 0 for the laws not planned
+//! under the limits (parameter, constant speed), whose summary reports the excess.
+
+use std::path::Path as FsPath;
+use std::process::{Command, Output};
+
+/// A 2-axis quarter turn that holds its limits.
+const GOOD: &str = r#"rate_hz = 1000
+number = "f64"
+
+[path]
+kind = "bezier"
+points = [[0, 0], [10, 0], [10, 10]]
+
+[limits]
+velocity = 100
+acceleration = 1000
+jerk = 10000
+
+[profile]
+kind = "s-curve"
+"#;
+
+/// A straight line (73.65 units) at 1 kHz in f64 with an S-curve whose jerk phases last a few
+/// ticks: the compiled spline overshoots the planned velocity, |v| 21.72 against 21.23.
+const SHORT_JERK_PHASES: &str = r#"rate_hz = 1000
+number = "f64"
+
+[path]
+kind = "bspline"
+degree = 1
+points = [[0, 0, 0], [60, 40, 15]]
+
+[limits]
+velocity = 21.23
+acceleration = 823
+jerk = 193600
+
+[profile]
+kind = "s-curve"
+"#;
+
+struct Run {
+    output: Output,
+    stdout: String,
+    stderr: String,
+    summary: serde_json::Value,
+}
+
+fn run(name: &str, text: &str, dir: &FsPath) -> Run {
+    let job = dir.join(format!("{name}.toml"));
+    std::fs::write(&job, text).unwrap();
+    let out = dir.join(name);
+    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
+        .arg("run")
+        .arg(&job)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let summary = std::fs::read_to_string(out.join("summary.json"))
+        .map(|t| serde_json::from_str(&t).unwrap())
+        .unwrap_or(serde_json::Value::Null);
+    Run {
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+        output,
+        summary,
+    }
+}
+
+/// The exit code agrees with `summary.json`: 3 and one line per violation when it lists
+/// violations, 0 otherwise.
+fn agrees(r: &Run) {
+    let violations: Vec<&str> = r.summary["violations"]
+        .as_array()
+        .expect("summary.json has violations")
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    if violations.is_empty() {
+        assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
+        assert!(!r.stderr.contains("limit exceeded"), "{}", r.stderr);
+    } else {
+        assert_eq!(r.output.status.code(), Some(3), "{}", r.stderr);
+        let lines: Vec<&str> = r.stderr.lines().collect();
+        assert_eq!(lines.len(), violations.len(), "{}", r.stderr);
+        for (line, v) in lines.iter().zip(&violations) {
+            assert!(
+                line.starts_with("strak-sim: error: ") && line.ends_with(v),
+                "{line}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_planned_job_that_holds_exits_0() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = run("good", GOOD, dir.path());
+    assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
+    assert!(
+        r.stdout.contains("limits     all respected"),
+        "{}",
+        r.stdout
+    );
+    assert_eq!(r.summary["check"]["enforced"], true);
+    assert_eq!(r.summary["accuracy"]["distance"]["within"], true);
+    agrees(&r);
+}
+
+#[test]
+fn a_planned_overshoot_exits_3_naming_the_quantity() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = run("line", SHORT_JERK_PHASES, dir.path());
+    assert_eq!(
+        r.output.status.code(),
+        Some(3),
+        "{}\n{}",
+        r.stderr,
+        r.stdout
+    );
+    assert!(
+        r.stderr
+            .lines()
+            .any(|l| l.contains("line.toml: limit exceeded: velocity |v| = ")),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(r.summary["path"]["velocity"]["within"], false);
+    assert_eq!(r.summary["path"]["velocity"]["enforced"], true);
+    assert!(r.stdout.contains("EXCEEDED"), "{}", r.stdout);
+    // The output is written all the same, for a look at what went wrong.
+    assert!(dir.path().join("line/samples.csv").exists());
+    agrees(&r);
+}
+
+#[test]
+fn an_unplanned_law_reports_without_failing() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, profile) in [
+        ("speed", "kind = \"constant-speed\"\nspeed = 250"),
+        ("parameter", "kind = \"parameter\"\nduration = 0.05"),
+    ] {
+        let r = run(
+            name,
+            &GOOD.replace("kind = \"s-curve\"", profile),
+            dir.path(),
+        );
+        assert_eq!(r.output.status.code(), Some(0), "{name}: {}", r.stderr);
+        assert_eq!(r.summary["check"]["enforced"], false, "{name}");
+        assert_eq!(r.summary["path"]["velocity"]["within"], false, "{name}");
+        assert!(
+            r.stdout.contains("exceeded (not enforced)"),
+            "{name}: {}",
+            r.stdout
+        );
+        agrees(&r);
+    }
+}
+
+#[test]
+fn a_trapezoid_is_not_failed_for_its_jerk() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = run(
+        "trapezoid",
+        &GOOD.replace("kind = \"s-curve\"", "kind = \"trapezoid\""),
+        dir.path(),
+    );
+    assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
+    let jerk = &r.summary["path"]["jerk"];
+    assert_eq!(
+        (&jerk["within"], &jerk["enforced"]),
+        (&false.into(), &false.into())
+    );
+    assert_eq!(r.summary["path"]["acceleration"]["enforced"], true);
+    assert_eq!(r.summary["path"]["acceleration"]["within"], true);
+    agrees(&r);
+}
+
+/// Every bundled job, and each in the other number formats: the exit code agrees with the
+/// summary (the bundled jobs as they are must pass).
+#[test]
+fn bundled_jobs_in_every_format() {
+    let jobs = FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs");
+    let dir = tempfile::tempdir().unwrap();
+    let mut failed = Vec::new();
+    for entry in std::fs::read_dir(jobs).unwrap() {
+        let file = entry.unwrap().path();
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let text = std::fs::read_to_string(&file).unwrap();
+        let own = run(&name, &text, dir.path());
+        assert_eq!(own.output.status.code(), Some(0), "{name}: {}", own.stderr);
+        for number in ["f64", "f32", "fixed"] {
+            let line = text.lines().find(|l| l.starts_with("number = ")).unwrap();
+            let r = run(
+                &format!("{name}-{number}"),
+                &text.replace(line, &format!("number = \"{number}\"")),
+                dir.path(),
+            );
+            agrees(&r);
+            if r.output.status.code() != Some(0) {
+                failed.push(format!("{name} in {number}: {}", r.stderr.trim_end()));
+            }
+        }
+    }
+    println!("bundled jobs that exceed in another format: {failed:#?}");
+}
