@@ -156,10 +156,16 @@ mod tests {
             .and_then(|l| l.with_axis_acceleration([80.0, f64::INFINITY]))
             .unwrap();
         let r = l.without_reserve(0.25);
-        assert_eq!((r.velocity(), r.acceleration(), r.jerk()), (10.0, 75.0, 750.0));
+        assert_eq!(
+            (r.velocity(), r.acceleration(), r.jerk()),
+            (10.0, 75.0, 750.0)
+        );
         assert_eq!(r.axis_velocity(), [5.0, f64::INFINITY]);
         assert_eq!(r.axis_acceleration(), [60.0, f64::INFINITY]);
         assert_eq!(l.ramp_acceleration(), 80.0);
-        assert_eq!(Limits::<2>::new(1.0, 3.0, 1.0).unwrap().ramp_acceleration(), 3.0);
+        assert_eq!(
+            Limits::<2>::new(1.0, 3.0, 1.0).unwrap().ramp_acceleration(),
+            3.0
+        );
     }
 }

@@ -155,7 +155,11 @@ mod tests {
     /// A polyline (0,0) → (50,0) → 50 more at the turn `deg`.
     fn polyline(deg: f64) -> BSpline<[f64; 2], 4, 8> {
         let th = deg.to_radians();
-        let pts = [[0.0, 0.0], [50.0, 0.0], [50.0 + 50.0 * th.cos(), 50.0 * th.sin()]];
+        let pts = [
+            [0.0, 0.0],
+            [50.0, 0.0],
+            [50.0 + 50.0 * th.cos(), 50.0 * th.sin()],
+        ];
         BSpline::clamped_uniform(1, &pts, 0.0, 1.0).unwrap()
     }
 

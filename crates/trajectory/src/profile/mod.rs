@@ -36,6 +36,6 @@ fn greater(a: f64, b: f64) -> bool {
 }
 
 pub use motion::{MotionProfile, MotionState, Phase, ProfileZone};
+pub use options::{PlanOptions, ProfileShape};
 pub use parameter::ParameterTiming;
 pub use path_timing::PathTiming;
-pub use options::{PlanOptions, ProfileShape};

@@ -49,8 +49,9 @@ pub enum ProfileShape {
 ///    zone's speed limit leave of `a_max`, `a_i` and `j_max`, so that the acceleration and
 ///    jerk **in space** stay within the limits (the formulas are in the source of
 ///    `profile/speed_limit.rs`). The jerk limit is at most `a_z·f/16` (`f` the control
-///    rate): a jerk phase to the zone's acceleration lasts at least 16 ticks, so that the
-///    compiled spline, whose pieces start on ticks, can follow it.
+///    rate, 16 = [`MIN_JERK_TICKS`](Self::MIN_JERK_TICKS)): a jerk phase to the zone's
+///    acceleration lasts at least 16 ticks, so that the compiled spline, whose pieces start
+///    on ticks, can follow it.
 /// 3. **Corners, joins and cusps.** Where the tangent turns at a join of pieces by an angle
 ///    `θ` (a C⁰ corner of a Bézier chain, a polyline or a Hermite spline, a B-spline knot of
 ///    full multiplicity), a motion at speed `v` has a velocity step `v·|ΔT| = 2v·sin(θ/2)`
@@ -64,8 +65,9 @@ pub enum ProfileShape {
 ///    parametric speed `|c'(u)|` falls to 0 and the direction flips, as in a path that
 ///    doubles back on itself), is located between two samples whose tangents are more than
 ///    90° apart, by bisection on the direction; the motion comes to rest there. (A turn of
-///    more than 90° between two samples that is no cusp, a loop too tight for the sampling,
-///    is treated the same way.)
+///    more than 90° between two samples that is no cusp — a loop too tight for the sampling,
+///    or a join turning by more than 90° whatever the corner angle — is treated the same
+///    way.)
 /// 4. **Boundary speeds.** A forward pass sets each zone's exit speed to the fastest
 ///    reachable from its entry speed within its length (the exact minimum distance of a
 ///    jerk-limited speed change with zero acceleration at both ends), capped by the limits
@@ -120,6 +122,9 @@ impl PlanOptions {
     /// The default share of the acceleration and jerk limits reserved for feed changes (the
     /// same as [`CompileOptions::DEFAULT_FEED_SHARE`](crate::CompileOptions::DEFAULT_FEED_SHARE)).
     pub const DEFAULT_FEED_SHARE: f64 = 0.25;
+    /// The shortest jerk phase to a zone's acceleration limit, in ticks of the plan's rate:
+    /// a zone's jerk limit is at most `a_z·f / MIN_JERK_TICKS`.
+    pub const MIN_JERK_TICKS: f64 = 16.0;
 
     /// The defaults: S-curve, 1024 sampling intervals, zone tolerance 0.05 (5 %),
     /// centripetal share 0.5, corner angle 10⁻⁴ rad, feed share ¼, 1 kHz.

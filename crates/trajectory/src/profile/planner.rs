@@ -78,7 +78,7 @@ mod tests {
     use crate::profile::scurve::change_distance;
     use crate::profile::testcurves::{LineArcLine, textbook_scurve_duration};
     use crate::{PathTiming, Timing};
-    use strak_curves::{Bezier, Nurbs, Point, Scalar};
+    use strak_curves::{Bezier, Nurbs, ParamCurve, Point, Scalar};
 
     /// The machine limits whose planned part (less the default feed reserve) is `planned`.
     fn full<const A: usize>(planned: &Limits<A>) -> Limits<A> {
@@ -565,5 +565,139 @@ mod tests {
         };
         assert_eq!(bits(&a), bits(&b));
         assert_eq!(a.param(1.234).0.to_bits(), b.param(1.234).0.to_bits());
+    }
+
+    /// A polyline (0,0) → (50,0) → 50 more at the turn `radians` (a degree-1 B-spline).
+    fn polyline(radians: f64) -> strak_curves::BSpline<[f64; 2], 4, 8> {
+        let pts = [
+            [0.0, 0.0],
+            [50.0, 0.0],
+            [50.0 + 50.0 * radians.cos(), 50.0 * radians.sin()],
+        ];
+        strak_curves::BSpline::clamped_uniform(1, &pts, 0.0, 1.0).unwrap()
+    }
+
+    #[test]
+    fn joins_slow_down_to_their_cap_whatever_the_corner_angle() {
+        let machine = Limits::<2>::new(200.0, 2000.0, 50_000.0).unwrap();
+        for angle in [1e-4, 1.0, core::f64::consts::PI] {
+            for rate in [1_000.0, 10_000.0] {
+                let o = PlanOptions::new().with_corner_angle(angle).with_rate(rate);
+                for turn in [1e-3, 0.1, 30.0_f64.to_radians(), 3.0] {
+                    let c = polyline(turn);
+                    let t = PathTiming::<_, 64, 16>::plan(&c, &machine, &o).unwrap();
+                    let zones = t.motion().zones();
+                    assert_eq!(zones.len(), 2, "{angle} {rate} {turn}");
+                    let join = zones[0];
+                    // the velocity step v·|ΔT| = 2v·sin(θ/2) within q·min(a T, j T²) of the
+                    // planned limits (¾ of the machine's)
+                    let period = 1.0 / rate;
+                    let step = 0.5 * (1500.0 * period).min(37_500.0 * period * period);
+                    let cap = if turn > angle || turn > core::f64::consts::FRAC_PI_2 {
+                        0.0
+                    } else {
+                        step / (2.0 * (0.5 * turn).sin())
+                    };
+                    // (a turn of more than 90° is also seen between two samples: a stop)
+                    let stops = turn > angle || turn > core::f64::consts::FRAC_PI_2;
+                    assert_eq!(join.stops_at_end(), stops, "{angle} {rate} {turn}");
+                    let rel = (join.exit_cap() - cap).abs() / cap.max(1e-300);
+                    assert!(join.exit_cap() == cap || rel < 1e-9, "{}", join.exit_cap());
+                    assert!(
+                        join.v_end() <= cap * (1.0 + 1e-12) && zones[1].v_start() == join.v_end(),
+                        "{angle} {rate} {turn}: {} {cap} {}",
+                        join.v_end(),
+                        zones[1].v_start()
+                    );
+                }
+            }
+        }
+        // a straight polyline: one zone at full speed
+        let straight = polyline(0.0);
+        let t = PathTiming::<_, 64, 16>::scurve(&straight, &machine).unwrap();
+        assert_eq!(t.motion().zones().len(), 1);
+    }
+
+    #[test]
+    fn cusp_inside_a_piece_stops_the_motion() {
+        // c(u) = (20u − 25u², 0): out to x = 4 at u = 0.4 (where c' = 0), back to x = −5
+        let c = Bezier::new([[0.0, 0.0], [10.0, 0.0], [-5.0, 0.0]]).unwrap();
+        let limits = Limits::<2>::new(200.0, 2000.0, 50_000.0).unwrap();
+        let t = PathTiming::<_, 128, 16>::scurve(&c, &limits).unwrap();
+        assert!((t.length() - 13.0).abs() < 1e-8);
+        let zones = t.motion().zones();
+        let stop = zones.iter().find(|z| z.stops_at_end()).expect("a stop");
+        assert_eq!(stop.v_end(), 0.0);
+        // the motion stands still at the turn: at rest at u = 0.4, x = 4
+        let at = stop.phases().last().map(|p| p.end()).unwrap();
+        let st = t.motion().state(at);
+        assert!(
+            (st.s - stop.end()).abs() < 1e-9 && st.v.abs() < 1e-9,
+            "{st:?}"
+        );
+        let (u, du) = t.param(at);
+        assert!((u - 0.4).abs() < 1e-12 && du.abs() < 1e-6, "{u} {du}");
+        assert!((c.eval(u)[0] - 4.0).abs() < 1e-12);
+        // (the table's arc length there is within its interpolation error of 4)
+        assert!((stop.end() - 4.0).abs() < 1e-3, "{}", stop.end());
+        // a cubic whose tangent reverses twice: two stops
+        let c = Bezier::new([[0.0, 0.0], [30.0, 0.0], [-10.0, 0.0], [20.0, 0.0]]).unwrap();
+        let t = PathTiming::<_, 128, 64>::scurve(&c, &limits).unwrap();
+        let stops = t
+            .motion()
+            .zones()
+            .iter()
+            .filter(|z| z.stops_at_end())
+            .count();
+        assert_eq!(stops, 2);
+        // an S-bend whose tangent turns without reversing does not stop
+        let c = Bezier::new([[0.0, 0.0], [30.0, 0.0], [-10.0, 10.0], [20.0, 10.0]]).unwrap();
+        let t = PathTiming::<_, 128, 256>::scurve(&c, &limits).unwrap();
+        assert!(t.motion().zones().iter().all(|z| !z.stops_at_end()));
+    }
+
+    #[test]
+    fn too_long_at_the_plans_rate() {
+        // 50 units at 10⁻³ units/s: 5·10⁴ s, 5·10⁷ ticks at 1 kHz, 5·10⁹ at 100 kHz
+        let c = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).unwrap();
+        let l = Limits::<2>::new(1e-3, 1.0, 1.0).unwrap();
+        let o = PlanOptions::new();
+        assert!(PathTiming::<_, 16, 4>::plan(&c, &l, &o).is_ok());
+        let fast = o.with_rate(100_000.0);
+        assert!(matches!(
+            PathTiming::<_, 16, 4>::plan(&c, &l, &fast),
+            Err(Error::TooLong)
+        ));
+        // a velocity limit so small that no rate could play it
+        let l = Limits::<2>::new(1.5e-304, 2000.0, 50_000.0).unwrap();
+        assert!(matches!(
+            PathTiming::<_, 16, 4>::scurve(&c, &l),
+            Err(Error::TooLong)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 16, 4>::plan(&c, &l, &o.with_rate(f64::NAN)),
+            Err(Error::InvalidRate)
+        ));
+    }
+
+    #[test]
+    fn jerk_phases_are_at_least_sixteen_ticks() {
+        let c = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).unwrap();
+        let l = Limits::<2>::new(200.0, 2000.0, 1e14).unwrap();
+        for rate in [100.0, 1_000.0, 100_000.0] {
+            let o = PlanOptions::new().with_rate(rate);
+            let t = PathTiming::<_, 16, 4>::plan(&c, &l, &o).unwrap();
+            let z = t.motion().zones()[0];
+            assert_eq!(z.a_limit(), 1500.0);
+            assert_eq!(z.j_limit(), 1500.0 * rate / 16.0);
+            // the first jerk phase raises a to a_z in 16 ticks (at 100 Hz the line is too
+            // short to reach a_z: a shorter triangle of lower acceleration)
+            let first = t.motion().phases().next().unwrap();
+            let ticks = first.duration * rate;
+            assert!(
+                (ticks - 16.0).abs() < 1e-9 || (rate == 100.0 && ticks < 16.0),
+                "{ticks}"
+            );
+        }
     }
 }

@@ -213,12 +213,9 @@ struct Open<const A: usize> {
     worst: Local<A>,
 }
 
-/// The shortest jerk phase to a zone's acceleration limit, in ticks.
-const MIN_JERK_TICKS: f64 = 16.0;
-
 /// The path acceleration and jerk limits of a zone with speed limit `worst.v` (see the
 /// module docs; `jerk = ∞` leaves the jerk unlimited), the jerk at most
-/// `a_z·rate/MIN_JERK_TICKS`.
+/// `a_z·rate/MIN_JERK_TICKS` ([`PlanOptions::MIN_JERK_TICKS`]).
 fn zone_limits<const A: usize>(
     worst: &Local<A>,
     limits: &Limits<A>,
@@ -252,7 +249,7 @@ fn zone_limits<const A: usize>(
     }
     ZoneLimits {
         acceleration: a,
-        jerk: (rest - turning * a).min(a * rate / MIN_JERK_TICKS),
+        jerk: (rest - turning * a).min(a * rate / PlanOptions::MIN_JERK_TICKS),
     }
 }
 
@@ -336,15 +333,16 @@ impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
         }
     }
 
-    /// A point at arc length `s` (in the current interval, whose limits are `worst`) that the
-    /// motion passes at most at `cap`: the open zone ends there when the cap binds.
-    fn cap_at(&mut self, s: f64, cap: f64, worst: Local<A>) {
+    /// A point at the arc length `s()` (in the current interval, whose limits are `worst`)
+    /// that the motion passes at most at `cap`: the open zone ends there when the cap binds.
+    fn cap_at(&mut self, s: impl FnOnce() -> f64, cap: f64, worst: Local<A>) {
         let Some(z) = self.open.as_ref() else {
             return;
         };
         if cap >= z.worst.v {
             return; // the zone's own limit is lower
         }
+        let s = s();
         if s - z.s_start > self.same {
             self.close(s, cap);
             self.open = Some(Open {
@@ -372,6 +370,29 @@ impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
         }
         Ok(self.out)
     }
+}
+
+/// Bisection steps of [`arc_at`] (it stops earlier when the bracket no longer shrinks).
+const ARC_STEPS: usize = 200;
+
+/// The arc length at which the table's inverse reaches the parameter `u`: the smallest `s`
+/// with `param_at(s) ≥ u`, by bisection (`param_at` is monotone). A motion that rests at this
+/// `s` rests at `u` itself, whatever the table's interpolation error between its samples
+/// (near a cusp, where `|c'|` has a kink, `length_at(u)` maps back to a parameter past it).
+fn arc_at<const N: usize>(table: &ArcLengthTable<f64, N>, u: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, table.length());
+    for _ in 0..ARC_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        if table.param_at(mid) >= u {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
 }
 
 /// The cusps in the two halves of a sampling interval: where the tangent of a sample points
@@ -464,14 +485,16 @@ where
             let cusp = cusps.iter_mut().find(|c| c.is_some());
             match (u_join, cusp) {
                 (Some(uj), Some(c)) if c.is_some_and(|uc| uc < uj) => {
-                    zones.cap_at(table.length_at(c.take().unwrap_or(uj)), 0.0, worst);
+                    let uc = c.take().unwrap_or(uj);
+                    zones.cap_at(|| arc_at(table, uc), 0.0, worst);
                 }
                 (Some(uj), _) => {
-                    zones.cap_at(table.length_at(uj), rule.cap(curve, join), worst);
+                    zones.cap_at(|| arc_at(table, uj), rule.cap(curve, join), worst);
                     join += 1;
                 }
                 (None, Some(c)) => {
-                    zones.cap_at(table.length_at(c.take().unwrap_or(u_next)), 0.0, worst);
+                    let uc = c.take().unwrap_or(u_next);
+                    zones.cap_at(|| arc_at(table, uc), 0.0, worst);
                 }
                 (None, None) => break,
             }
@@ -580,7 +603,8 @@ mod tests {
             .unwrap()
             .with_axis_acceleration([4.0])
             .unwrap();
-        let a = |w: &Local<1>, l: &Limits<1>, q| zone_limits(w, l, f64::INFINITY, q, RATE).acceleration;
+        let a =
+            |w: &Local<1>, l: &Limits<1>, q| zone_limits(w, l, f64::INFINITY, q, RATE).acceleration;
         // what the centripetal part (25·0.02 = 0.5) leaves: (4 − 0.5)/0.5 = 7
         assert_eq!(a(&w, &limits, 0.25), 7.0);
         // never below (1 − share)·a_i/|T_i| (only reached through rounding)
