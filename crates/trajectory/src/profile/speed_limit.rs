@@ -42,6 +42,10 @@
 //! `|x⃛| ≤ j_max`: the limits hold for the motion in space, not only along the path. The
 //! price is speed in curved stretches: at most `√q` of the centripetal limit `√(a_max/κ)`,
 //! and gentler speed changes where the path turns while the speed is high.
+//!
+//! The zone's jerk is further limited to `a_z·f/16` at the control rate `f`, so that a jerk
+//! phase to `a_z` lasts at least 16 ticks ([`PlanOptions::MIN_JERK_TICKS`]). Zones also end
+//! at the joins and cusps where the speed is capped (`profile/joins.rs`).
 
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
@@ -416,6 +420,48 @@ fn cusps_in<C: ParamCurveDeriv, const A: usize>(
     out
 }
 
+/// The joins of the curve's pieces, in order, and how they are passed.
+struct Joins<const A: usize> {
+    rule: JoinRule<A>,
+    /// The number of joins (pieces − 1).
+    count: usize,
+    /// The next join to mark.
+    next: usize,
+}
+
+/// Marks the points of the current sampling interval (limits `worst`) where the speed is
+/// capped, in order along the path: the joins before `u_end` (all that are left for
+/// `None`) and the interval's `cusps`.
+fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usize>(
+    zones: &mut ZoneBuilder<'_, A, Z>,
+    curve: &C,
+    table: &ArcLengthTable<f64, N>,
+    joins: &mut Joins<A>,
+    mut cusps: [Option<f64>; 2],
+    u_end: Option<f64>,
+    worst: Local<A>,
+) {
+    loop {
+        let u_join = (joins.next < joins.count)
+            .then(|| curve.piece_domain(joins.next).1.to_f64())
+            .filter(|u| u_end.is_none_or(|end| *u < end));
+        let cusp = cusps.iter().flatten().next().copied();
+        let join_first = match (u_join, cusp) {
+            (None, None) => break,
+            (Some(uj), Some(uc)) => uj <= uc,
+            (Some(_), None) => true,
+            (None, Some(_)) => false,
+        };
+        if let (true, Some(uj)) = (join_first, u_join) {
+            let cap = joins.rule.cap(curve, joins.next);
+            zones.cap_at(|| arc_at(table, uj), cap, worst);
+            joins.next += 1;
+        } else if let Some(uc) = cusps.iter_mut().find_map(Option::take) {
+            zones.cap_at(|| arc_at(table, uc), 0.0, worst);
+        }
+    }
+}
+
 /// Samples the speed limit on `options.samples()` intervals uniform in the parameter (each
 /// interval at its ends and midpoint, taking the worst), groups consecutive intervals into
 /// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
@@ -447,7 +493,11 @@ where
         m: options.samples(),
     };
     let sample = |k: usize| local(curve, grid.at(k), limits, jerk, share);
-    let rule = JoinRule::new(limits, jerk, options);
+    let mut joins = Joins {
+        rule: JoinRule::new(limits, jerk, options),
+        count: curve.piece_count().saturating_sub(1),
+        next: 0,
+    };
     let mut zones = ZoneBuilder::<A, Z> {
         limits,
         jerk,
@@ -459,8 +509,6 @@ where
         out: Vec::new(),
         required: 0,
     };
-    let joins = curve.piece_count().saturating_sub(1);
-    let mut join = 0;
     let mut prev = sample(0)?;
     let mut last = prev.as_ref().map(|l| (grid.at(0), l.direction));
     for k in 0..grid.m {
@@ -471,34 +519,13 @@ where
         }
         zones.interval(table.length_at(grid.at(2 * k)), worst);
         let u_next = grid.at(2 * k + 2);
-        let mut cusps = cusps_in(
+        let cusps = cusps_in(
             curve,
             &mut last,
             [(grid.at(2 * k + 1), mid.as_ref()), (u_next, next.as_ref())],
         );
-        // The joins in this interval and its cusps, in order along the path.
-        let last_interval = k + 1 == grid.m;
-        loop {
-            let u_join = (join < joins)
-                .then(|| curve.piece_domain(join).1.to_f64())
-                .filter(|u| last_interval || *u < u_next);
-            let cusp = cusps.iter_mut().find(|c| c.is_some());
-            match (u_join, cusp) {
-                (Some(uj), Some(c)) if c.is_some_and(|uc| uc < uj) => {
-                    let uc = c.take().unwrap_or(uj);
-                    zones.cap_at(|| arc_at(table, uc), 0.0, worst);
-                }
-                (Some(uj), _) => {
-                    zones.cap_at(|| arc_at(table, uj), rule.cap(curve, join), worst);
-                    join += 1;
-                }
-                (None, Some(c)) => {
-                    let uc = c.take().unwrap_or(u_next);
-                    zones.cap_at(|| arc_at(table, uc), 0.0, worst);
-                }
-                (None, None) => break,
-            }
-        }
+        let u_end = (k + 1 < grid.m).then_some(u_next);
+        mark_points(&mut zones, curve, table, &mut joins, cusps, u_end, worst);
         prev = next;
     }
     zones.finish(table.length())
