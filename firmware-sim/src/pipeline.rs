@@ -7,10 +7,10 @@
 //! 2. **Time law** (`[profile]`), planned in `f64` from that curve: `parameter`
 //!    ([`ParameterTiming::over`]), `constant-speed` ([`PathTiming::constant_speed`]),
 //!    `trapezoid` and `s-curve` ([`PathTiming::plan`] with [`ProfileShape::Trapezoid`] /
-//!    [`ProfileShape::SCurve`]: curvature and per-axis limits included). Trapezoid and
-//!    S-curve are planned with the job's acceleration and jerk limits (path and per axis)
-//!    **reduced by the feed share** `s` (`[compile] feed_share`, default ¼): `(1 − s)·a`,
-//!    `(1 − s)·j`, `(1 − s)·aᵢ`; the velocity limits (path and per axis) are reduced by
+//!    [`ProfileShape::SCurve`]: curvature and per-axis limits included), at the job's rate
+//!    and with the **feed share** `s` (`[compile] feed_share`, default ¼) reserved by the
+//!    planner ([`PlanOptions::with_feed_share`]: it plans with `(1 − s)·a`, `(1 − s)·j`,
+//!    `(1 − s)·aᵢ`); the velocity limits (path and per axis) are reduced by
 //!    [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler is given
 //!    `min(a, aᵢ)` and `j` as the limits of feed changes, so a feed ramp adds at most
 //!    `s·min(a, aᵢ)` (or what the plan left free) to the acceleration.
@@ -55,21 +55,21 @@ pub fn axis_array<const D: usize>(v: Option<&[f64]>) -> [f64; D] {
     out
 }
 
-/// The limits the time law is planned with: the job's, with acceleration and jerk (path and
-/// per axis) scaled by `1 − feed_share` and velocities by `1 − VELOCITY_RESERVE`.
+/// The limits the time law is planned with: the job's, with velocities scaled by
+/// `1 − VELOCITY_RESERVE` (the planner itself reserves the feed share of the acceleration and
+/// jerk: [`plan_options`]).
 ///
 /// # Errors
 /// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
 pub fn planning_limits<const D: usize>(job: &Job) -> Result<Limits<D>, JobError> {
     let l = &job.limits;
-    let keep = 1.0 - job.feed_share();
     let bad = |field: &'static str| move |e: TrajError| JobError::new(field, e.to_string());
     let v_keep = 1.0 - VELOCITY_RESERVE;
-    Limits::<D>::new(l.velocity * v_keep, l.acceleration * keep, l.jerk * keep)
+    Limits::<D>::new(l.velocity * v_keep, l.acceleration, l.jerk)
         .map_err(bad("limits"))?
         .with_axis_velocity(axis_array::<D>(l.axis_velocity.as_deref()).map(|v| v * v_keep))
         .map_err(bad("limits.axis_velocity"))?
-        .with_axis_acceleration(axis_array::<D>(l.axis_acceleration.as_deref()).map(|a| a * keep))
+        .with_axis_acceleration(axis_array::<D>(l.axis_acceleration.as_deref()))
         .map_err(bad("limits.axis_acceleration"))
 }
 
@@ -93,12 +93,16 @@ pub fn compile_options(job: &Job) -> CompileOptions {
     o
 }
 
-/// The planner settings of a trapezoid or S-curve profile (the defaults for the others).
+/// The planner settings of a trapezoid or S-curve profile: the job's rate and feed share,
+/// and `[profile]` (the defaults for the others).
 pub fn plan_options(job: &Job) -> PlanOptions {
-    let mut o = PlanOptions::new().with_shape(match job.profile {
-        Profile::Trapezoid(_) => ProfileShape::Trapezoid,
-        _ => ProfileShape::SCurve,
-    });
+    let mut o = PlanOptions::new()
+        .with_shape(match job.profile {
+            Profile::Trapezoid(_) => ProfileShape::Trapezoid,
+            _ => ProfileShape::SCurve,
+        })
+        .with_rate(job.rate_hz)
+        .with_feed_share(job.feed_share());
     let Some(p) = job.profile.planner() else {
         return o;
     };
@@ -157,7 +161,7 @@ fn plan_error(job: &Job, e: TrajError) -> JobError {
             "path",
             "the path has zero length (its points coincide): there is nothing to play",
         ),
-        TrajError::CapacityExceeded { capacity, required } => JobError::new(
+        TrajError::ZoneCapacityExceeded { capacity, required } => JobError::new(
             "profile.zone_tolerance",
             format!(
                 "the speed limit along the path needs {required} zones, the simulator plans \
@@ -408,9 +412,12 @@ kind = "s-curve"
         ))
         .unwrap();
         let l = planning_limits::<2>(&job).unwrap();
-        assert_eq!(l.acceleration(), 750.0);
+        // the planner reserves the feed share itself
+        assert_eq!(l.acceleration(), 1000.0);
         assert_eq!(l.velocity(), 100.0 * (1.0 - VELOCITY_RESERVE));
-        assert_eq!(l.axis_acceleration(), [600.0, f64::INFINITY]);
+        assert_eq!(l.axis_acceleration(), [800.0, f64::INFINITY]);
+        let plan = plan_options(&job);
+        assert_eq!((plan.feed_share(), plan.rate()), (0.25, job.rate_hz));
         assert_eq!(compile_options(&job).limits(), Some((800.0, 10000.0)));
     }
 }

@@ -124,14 +124,14 @@ fn invalid_limit_motion_profiles() {
             Err(Error::InvalidLimit)
         );
     }
-    // limits so small that the duration is infinite
+    // limits so small that the duration is infinite: more ticks than a u32 counts
     assert_eq!(
         MotionProfile::<1>::constant_speed(1e300, 1e-300),
-        Err(Error::InvalidLimit)
+        Err(Error::TooLong)
     );
     assert_eq!(
         MotionProfile::<1>::scurve(1e300, 1e-300, 1.0, 1.0),
-        Err(Error::InvalidLimit)
+        Err(Error::TooLong)
     );
 }
 
@@ -384,21 +384,21 @@ fn capacity_exceeded_zones() {
         .expect("limits");
     let r = PathTiming::<_, 64, 2>::scurve(&circle, &l);
     assert!(
-        matches!(r, Err(Error::CapacityExceeded { capacity: 2, required }) if required > 2),
+        matches!(r, Err(Error::ZoneCapacityExceeded { capacity: 2, required }) if required > 2),
         "{:?}",
         r.err()
     );
     assert!(PathTiming::<_, 64, 256>::scurve(&circle, &l).is_ok());
     assert_eq!(
         MotionProfile::<0>::scurve(1.0, 1.0, 1.0, 1.0),
-        Err(Error::CapacityExceeded {
+        Err(Error::ZoneCapacityExceeded {
             capacity: 0,
             required: 1
         })
     );
     assert!(matches!(
         PathTiming::<_, 16, 0>::constant_speed(&line2(), 1.0),
-        Err(Error::CapacityExceeded {
+        Err(Error::ZoneCapacityExceeded {
             capacity: 0,
             required: 1
         })

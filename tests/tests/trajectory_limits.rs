@@ -7,7 +7,8 @@
 //!
 //! # Method
 //!
-//! Each motion is planned with the **reduced** limits `L' = (1 − share)·L` for the path
+//! Each motion is planned (by [`PathTiming::plan`], which keeps the feed share free) with the
+//! **reduced** limits `L' = (1 − share)·L` for the path
 //! acceleration, the jerk and the per-axis accelerations (`share` =
 //! [`CompileOptions::DEFAULT_FEED_SHARE`] = ¼, the part the compiled path reserves for feed
 //! changes; velocities are not reduced, a feed factor `≤ 1` only slows down), compiled with the
@@ -509,7 +510,8 @@ where
     }
 }
 
-/// The S-curve plan under the machine's planned limits.
+/// The S-curve plan for the machine: [`PathTiming::plan`] at the test's rate plans with the
+/// reduced limits `m.planned` (its default feed share is [`SHARE`]).
 fn scurve_plan<'a, C, const A: usize>(
     curve: &'a C,
     m: &Machine<A>,
@@ -517,7 +519,7 @@ fn scurve_plan<'a, C, const A: usize>(
 where
     C: ParamCurveDeriv<Point = [f64; A]>,
 {
-    PathTiming::scurve(curve, &m.planned).expect("s-curve plan")
+    PathTiming::plan(curve, &m.full, &PlanOptions::new().with_rate(RATE)).expect("s-curve plan")
 }
 
 /// Plans `law` on `curve`, compiles, plays and measures.
@@ -529,8 +531,10 @@ where
     match law {
         Law::SCurve => compile_and_measure(curve, &scurve_plan(curve, m), m, tol),
         Law::Trapezoid => {
-            let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
-            let tr = PathTiming::<_, TABLE, ZONES>::plan(curve, lim, &options).expect("plan");
+            let options = PlanOptions::new()
+                .with_shape(ProfileShape::Trapezoid)
+                .with_rate(RATE);
+            let tr = PathTiming::<_, TABLE, ZONES>::plan(curve, &m.full, &options).expect("plan");
             compile_and_measure(curve, &tr, m, tol)
         }
         Law::ConstantSpeed => {
@@ -719,7 +723,9 @@ fn tangential_deviation<const N: usize>() -> f64 {
     big_stack(|| {
         let m = circle_machine();
         let curve = circle();
-        let plan = PathTiming::<_, N, ZONES>::scurve(&curve, &m.planned).expect("plan");
+        let plan =
+            PathTiming::<_, N, ZONES>::plan(&curve, &m.full, &PlanOptions::new().with_rate(RATE))
+                .expect("plan");
         let options = CompileOptions::new()
             .with_relative_tolerance(1e-6)
             .with_path_limits(&m.full);

@@ -325,12 +325,14 @@ fn jobs_source(jobs: &[HostJob]) -> String {
         compile += &format!(".with_feed_share({})", f64_src(c.feed_share()));
         let p = &r.plan;
         let plan = format!(
-            "strak_trajectory::PlanOptions::new().with_shape(strak_trajectory::ProfileShape::{:?}).with_samples({}).with_zone_tolerance({}).with_centripetal_share({}).with_corner_angle({})",
+            "strak_trajectory::PlanOptions::new().with_shape(strak_trajectory::ProfileShape::{:?}).with_samples({}).with_zone_tolerance({}).with_centripetal_share({}).with_corner_angle({}).with_feed_share({}).with_rate({})",
             p.shape(),
             p.samples(),
             f64_src(p.zone_tolerance()),
             f64_src(p.centripetal_share()),
             f64_src(p.corner_angle()),
+            f64_src(p.feed_share()),
+            f64_src(p.rate()),
         );
         s += &format!(
             "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        plan: {plan},\n        compile: {compile},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",

@@ -32,11 +32,20 @@ pub enum Error {
         /// Axes the path was asked for.
         path: usize,
     },
-    /// More pieces (or planning zones) than the fixed storage holds.
+    /// More pieces than the fixed storage holds.
     CapacityExceeded {
         /// The capacity.
         capacity: usize,
         /// What would have been needed (a lower bound when compilation stopped early).
+        required: usize,
+    },
+    /// The speed limit along the path needs more planning zones than the plan holds (the `Z`
+    /// of [`PathTiming`](crate::PathTiming)`<_, N, Z>` and
+    /// [`MotionProfile`](crate::MotionProfile)`<Z>`; the table size `N` is not concerned).
+    ZoneCapacityExceeded {
+        /// The zones the plan holds (`Z`).
+        capacity: usize,
+        /// The zones the speed limit needs.
         required: usize,
     },
     /// A value does not fit the number format of the path (fixed-point range), with the
@@ -118,6 +127,11 @@ impl fmt::Display for Error {
             Error::CapacityExceeded { capacity, required } => write!(
                 f,
                 "capacity exceeded: {required} pieces needed, storage for {capacity}"
+            ),
+            Error::ZoneCapacityExceeded { capacity, required } => write!(
+                f,
+                "the speed limit along the path needs {required} planning zones, the plan holds \
+                 {capacity} (raise Z of PathTiming<_, N, Z> or the zone tolerance)"
             ),
             Error::OutOfRange => f.write_str("a value does not fit the path's number format"),
             Error::TooLong => f.write_str("the path takes more ticks than fit a u32"),

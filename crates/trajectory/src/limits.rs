@@ -101,6 +101,28 @@ impl<const A: usize> Limits<A> {
     pub fn axis_acceleration(&self) -> [f64; A] {
         self.axis_acceleration
     }
+
+    /// What is left for the planned motion when `share` (in `(0, 1)`) of the acceleration
+    /// and jerk limits (path and per axis) is reserved for feed changes: those limits times
+    /// `1 − share`; the velocity limits are kept (a feed factor `≤ 1` only slows down).
+    pub(crate) fn without_reserve(&self, share: f64) -> Self {
+        let keep = 1.0 - share;
+        Limits {
+            velocity: self.velocity,
+            acceleration: self.acceleration * keep,
+            jerk: self.jerk * keep,
+            axis_velocity: self.axis_velocity,
+            axis_acceleration: self.axis_acceleration.map(|a| a * keep),
+        }
+    }
+
+    /// The acceleration limit of a feed ramp: the smallest of the path and the per-axis
+    /// limits (a ramp changes the speed along the tangent, `|ẍᵢ| ≤ |ẍ|`).
+    pub(crate) fn ramp_acceleration(&self) -> f64 {
+        self.axis_acceleration
+            .iter()
+            .fold(self.acceleration, |m, a| m.min(*a))
+    }
 }
 
 #[cfg(test)]
@@ -125,5 +147,25 @@ mod tests {
             Err(Error::InvalidLimit)
         );
         assert!(l.with_axis_velocity([1.0, f64::INFINITY]).is_ok());
+    }
+
+    #[test]
+    fn reserve_scales_accelerations_and_jerk() {
+        let l = Limits::<2>::new(10.0, 100.0, 1000.0)
+            .and_then(|l| l.with_axis_velocity([5.0, f64::INFINITY]))
+            .and_then(|l| l.with_axis_acceleration([80.0, f64::INFINITY]))
+            .unwrap();
+        let r = l.without_reserve(0.25);
+        assert_eq!(
+            (r.velocity(), r.acceleration(), r.jerk()),
+            (10.0, 75.0, 750.0)
+        );
+        assert_eq!(r.axis_velocity(), [5.0, f64::INFINITY]);
+        assert_eq!(r.axis_acceleration(), [60.0, f64::INFINITY]);
+        assert_eq!(l.ramp_acceleration(), 80.0);
+        assert_eq!(
+            Limits::<2>::new(1.0, 3.0, 1.0).unwrap().ramp_acceleration(),
+            3.0
+        );
     }
 }

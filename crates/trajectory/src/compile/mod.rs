@@ -719,7 +719,8 @@ mod tests {
         } else {
             compile(&line, &NoBreaks(&plan), rate, &o).unwrap()
         };
-        path.peak_jerk() / limits.jerk()
+        // the plan keeps the feed reserve: it uses 1 − share of the jerk limit
+        path.peak_jerk() / ((1.0 - crate::PlanOptions::DEFAULT_FEED_SHARE) * limits.jerk())
     }
 
     #[test]

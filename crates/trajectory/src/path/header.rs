@@ -122,20 +122,30 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
 
 /// The feed-ramp constants (per tick) from the path's kinematic description.
 ///
-/// The feed factor `φ` may change by at most `ω_max = a_ramp / (v_peak · f)` per tick, and
-/// `ω` by at most `α = j_ramp / (v_peak · f²)` per tick, with the acceleration and jerk
-/// available to the ramp `a_ramp = max(a_max − a_peak, share · a_max)`,
-/// `j_ramp = max(j_max − j_peak, share · j_max)`. `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in
-/// every format), `ω_max ≤ min(½, √α)` (a ramp of `φ` over at most 1 cannot reach a larger
-/// `ω` anyway).
+/// Played with the feed factor `φ(t)` (`θ̇ = φ`, `x = p(θ)`), the motion is, by the chain
+/// rule, `ẋ = φ·p′`, `ẍ = φ²·p″ + φ̇·p′`, `x⃛ = φ³·p‴ + 3·φ·φ̇·p″ + φ̈·p′`: a ramp with
+/// `|φ̇| ≤ φ̇_max` and `|φ̈| ≤ φ̈_max` adds at most `φ̇_max·v_peak` to the acceleration and
+/// `3·φ̇_max·a_peak + φ̈_max·v_peak` to the jerk. With what the path leaves of the limits,
+/// `a_ramp = max(a_max − a_peak, share · a_max)` and
+/// `R = j_ramp = max(j_max − j_peak, share · j_max)`, the ramp takes
+/// `A = φ̇_max·v_peak = min(a_ramp, √v·R/(√R + c·√v))` and `φ̈_max·v_peak = R − c·A`
+/// (`v = v_peak`, `c = 3·a_peak/v_peak`): the split of `R` between the two jerk terms for
+/// which a ramp of `φ` from 1 to 0, about `1/φ̇_max + φ̇_max/φ̈_max` seconds, is fastest
+/// (without the cross term, `c = 0`, `A ≤ √(v·R)`, the rate a jerk-limited ramp over 1
+/// reaches anyway). Per tick: `ω_max = A/(v_peak·f)`, `α = (R − c·A)/(v_peak·f²)`,
+/// `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in every format), `ω_max ≤ min(½, √α)`.
 pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     let a_ramp = (meta.acceleration_limit - meta.peak_acceleration)
         .max(meta.feed_share * meta.acceleration_limit);
     let j_ramp = (meta.jerk_limit - meta.peak_jerk).max(meta.feed_share * meta.jerk_limit);
     let (omega, alpha) = if meta.peak_velocity > 0.0 {
+        let v = meta.peak_velocity;
+        let c = 3.0 * meta.peak_acceleration / v;
+        let (sv, sr) = (libm::sqrt(v), libm::sqrt(j_ramp));
+        let a = a_ramp.min(sv * j_ramp / (sr + c * sv));
         (
-            a_ramp / (meta.peak_velocity * meta.rate),
-            j_ramp / (meta.peak_velocity * meta.rate * meta.rate),
+            a / (v * meta.rate),
+            (j_ramp - c * a) / (v * meta.rate * meta.rate),
         )
     } else {
         (0.5, 0.25)
@@ -583,14 +593,32 @@ mod tests {
             feed_share: 0.25,
         };
         let (omega, alpha) = feed_ramp_f64(&meta);
-        // a_ramp = max(400, 250) = 400 → ω = 400 / (100 · 1000)
-        assert!((omega - 4e-3).abs() < 1e-15);
-        // j_ramp = max(9000, 2500) → α = 9000 / (100 · 10⁶)
+        let (f, v) = (meta.rate, meta.peak_velocity);
+        // a_ramp = max(400, 250) = 400, R = j_ramp = max(9000, 2500) = 9000, c = 3·600/100:
+        // the split √v·R/(√R + c·√v) = 327.4 < a_ramp
+        let (r, c) = (9000.0, 18.0);
+        let split = 10.0 * r / (r.sqrt() + c * 10.0);
+        assert!(split < 400.0);
+        assert!((omega * v * f - split).abs() < 1e-9);
+        // the jerk terms 3·φ̇·a_peak + φ̈·v_peak use exactly R
+        let jerk = 3.0 * omega * f * meta.peak_acceleration + alpha * f * f * v;
+        assert!((jerk - r).abs() < 1e-9, "{jerk}");
+        // and the split is the fastest ramp over 1: 1/φ̇ + φ̇/φ̈ is least there
+        let time = |a: f64| v / a + a / (r - c * a);
+        assert!(time(split) < time(split * 1.01) && time(split) < time(split * 0.99));
+        // without acceleration at the peak (c = 0): ω = min(a_ramp/(v f), √α), α = R/(v f²)
+        let flat = PathMeta {
+            peak_acceleration: 0.0,
+            ..meta
+        };
+        let (omega, alpha) = feed_ramp_f64(&flat);
         assert!((alpha - 9e-5).abs() < 1e-18);
-        // ω is capped by √α when the jerk is the tighter limit
+        assert!((omega - 9e-5_f64.sqrt()).abs() < 1e-15);
+        // a small jerk budget: ω is capped by √α
         let tight = PathMeta {
             jerk_limit: 1.0,
             peak_jerk: 0.0,
+            peak_acceleration: 0.0,
             ..meta
         };
         let (omega, alpha) = feed_ramp_f64(&tight);

@@ -13,8 +13,9 @@ impl<const Z: usize> MotionProfile<Z> {
     ///
     /// # Errors
     /// [`Error::EmptyPath`] unless `length` is finite and positive; [`Error::InvalidLimit`]
-    /// unless `speed` is finite and positive (or the duration would be infinite);
-    /// [`Error::CapacityExceeded`] for `Z = 0`.
+    /// unless `speed` is finite and positive;
+    /// [`Error::TooLong`] for a duration beyond `u32::MAX` ticks at 100 Hz (infinite
+    /// included); [`Error::ZoneCapacityExceeded`] for `Z = 0`.
     ///
     /// ```
     /// use strak_trajectory::MotionProfile;
@@ -32,7 +33,7 @@ impl<const Z: usize> MotionProfile<Z> {
         zone.v_end = speed;
         zone.push((0.0, 0.0, speed), length / speed, 0.0, 0.0);
         let mut zones = Vec::new();
-        zones.push(zone).map_err(|_| Error::CapacityExceeded {
+        zones.push(zone).map_err(|_| Error::ZoneCapacityExceeded {
             capacity: Z,
             required: 1,
         })?;
@@ -72,11 +73,11 @@ mod tests {
         );
         assert_eq!(
             MotionProfile::<1>::constant_speed(1e300, 1e-300),
-            Err(Error::InvalidLimit)
+            Err(Error::TooLong)
         );
         assert_eq!(
             MotionProfile::<0>::constant_speed(1.0, 1.0),
-            Err(Error::CapacityExceeded {
+            Err(Error::ZoneCapacityExceeded {
                 capacity: 0,
                 required: 1
             })

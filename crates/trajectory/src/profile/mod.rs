@@ -16,7 +16,9 @@
 //! target.
 
 mod constant_speed;
+mod joins;
 mod motion;
+mod options;
 mod parameter;
 mod path_timing;
 mod planner;
@@ -34,6 +36,6 @@ fn greater(a: f64, b: f64) -> bool {
 }
 
 pub use motion::{MotionProfile, MotionState, Phase, ProfileZone};
+pub use options::{PlanOptions, ProfileShape};
 pub use parameter::ParameterTiming;
 pub use path_timing::PathTiming;
-pub use planner::{PlanOptions, ProfileShape};

@@ -4,6 +4,10 @@ use heapless::Vec;
 
 use super::greater;
 use crate::error::Error;
+use crate::path::RATE_RANGE;
+
+/// The longest motion a path can play: `u32::MAX` ticks at the slowest control rate.
+const MAX_DURATION: f64 = u32::MAX as f64 / RATE_RANGE.0;
 
 /// The most phases one zone of a profile has: jerk up, constant acceleration, jerk down,
 /// cruise, and the three mirrored phases of the deceleration ("double S", seven phases).
@@ -112,7 +116,8 @@ pub struct ProfileZone {
     pub(super) v_limit: f64,
     pub(super) a_limit: f64,
     pub(super) j_limit: f64,
-    pub(super) stop: bool,
+    /// The largest speed at the zone's end (0 at a corner or cusp).
+    pub(super) exit_cap: f64,
     pub(super) v_start: f64,
     pub(super) v_end: f64,
     pub(super) t_start: f64,
@@ -129,7 +134,7 @@ impl ProfileZone {
             v_limit,
             a_limit,
             j_limit,
-            stop: false,
+            exit_cap: f64::INFINITY,
             v_start: 0.0,
             v_end: 0.0,
             t_start: 0.0,
@@ -164,9 +169,17 @@ impl ProfileZone {
         self.j_limit
     }
 
-    /// `true` when the zone ends at a corner of the path, where the motion comes to rest.
+    /// `true` when the zone ends at a corner or a cusp of the path, where the motion comes to
+    /// rest.
     pub fn stops_at_end(&self) -> bool {
-        self.stop
+        self.exit_cap == 0.0
+    }
+
+    /// The largest speed the motion may have at the zone's end: 0 at a corner or a cusp, the
+    /// speed a join passed at speed allows (see [`PlanOptions`](crate::PlanOptions)),
+    /// `f64::INFINITY` where the zone's end is not a join.
+    pub fn exit_cap(&self) -> f64 {
+        self.exit_cap
     }
 
     /// Speed on entering the zone.
@@ -263,11 +276,12 @@ pub struct MotionProfile<const Z: usize> {
 
 impl<const Z: usize> MotionProfile<Z> {
     /// Builds the profile from zones whose phases are set, in order; checks that the
-    /// duration is finite and positive.
+    /// duration is positive and fits `u32::MAX` ticks at the slowest control rate (100 Hz,
+    /// about 497 days; [`Error::TooLong`] otherwise, an infinite duration included).
     pub(super) fn from_zones(zones: Vec<ProfileZone, Z>, length: f64) -> Result<Self, Error> {
         let duration = zones.last().map_or(0.0, ProfileZone::t_end);
-        if !duration.is_finite() {
-            return Err(Error::InvalidLimit);
+        if greater(duration, MAX_DURATION) {
+            return Err(Error::TooLong);
         }
         if !greater(duration, 0.0) {
             return Err(Error::EmptyPath);
@@ -381,9 +395,15 @@ mod tests {
         let mut z = ProfileZone::new(0.0, 1.0, 1.0, 1.0, 1.0);
         z.push((0.0, 0.0, 1e-300), f64::INFINITY, 0.0, 0.0);
         assert!(zones.push(z).is_ok());
-        assert_eq!(
-            MotionProfile::from_zones(zones, 1.0),
-            Err(Error::InvalidLimit)
-        );
+        assert_eq!(MotionProfile::from_zones(zones, 1.0), Err(Error::TooLong));
+        // the longest: u32::MAX ticks at 100 Hz
+        for (d, ok) in [(MAX_DURATION, true), (MAX_DURATION * (1.0 + 1e-15), false)] {
+            let mut zones: Vec<ProfileZone, 2> = Vec::new();
+            let mut z = ProfileZone::new(0.0, 1.0, 1.0, 1.0, 1.0);
+            z.push((0.0, 0.0, 1.0 / d), d, 0.0, 0.0);
+            assert!(zones.push(z).is_ok());
+            let r = MotionProfile::from_zones(zones, 1.0);
+            assert_eq!(r.is_ok(), ok, "{d}: {r:?}");
+        }
     }
 }

@@ -4,9 +4,13 @@ use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, S
 
 use super::greater;
 use super::motion::{MotionProfile, Phase};
-use super::planner::{PlanOptions, plan_motion};
+use super::options::PlanOptions;
+use super::planner::plan_motion;
+use crate::compile::{CompileOptions, compile};
 use crate::error::Error;
 use crate::limits::Limits;
+use crate::number::Number;
+use crate::path::Path;
 use crate::timing::Timing;
 
 /// Chords summed for the length estimate that scales the arc-length accuracy.
@@ -154,6 +158,19 @@ pub struct PathTiming<'a, C, const N: usize, const Z: usize> {
     curve: &'a C,
     table: ArcLengthTable<f64, N>,
     motion: MotionProfile<Z>,
+    /// The control rate the motion was planned for.
+    rate: f64,
+    /// The feed-change limits and share for the compiler (none for the laws without
+    /// [`Limits`]).
+    feed: Option<FeedReserve>,
+}
+
+/// What a plan reserved for feed changes: the limits of a feed ramp and the share.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FeedReserve {
+    acceleration: f64,
+    jerk: f64,
+    share: f64,
 }
 
 /// Cloning shares the curve reference (the curve need not be `Clone`).
@@ -163,6 +180,8 @@ impl<C, const N: usize, const Z: usize> Clone for PathTiming<'_, C, N, Z> {
             curve: self.curve,
             table: self.table.clone(),
             motion: self.motion.clone(),
+            rate: self.rate,
+            feed: self.feed,
         }
     }
 }
@@ -197,6 +216,8 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             curve,
             table,
             motion,
+            rate: PlanOptions::DEFAULT_RATE,
+            feed: None,
         })
     }
 
@@ -224,11 +245,14 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             curve,
             table,
             motion,
+            rate: PlanOptions::DEFAULT_RATE,
+            feed: None,
         })
     }
 
-    /// The jerk-limited S-curve, rest to rest, under all of `limits` with the speed limit
-    /// varying along the path: [`plan`](Self::plan) with the default [`PlanOptions`].
+    /// The jerk-limited S-curve, rest to rest, under the machine's `limits` (less the default
+    /// feed reserve of ¼, planned for 1 kHz) with the speed limit varying along the path:
+    /// [`plan`](Self::plan) with the default [`PlanOptions`].
     ///
     /// # Errors
     /// As for [`plan`](Self::plan).
@@ -247,20 +271,24 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         Self::plan(curve, limits, &PlanOptions::new())
     }
 
-    /// Plans a rest-to-rest motion under `limits` along the curve (see [`PlanOptions`] for
-    /// the algorithm and its settings, `q` its centripetal share): the speed limit
-    /// `v_lim(s)` is the smallest of
+    /// Plans a rest-to-rest motion along the curve under the machine's `limits`, less the
+    /// feed reserve (see [`PlanOptions`] for the algorithm and its settings, `q` its
+    /// centripetal share, `s` its feed share): the motion uses at most `(1 − s)` of the
+    /// acceleration and jerk limits (path and per axis), the rest is left to feed changes
+    /// (compile with [`compile`](Self::compile)). With `a`, `j`, `a_i` so reduced, the speed
+    /// limit `v_lim(s)` is the smallest of
     /// * the path velocity limit,
-    /// * the curvature limit `√(q·a_max/κ)` (centripetal acceleration `v²κ ≤ q·a_max`),
-    /// * the turning-jerk limit `∛(q·j_max/|x_sss|)` (S-curve; `x_sss` the third derivative
+    /// * the curvature limit `√(q·a/κ)` (centripetal acceleration `v²κ ≤ q·a`),
+    /// * the turning-jerk limit `∛(q·j/|x_sss|)` (S-curve; `x_sss` the third derivative
     ///   of the curve by arc length, `κ²` on a circle),
     /// * per axis `i`, `v_i/|T_i|` (unit tangent `T`),
     /// * per axis `i`, `√(q·a_i/|κN_i|)` (curvature vector `κN`),
     ///
     /// sampled along the curve and grouped into zones of nearly constant limit (at most `Z`).
     /// Each zone plans its speed changes with the path acceleration and jerk that the turning
-    /// at its speed limit leaves, so that the motion **in space** keeps `|ẍ| ≤ a_max`,
-    /// `|ẍ_i| ≤ a_i` and `|x⃛| ≤ j_max`. A forward and a backward pass choose the speeds at
+    /// at its speed limit leaves, so that the motion **in space** keeps `|ẍ| ≤ a`,
+    /// `|ẍ_i| ≤ a_i` and `|x⃛| ≤ j`. The motion stops at corners and cusps and passes smaller
+    /// turns at joins at a bounded speed. A forward and a backward pass choose the speeds at
     /// the zone boundaries, and each zone gets a double S (or trapezoid) from its entry to its
     /// exit speed, with zero acceleration at the boundaries.
     ///
@@ -271,9 +299,11 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     /// # Errors
     /// - [`Error::AxisMismatch`] when `A` is not the curve's point dimension;
     /// - [`Error::EmptyPath`] for a curve of zero length;
-    /// - [`Error::InvalidLimit`] for an option out of range (see [`PlanOptions`]) or an
-    ///   infinite duration;
-    /// - [`Error::CapacityExceeded`] when the speed limit needs more than `Z` zones
+    /// - [`Error::InvalidRate`] for a rate outside 100 Hz ..= 100 kHz;
+    /// - [`Error::InvalidLimit`] for another option out of range (see [`PlanOptions`]);
+    /// - [`Error::TooLong`] when the motion takes more ticks at the plan's rate than a `u32`
+    ///   counts (limits so small that the duration is huge or infinite);
+    /// - [`Error::ZoneCapacityExceeded`] when the speed limit needs more than `Z` zones
     ///   (`required` is the number of zones needed; raise `Z` or the zone tolerance);
     /// - [`Error::Curve`] when the arc-length table fails or a derivative is not finite.
     ///
@@ -284,14 +314,16 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     /// let limits = Limits::<2>::new(10.0, 20.0, 1000.0)?.with_axis_velocity([3.0, 100.0])?;
     /// let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
     /// let t = PathTiming::<_, 16, 4>::plan(&line, &limits, &options)?;
-    /// // |T_x| = 0.6: the x axis limits the speed to 3/0.6 = 5
+    /// // |T_x| = 0.6: the x axis limits the speed to 3/0.6 = 5; ¾ of a = 20 is planned
     /// assert!((t.motion().zones()[0].v_limit() - 5.0).abs() < 1e-12);
-    /// assert!((t.duration() - (50.0 / 5.0 + 5.0 / 20.0)).abs() < 1e-9);
+    /// assert!((t.duration() - (50.0 / 5.0 + 5.0 / 15.0)).abs() < 1e-9);
     /// let wrong = Limits::<3>::new(10.0, 20.0, 1000.0)?;
     /// assert!(matches!(
     ///     PathTiming::<_, 16, 4>::scurve(&line, &wrong),
     ///     Err(Error::AxisMismatch { curve: 2, path: 3 })
     /// ));
+    /// let slow = Limits::<2>::new(1e-300, 20.0, 1000.0)?;
+    /// assert!(matches!(PathTiming::<_, 16, 4>::scurve(&line, &slow), Err(Error::TooLong)));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn plan<const A: usize>(
@@ -313,7 +345,73 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             curve,
             table,
             motion,
+            rate: options.rate(),
+            feed: Some(FeedReserve {
+                acceleration: limits.ramp_acceleration(),
+                jerk: limits.jerk(),
+                share: options.feed_share(),
+            }),
         })
+    }
+
+    /// The control rate in Hz the motion was planned for ([`PlanOptions::with_rate`];
+    /// 1 kHz for [`constant_speed`](Self::constant_speed) and [`trapezoid`](Self::trapezoid)).
+    pub fn rate(&self) -> f64 {
+        self.rate
+    }
+
+    /// `options` completed with what the plan reserved for feed changes: for a motion from
+    /// [`plan`](Self::plan) or [`scurve`](Self::scurve), the machine's limits of a feed ramp
+    /// (`min(a, aᵢ)` and `j` of its [`Limits`]) and the feed share of its [`PlanOptions`], so
+    /// that feed override, hold and resume ramp within the share the plan left free (see
+    /// [`CompileOptions`]). The laws without [`Limits`] return `options` unchanged.
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{CompileOptions, Limits, PathTiming};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
+    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?
+    ///     .with_axis_acceleration([800.0, f64::INFINITY])?;
+    /// let timing = PathTiming::<_, 16, 4>::scurve(&line, &limits)?;
+    /// let o = timing.compile_options(&CompileOptions::new().with_tolerance(1e-3));
+    /// assert_eq!(o.limits(), Some((800.0, 20_000.0)));
+    /// assert_eq!(o.feed_share(), 0.25);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn compile_options(&self, options: &CompileOptions) -> CompileOptions {
+        match self.feed {
+            Some(f) => options
+                .with_limits(f.acceleration, f.jerk)
+                .with_feed_share(f.share),
+            None => *options,
+        }
+    }
+
+    /// Compiles the motion into a path at the plan's [`rate`](Self::rate), with `options`
+    /// completed by [`compile_options`](Self::compile_options): the one call that keeps the
+    /// feed reserve of the plan and the rate it was planned for. See
+    /// [`compile`](crate::compile()).
+    ///
+    /// # Errors
+    /// As [`compile`](crate::compile()).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{CompileOptions, Limits, Path, PathTiming, PlanOptions};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
+    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?;
+    /// let plan = PlanOptions::new().with_rate(2_000.0);
+    /// let timing = PathTiming::<_, 16, 4>::plan(&line, &limits, &plan)?;
+    /// let path: Path<f32, 2, 64> = timing.compile(&CompileOptions::new())?;
+    /// assert_eq!(path.rate(), 2_000.0);
+    /// assert_eq!(path.feed_share(), 0.25);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn compile<Num: Number, const A: usize, const P: usize>(
+        &self,
+        options: &CompileOptions,
+    ) -> Result<Path<Num, A, P>, Error> {
+        compile(self.curve, self, self.rate, &self.compile_options(options))
     }
 
     /// The curve.
@@ -455,9 +553,10 @@ mod tests {
         assert_eq!(want.len(), 6);
         let got = breaks(&plan);
         assert_eq!(got, want);
-        // t_j = a/j = 0.05 s, t_a = v/a − a/j = 0.45 s
+        // planned with ¾ of a and j (the feed reserve): a = 15, j = 300,
+        // t_j = a/j = 0.05 s, t_a = v/a − a/j = 0.6167 s
         assert!(
-            (got[0] - 0.05).abs() < 1e-12 && (got[1] - 0.5).abs() < 1e-12,
+            (got[0] - 0.05).abs() < 1e-12 && (got[1] - 10.0 / 15.0).abs() < 1e-12,
             "{got:?}"
         );
         // the trapezoid's steps are in the acceleration: not reported
@@ -494,7 +593,7 @@ mod tests {
         ));
         assert!(matches!(
             PathTiming::<_, 8, 0>::constant_speed(&c, 1.0),
-            Err(Error::CapacityExceeded {
+            Err(Error::ZoneCapacityExceeded {
                 capacity: 0,
                 required: 1
             })

@@ -1,210 +1,27 @@
 //! Planning a rest-to-rest motion along a curve with a speed limit varying along the path:
-//! zones, the forward/backward pass over the zone boundaries, and a profile per zone.
+//! zones, the forward/backward pass over the zone boundaries, and a profile per zone (the
+//! algorithm is described on [`PlanOptions`]).
 
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv};
 
 use super::motion::{MotionProfile, ProfileZone};
+use super::options::PlanOptions;
 use super::scurve::{fill_zone, reach};
 use super::speed_limit::zones;
 use crate::error::Error;
 use crate::limits::Limits;
 
-/// The most sampling intervals [`PlanOptions::with_samples`] accepts.
-const MAX_SAMPLES: usize = 1 << 20;
-
-/// The velocity profile of each zone.
-///
-/// ```
-/// use strak_trajectory::{PlanOptions, ProfileShape};
-/// assert_eq!(PlanOptions::new().shape(), ProfileShape::SCurve);
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum ProfileShape {
-    /// Jerk-limited "double S": continuous acceleration, `|j| ≤` the jerk limit.
-    #[default]
-    SCurve,
-    /// Trapezoidal speed: the acceleration jumps between `±a` and 0 (the jerk limit is
-    /// ignored).
-    Trapezoid,
-}
-
-/// Settings of [`PathTiming::plan`](crate::PathTiming::plan).
-///
-/// # Algorithm
-///
-/// 1. **Sampling.** The speed limit `v_lim` and the loads of the path (curvature `κ`, the
-///    turning term `|x_sss|` of the jerk) and of the axes (`|T_i|`, `|κN_i|`) are evaluated
-///    at the ends and midpoints of `samples` intervals uniform in the curve parameter
-///    (uniform in `u` puts more samples where the parametric speed drops, as in tight
-///    corners of splines); an interval takes the worst of its three samples. The speed limit
-///    keeps the centripetal acceleration `v²κ` (path and per axis) and the turning jerk
-///    `v³|x_sss|` within the centripetal share `q` of their limits. Samples where `c'(u) = 0`
-///    are skipped (the tangent is undefined there; a true cusp with a reversal of direction
-///    is not detected: split the path there).
-/// 2. **Zones.** Consecutive intervals form a zone while the largest limit in it is at most
-///    `1 + zone_tolerance` times the smallest; the zone's limit is the smallest (so the plan
-///    may be up to that ratio slower than necessary inside a zone). Limits are capped at the
-///    path velocity limit, so straight stretches form a single zone. At most `Z` zones. Each
-///    zone gets its own path acceleration and jerk limit: what the turning terms at the
-///    zone's speed limit leave of `a_max`, `a_i` and `j_max`, so that the acceleration and
-///    jerk **in space** stay within the limits (the formulas are in the source of
-///    `profile/speed_limit.rs`).
-///    A join of pieces where the tangent turns by more than the corner angle (a C⁰ corner
-///    of a Bézier chain or a Hermite spline, a B-spline knot of full multiplicity) ends a
-///    zone, and the motion comes to rest there (a turn at speed would need an infinite
-///    acceleration).
-/// 3. **Boundary speeds.** A forward pass sets each zone's exit speed to the fastest
-///    reachable from its entry speed within its length (the exact minimum distance of a
-///    jerk-limited speed change with zero acceleration at both ends), capped by the limits
-///    of both adjacent zones; a backward pass lowers entry speeds to what can still brake
-///    to the exit speed. The path starts and ends at rest.
-/// 4. **Profiles.** Each zone gets the fastest double S (or trapezoid) from its entry to
-///    its exit speed under its limits, cruising at most at its speed limit, with zero
-///    acceleration at its ends: `s`, `v` and `a` are continuous across zones (the jerk
-///    steps there). Ending every zone with `a = 0` costs time on continuously curved
-///    paths (many short zones); it keeps each zone's profile independent and exact.
-///
-/// ```
-/// use strak_trajectory::{PlanOptions, ProfileShape};
-/// let o = PlanOptions::new()
-///     .with_shape(ProfileShape::Trapezoid)
-///     .with_samples(2048)
-///     .with_zone_tolerance(0.1)
-///     .with_centripetal_share(0.3);
-/// assert_eq!(o.samples(), 2048);
-/// assert_eq!(o.zone_tolerance(), 0.1);
-/// assert_eq!(o.centripetal_share(), 0.3);
-/// assert_eq!(PlanOptions::default(), PlanOptions::new());
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PlanOptions {
-    shape: ProfileShape,
-    samples: usize,
-    zone_tolerance: f64,
-    centripetal_share: f64,
-    corner_angle: f64,
-}
-
-impl Default for PlanOptions {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl PlanOptions {
-    /// The defaults: S-curve, 1024 sampling intervals, zone tolerance 0.05 (5 %),
-    /// centripetal share 0.5, corner angle 10⁻⁴ rad.
-    pub const fn new() -> Self {
-        PlanOptions {
-            shape: ProfileShape::SCurve,
-            samples: 1024,
-            zone_tolerance: 0.05,
-            centripetal_share: 0.5,
-            corner_angle: 1e-4,
-        }
-    }
-
-    /// The velocity profile of the zones.
-    pub const fn with_shape(mut self, shape: ProfileShape) -> Self {
-        self.shape = shape;
-        self
-    }
-
-    /// The number of sampling intervals along the parameter (`1 ..= 2²⁰`; each costs two
-    /// evaluations of `c'` and `c''`).
-    pub const fn with_samples(mut self, samples: usize) -> Self {
-        self.samples = samples;
-        self
-    }
-
-    /// The relative spread of the speed limit allowed inside one zone (finite, `≥ 0`; 0
-    /// merges only equal limits).
-    pub const fn with_zone_tolerance(mut self, tolerance: f64) -> Self {
-        self.zone_tolerance = tolerance;
-        self
-    }
-
-    /// The share `q` (in `(0, 1)`) of the acceleration and jerk limits that the turning of
-    /// the path may take at the speed limit: the centripetal acceleration `v²κ ≤ q·a_max`
-    /// and `v²|κN_i| ≤ q·a_i` per axis, the turning jerk `v³|x_sss| ≤ q·j_max`. The rest is
-    /// left for speed changes along the path. A larger share corners faster and accelerates
-    /// more gently in curves.
-    pub const fn with_centripetal_share(mut self, share: f64) -> Self {
-        self.centripetal_share = share;
-        self
-    }
-
-    /// The smallest turn of the tangent at a join of pieces that counts as a corner, in
-    /// radians (finite, `> 0`): the motion stops at corners. A join with a smaller turn `θ`
-    /// is passed at speed; the compiled path smooths it over its knot spacing, an
-    /// acceleration of about `v·θ/h` for a piece of `h` seconds (100 mm/s, 10⁻⁴ rad and 1 ms:
-    /// 10 mm/s²).
-    pub const fn with_corner_angle(mut self, radians: f64) -> Self {
-        self.corner_angle = radians;
-        self
-    }
-
-    /// The smallest turn at a join that counts as a corner (radians).
-    pub const fn corner_angle(&self) -> f64 {
-        self.corner_angle
-    }
-
-    /// The velocity profile of the zones.
-    pub const fn shape(&self) -> ProfileShape {
-        self.shape
-    }
-
-    /// The number of sampling intervals.
-    pub const fn samples(&self) -> usize {
-        self.samples
-    }
-
-    /// The relative spread of the speed limit inside one zone.
-    pub const fn zone_tolerance(&self) -> f64 {
-        self.zone_tolerance
-    }
-
-    /// The share of the limits the turning of the path may take.
-    pub const fn centripetal_share(&self) -> f64 {
-        self.centripetal_share
-    }
-
-    /// [`Error::InvalidLimit`] for a setting out of range.
-    pub(super) fn validate(&self) -> Result<(), Error> {
-        let share = self.centripetal_share;
-        let tol = self.zone_tolerance;
-        if (1..=MAX_SAMPLES).contains(&self.samples)
-            && share > 0.0
-            && share < 1.0
-            && tol.is_finite()
-            && tol >= 0.0
-            && self.corner_angle.is_finite()
-            && self.corner_angle > 0.0
-        {
-            Ok(())
-        } else {
-            Err(Error::InvalidLimit)
-        }
-    }
-}
-
 /// The forward/backward pass over the zone boundaries: sets `v_start`, `v_end` of every
-/// zone so that each zone can go from one to the other within its length and limits.
-/// Starts and ends at rest.
+/// zone so that each zone can go from one to the other within its length and limits, and
+/// no zone ends faster than its exit cap (0 at corners and cusps). Starts and ends at rest.
 fn boundary_speeds(zones: &mut [ProfileZone]) {
     let mut v = 0.0;
     for i in 0..zones.len() {
         let next_limit = zones.get(i + 1).map_or(0.0, |z| z.v_limit);
         if let Some(z) = zones.get_mut(i) {
             z.v_start = v;
-            let cap = if z.stop {
-                0.0
-            } else {
-                z.v_limit.min(next_limit)
-            };
+            let cap = z.v_limit.min(next_limit).min(z.exit_cap);
             z.v_end = reach(v, z.end - z.start, cap, z.a_limit, z.j_limit);
             v = z.v_end;
         }
@@ -217,9 +34,13 @@ fn boundary_speeds(zones: &mut [ProfileZone]) {
     }
 }
 
-/// Plans the motion along `curve` (whose arc-length table is `table`): zones of the speed
-/// limit, boundary speeds, and a profile per zone. `options` must be valid and the axis
-/// count checked.
+/// Plans the motion along `curve` (whose arc-length table is `table`) under `limits` less
+/// the feed reserve: zones of the speed limit, boundary speeds, and a profile per zone.
+/// `options` must be valid and the axis count checked.
+///
+/// # Errors
+/// As [`zones`]; [`Error::TooLong`] when the motion takes more ticks at the plan's rate
+/// than a `u32` counts.
 pub(super) fn plan_motion<C, const A: usize, const N: usize, const Z: usize>(
     curve: &C,
     table: &ArcLengthTable<f64, N>,
@@ -229,7 +50,8 @@ pub(super) fn plan_motion<C, const A: usize, const N: usize, const Z: usize>(
 where
     C: ParamCurveDeriv,
 {
-    let mut zones: Vec<ProfileZone, Z> = zones(curve, table, limits, options)?;
+    let planned = limits.without_reserve(options.feed_share());
+    let mut zones: Vec<ProfileZone, Z> = zones(curve, table, &planned, options)?;
     boundary_speeds(&mut zones);
     let (mut t, mut s) = (0.0, 0.0);
     for z in zones.iter_mut() {
@@ -238,7 +60,11 @@ where
         t = z.t_end();
         s = z.end_state().s;
     }
-    MotionProfile::from_zones(zones, table.length())
+    let motion = MotionProfile::from_zones(zones, table.length())?;
+    if motion.duration() * options.rate() > f64::from(u32::MAX) {
+        return Err(Error::TooLong);
+    }
+    Ok(motion)
 }
 
 #[cfg(test)]
@@ -247,11 +73,25 @@ mod tests {
     use std::vec::Vec as StdVec;
 
     use super::*;
+    use crate::profile::options::{MAX_SAMPLES, ProfileShape};
     use crate::profile::path_timing::to_param;
     use crate::profile::scurve::change_distance;
     use crate::profile::testcurves::{LineArcLine, textbook_scurve_duration};
     use crate::{PathTiming, Timing};
-    use strak_curves::{Bezier, Nurbs, Point, Scalar};
+    use strak_curves::{Bezier, Nurbs, ParamCurve, Point, Scalar};
+
+    /// The machine limits whose planned part (less the default feed reserve) is `planned`.
+    fn full<const A: usize>(planned: &Limits<A>) -> Limits<A> {
+        let k = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+        Limits::new(
+            planned.velocity(),
+            planned.acceleration() / k,
+            planned.jerk() / k,
+        )
+        .and_then(|m| m.with_axis_velocity(planned.axis_velocity()))
+        .and_then(|m| m.with_axis_acceleration(planned.axis_acceleration().map(|a| a / k)))
+        .unwrap()
+    }
 
     /// The per-axis and path limits at `u`, computed directly: (v_lim, T, κN).
     fn limit_at<C: ParamCurveDeriv>(
@@ -386,7 +226,7 @@ mod tests {
             (60.0, 500.0, 100.0), // neither
         ] {
             let limits = Limits::<2>::new(v, a, j).unwrap();
-            let timing = PathTiming::<_, 128, 8>::scurve(&c, &limits).unwrap();
+            let timing = PathTiming::<_, 128, 8>::scurve(&c, &full(&limits)).unwrap();
             assert_eq!(timing.motion().zones().len(), 1);
             let l = timing.length();
             assert!((l - 100.0).abs() < 1e-8);
@@ -415,7 +255,7 @@ mod tests {
     fn tight_curve_slows_only_there() {
         let c = LineArcLine::new(100.0, 2.0, 100.0);
         let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
-        let timing = PathTiming::<_, 256, 64>::scurve(&c, &limits).unwrap();
+        let timing = PathTiming::<_, 256, 64>::scurve(&c, &full(&limits)).unwrap();
         let m = timing.motion();
         // the arc limits the speed to √(q a r) = √(0.5·100·2) = 10 (its turning jerk
         // v³κ² = v³/4 to q·j_max at ∛4000 ≈ 15.9)
@@ -488,7 +328,7 @@ mod tests {
         // turning jerk v³κ² allows ∛(q j r²) = ∛10⁶ = 100
         let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).unwrap();
         let limits = Limits::<2>::new(500.0, 1000.0, 20_000.0).unwrap();
-        let timing = PathTiming::<_, 256, 4>::scurve(&c, &limits).unwrap();
+        let timing = PathTiming::<_, 256, 4>::scurve(&c, &full(&limits)).unwrap();
         let m = timing.motion();
         assert_eq!(m.zones().len(), 1);
         let z = m.zones()[0];
@@ -529,8 +369,8 @@ mod tests {
         let c32 =
             Bezier::<Vec2, 4>::quarter_circle(strak_curves::QUARTER_CIRCLE_KAPPA as f32).unwrap();
         let limits = Limits::<2>::new(3.0, 4.0, 50.0).unwrap();
-        let t64 = PathTiming::<_, 128, 16>::scurve(&c64, &limits).unwrap();
-        let t32 = PathTiming::<_, 128, 16>::scurve(&c32, &limits).unwrap();
+        let t64 = PathTiming::<_, 128, 16>::scurve(&c64, &full(&limits)).unwrap();
+        let t32 = PathTiming::<_, 128, 16>::scurve(&c32, &full(&limits)).unwrap();
         let slowest = t64
             .motion()
             .zones()
@@ -571,7 +411,7 @@ mod tests {
             .with_axis_acceleration([f64::INFINITY, 300.0])
             .unwrap();
         let share = 0.5;
-        let timing = PathTiming::<_, 256, 128>::scurve(&c, &limits).unwrap();
+        let timing = PathTiming::<_, 256, 128>::scurve(&c, &full(&limits)).unwrap();
         let meas = check(&c, &timing, &limits, share, limits.jerk(), 20_000);
         std::println!(
             "circle per axis: {} zones, T = {}, v/v_lim {} |ẋ_i|/v_i {} |ẍ_i|/a_i {}",
@@ -596,7 +436,7 @@ mod tests {
         // and it is slower than the path limits alone
         let free = PathTiming::<_, 256, 128>::scurve(
             &c,
-            &Limits::<2>::new(500.0, 1000.0, 20_000.0).unwrap(),
+            &full(&Limits::<2>::new(500.0, 1000.0, 20_000.0).unwrap()),
         )
         .unwrap();
         assert!(timing.duration() > free.duration());
@@ -610,7 +450,7 @@ mod tests {
             .unwrap()
             .with_axis_velocity([100.0, 4.0])
             .unwrap();
-        let timing = PathTiming::<_, 16, 4>::scurve(&c, &limits).unwrap();
+        let timing = PathTiming::<_, 16, 4>::scurve(&c, &full(&limits)).unwrap();
         let exact = textbook_scurve_duration(50.0, 5.0, 20.0, 200.0);
         assert!((timing.duration() - exact).abs() < 1e-9 * exact);
         let meas = check(&c, &timing, &limits, 0.5, limits.jerk(), 2000);
@@ -620,7 +460,7 @@ mod tests {
             .unwrap()
             .with_axis_acceleration([100.0, 8.0])
             .unwrap();
-        let timing = PathTiming::<_, 16, 4>::scurve(&c, &limits).unwrap();
+        let timing = PathTiming::<_, 16, 4>::scurve(&c, &full(&limits)).unwrap();
         assert!((timing.motion().zones()[0].a_limit() - 10.0).abs() < 1e-12);
         let exact = textbook_scurve_duration(50.0, 10.0, 10.0, 200.0);
         assert!((timing.duration() - exact).abs() < 1e-9 * exact);
@@ -633,8 +473,8 @@ mod tests {
         let c = LineArcLine::new(100.0, 2.0, 100.0);
         let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
         let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
-        let trap = PathTiming::<_, 256, 64>::plan(&c, &limits, &options).unwrap();
-        let s = PathTiming::<_, 256, 64>::scurve(&c, &limits).unwrap();
+        let trap = PathTiming::<_, 256, 64>::plan(&c, &full(&limits), &options).unwrap();
+        let s = PathTiming::<_, 256, 64>::scurve(&c, &full(&limits)).unwrap();
         // the trapezoid ignores the jerk limit: faster
         assert!(trap.duration() < s.duration());
         for p in trap.motion().phases() {
@@ -649,10 +489,10 @@ mod tests {
     fn capacity_exceeded_for_zones() {
         let c = LineArcLine::new(100.0, 2.0, 100.0);
         let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
-        let r = PathTiming::<_, 64, 2>::scurve(&c, &limits);
+        let r = PathTiming::<_, 64, 2>::scurve(&c, &full(&limits));
         assert!(matches!(
             r,
-            Err(Error::CapacityExceeded {
+            Err(Error::ZoneCapacityExceeded {
                 capacity: 2,
                 required: 3
             })
@@ -666,7 +506,7 @@ mod tests {
             PathTiming::<_, 64, 8>::plan(&b, &Limits::<2>::new(100.0, 10.0, 100.0).unwrap(), &o);
         assert!(matches!(
             r,
-            Err(Error::CapacityExceeded { capacity: 8, required }) if required > 8
+            Err(Error::ZoneCapacityExceeded { capacity: 8, required }) if required > 8
         ));
     }
 
@@ -703,7 +543,7 @@ mod tests {
         ));
         assert!(matches!(
             PathTiming::<_, 8, 0>::scurve(&c, &l),
-            Err(Error::CapacityExceeded {
+            Err(Error::ZoneCapacityExceeded {
                 capacity: 0,
                 required: 1
             })
@@ -714,8 +554,8 @@ mod tests {
     fn deterministic_plan() {
         let c = LineArcLine::new(100.0, 2.0, 100.0);
         let limits = Limits::<2>::new(50.0, 100.0, 2000.0).unwrap();
-        let a = PathTiming::<_, 128, 16>::scurve(&c, &limits).unwrap();
-        let b = PathTiming::<_, 128, 16>::scurve(&c, &limits).unwrap();
+        let a = PathTiming::<_, 128, 16>::scurve(&c, &full(&limits)).unwrap();
+        let b = PathTiming::<_, 128, 16>::scurve(&c, &full(&limits)).unwrap();
         let bits = |t: &PathTiming<'_, LineArcLine, 128, 16>| -> StdVec<u64> {
             t.motion()
                 .phases()
@@ -725,5 +565,139 @@ mod tests {
         };
         assert_eq!(bits(&a), bits(&b));
         assert_eq!(a.param(1.234).0.to_bits(), b.param(1.234).0.to_bits());
+    }
+
+    /// A polyline (0,0) → (50,0) → 50 more at the turn `radians` (a degree-1 B-spline).
+    fn polyline(radians: f64) -> strak_curves::BSpline<[f64; 2], 4, 8> {
+        let pts = [
+            [0.0, 0.0],
+            [50.0, 0.0],
+            [50.0 + 50.0 * radians.cos(), 50.0 * radians.sin()],
+        ];
+        strak_curves::BSpline::clamped_uniform(1, &pts, 0.0, 1.0).unwrap()
+    }
+
+    #[test]
+    fn joins_slow_down_to_their_cap_whatever_the_corner_angle() {
+        let machine = Limits::<2>::new(200.0, 2000.0, 50_000.0).unwrap();
+        for angle in [1e-4, 1.0, core::f64::consts::PI] {
+            for rate in [1_000.0, 10_000.0] {
+                let o = PlanOptions::new().with_corner_angle(angle).with_rate(rate);
+                for turn in [1e-3, 0.1, 30.0_f64.to_radians(), 3.0] {
+                    let c = polyline(turn);
+                    let t = PathTiming::<_, 64, 16>::plan(&c, &machine, &o).unwrap();
+                    let zones = t.motion().zones();
+                    assert_eq!(zones.len(), 2, "{angle} {rate} {turn}");
+                    let join = zones[0];
+                    // the velocity step v·|ΔT| = 2v·sin(θ/2) within q·min(a T, j T²) of the
+                    // planned limits (¾ of the machine's)
+                    let period = 1.0 / rate;
+                    let step = 0.5 * (1500.0 * period).min(37_500.0 * period * period);
+                    let cap = if turn > angle || turn > core::f64::consts::FRAC_PI_2 {
+                        0.0
+                    } else {
+                        step / (2.0 * (0.5 * turn).sin())
+                    };
+                    // (a turn of more than 90° is also seen between two samples: a stop)
+                    let stops = turn > angle || turn > core::f64::consts::FRAC_PI_2;
+                    assert_eq!(join.stops_at_end(), stops, "{angle} {rate} {turn}");
+                    let rel = (join.exit_cap() - cap).abs() / cap.max(1e-300);
+                    assert!(join.exit_cap() == cap || rel < 1e-9, "{}", join.exit_cap());
+                    assert!(
+                        join.v_end() <= cap * (1.0 + 1e-12) && zones[1].v_start() == join.v_end(),
+                        "{angle} {rate} {turn}: {} {cap} {}",
+                        join.v_end(),
+                        zones[1].v_start()
+                    );
+                }
+            }
+        }
+        // a straight polyline: one zone at full speed
+        let straight = polyline(0.0);
+        let t = PathTiming::<_, 64, 16>::scurve(&straight, &machine).unwrap();
+        assert_eq!(t.motion().zones().len(), 1);
+    }
+
+    #[test]
+    fn cusp_inside_a_piece_stops_the_motion() {
+        // c(u) = (20u − 25u², 0): out to x = 4 at u = 0.4 (where c' = 0), back to x = −5
+        let c = Bezier::new([[0.0, 0.0], [10.0, 0.0], [-5.0, 0.0]]).unwrap();
+        let limits = Limits::<2>::new(200.0, 2000.0, 50_000.0).unwrap();
+        let t = PathTiming::<_, 128, 16>::scurve(&c, &limits).unwrap();
+        assert!((t.length() - 13.0).abs() < 1e-8);
+        let zones = t.motion().zones();
+        let stop = zones.iter().find(|z| z.stops_at_end()).expect("a stop");
+        assert_eq!(stop.v_end(), 0.0);
+        // the motion stands still at the turn: at rest at u = 0.4, x = 4
+        let at = stop.phases().last().map(|p| p.end()).unwrap();
+        let st = t.motion().state(at);
+        assert!(
+            (st.s - stop.end()).abs() < 1e-9 && st.v.abs() < 1e-9,
+            "{st:?}"
+        );
+        let (u, du) = t.param(at);
+        assert!((u - 0.4).abs() < 1e-12 && du.abs() < 1e-6, "{u} {du}");
+        assert!((c.eval(u)[0] - 4.0).abs() < 1e-12);
+        // (the table's arc length there is within its interpolation error of 4)
+        assert!((stop.end() - 4.0).abs() < 1e-3, "{}", stop.end());
+        // a cubic whose tangent reverses twice: two stops
+        let c = Bezier::new([[0.0, 0.0], [30.0, 0.0], [-10.0, 0.0], [20.0, 0.0]]).unwrap();
+        let t = PathTiming::<_, 128, 64>::scurve(&c, &limits).unwrap();
+        let stops = t
+            .motion()
+            .zones()
+            .iter()
+            .filter(|z| z.stops_at_end())
+            .count();
+        assert_eq!(stops, 2);
+        // an S-bend whose tangent turns without reversing does not stop
+        let c = Bezier::new([[0.0, 0.0], [30.0, 0.0], [-10.0, 10.0], [20.0, 10.0]]).unwrap();
+        let t = PathTiming::<_, 128, 256>::scurve(&c, &limits).unwrap();
+        assert!(t.motion().zones().iter().all(|z| !z.stops_at_end()));
+    }
+
+    #[test]
+    fn too_long_at_the_plans_rate() {
+        // 50 units at 10⁻³ units/s: 5·10⁴ s, 5·10⁷ ticks at 1 kHz, 5·10⁹ at 100 kHz
+        let c = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).unwrap();
+        let l = Limits::<2>::new(1e-3, 1.0, 1.0).unwrap();
+        let o = PlanOptions::new();
+        assert!(PathTiming::<_, 16, 4>::plan(&c, &l, &o).is_ok());
+        let fast = o.with_rate(100_000.0);
+        assert!(matches!(
+            PathTiming::<_, 16, 4>::plan(&c, &l, &fast),
+            Err(Error::TooLong)
+        ));
+        // a velocity limit so small that no rate could play it
+        let l = Limits::<2>::new(1.5e-304, 2000.0, 50_000.0).unwrap();
+        assert!(matches!(
+            PathTiming::<_, 16, 4>::scurve(&c, &l),
+            Err(Error::TooLong)
+        ));
+        assert!(matches!(
+            PathTiming::<_, 16, 4>::plan(&c, &l, &o.with_rate(f64::NAN)),
+            Err(Error::InvalidRate)
+        ));
+    }
+
+    #[test]
+    fn jerk_phases_are_at_least_sixteen_ticks() {
+        let c = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).unwrap();
+        let l = Limits::<2>::new(200.0, 2000.0, 1e14).unwrap();
+        for rate in [100.0, 1_000.0, 100_000.0] {
+            let o = PlanOptions::new().with_rate(rate);
+            let t = PathTiming::<_, 16, 4>::plan(&c, &l, &o).unwrap();
+            let z = t.motion().zones()[0];
+            assert_eq!(z.a_limit(), 1500.0);
+            assert_eq!(z.j_limit(), 1500.0 * rate / 16.0);
+            // the first jerk phase raises a to a_z in 16 ticks (at 100 Hz the line is too
+            // short to reach a_z: a shorter triangle of lower acceleration)
+            let first = t.motion().phases().next().unwrap();
+            let ticks = first.duration * rate;
+            assert!(
+                (ticks - 16.0).abs() < 1e-9 || (rate == 100.0 && ticks < 16.0),
+                "{ticks}"
+            );
+        }
     }
 }

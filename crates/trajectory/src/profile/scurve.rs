@@ -192,7 +192,7 @@ pub(super) fn rest_to_rest<const Z: usize>(
     let mut zone = ProfileZone::new(0.0, length, v, a, j);
     fill_zone(&mut zone, 0.0);
     let mut zones = Vec::new();
-    zones.push(zone).map_err(|_| Error::CapacityExceeded {
+    zones.push(zone).map_err(|_| Error::ZoneCapacityExceeded {
         capacity: Z,
         required: 1,
     })?;
@@ -215,8 +215,9 @@ impl<const Z: usize> MotionProfile<Z> {
     ///
     /// # Errors
     /// [`Error::EmptyPath`] unless `length` is finite and positive; [`Error::InvalidLimit`]
-    /// unless each limit is finite and positive (or the duration would be infinite);
-    /// [`Error::CapacityExceeded`] for `Z = 0`.
+    /// unless each limit is finite and positive;
+    /// [`Error::TooLong`] for a duration beyond `u32::MAX` ticks at 100 Hz (infinite
+    /// included); [`Error::ZoneCapacityExceeded`] for `Z = 0`.
     ///
     /// ```
     /// use strak_trajectory::{Error, MotionProfile};
@@ -375,15 +376,19 @@ mod tests {
         );
         assert_eq!(
             MotionProfile::<0>::scurve(1.0, 1.0, 1.0, 1.0),
-            Err(Error::CapacityExceeded {
+            Err(Error::ZoneCapacityExceeded {
                 capacity: 0,
                 required: 1
             })
         );
-        // an infinite duration
+        // an infinite duration, and a finite one beyond u32::MAX ticks at 100 Hz
         assert_eq!(
             MotionProfile::<1>::scurve(1e300, 1e-300, 1.0, 1.0),
-            Err(Error::InvalidLimit)
+            Err(Error::TooLong)
+        );
+        assert_eq!(
+            MotionProfile::<1>::scurve(50.0, 1.5e-304, 2000.0, 5e4),
+            Err(Error::TooLong)
         );
     }
 

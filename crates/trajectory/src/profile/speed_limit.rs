@@ -42,14 +42,19 @@
 //! `|x⃛| ≤ j_max`: the limits hold for the motion in space, not only along the path. The
 //! price is speed in curved stretches: at most `√q` of the centripetal limit `√(a_max/κ)`,
 //! and gentler speed changes where the path turns while the speed is high.
+//!
+//! The zone's jerk is further limited to `a_z·f/16` at the control rate `f`, so that a jerk
+//! phase to `a_z` lasts at least 16 ticks ([`PlanOptions::MIN_JERK_TICKS`]). Zones also end
+//! at the joins and cusps where the speed is capped (`profile/joins.rs`).
 
 use heapless::Vec;
-use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar, ScalarOf};
+use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
 
 use super::greater;
+use super::joins::{JoinRule, locate_reversal, reverses};
 use super::motion::ProfileZone;
+use super::options::{PlanOptions, ProfileShape};
 use super::path_timing::to_param;
-use super::planner::{PlanOptions, ProfileShape};
 use crate::error::Error;
 use crate::limits::Limits;
 
@@ -66,6 +71,8 @@ struct Local<const A: usize> {
     tangent: [f64; A],
     /// Per axis `|κN_i|`.
     normal: [f64; A],
+    /// The unit tangent of this sample (not merged: kept from the first).
+    direction: [f64; A],
 }
 
 impl<const A: usize> Local<A> {
@@ -77,6 +84,7 @@ impl<const A: usize> Local<A> {
             turn: 0.0,
             tangent: [0.0; A],
             normal: [0.0; A],
+            direction: [0.0; A],
         }
     }
 
@@ -155,6 +163,9 @@ where
         if let Some(slot) = out.tangent.get_mut(i) {
             *slot = t.abs();
         }
+        if let Some(slot) = out.direction.get_mut(i) {
+            *slot = t;
+        }
         if let Some(slot) = out.normal.get_mut(i) {
             *slot = kn.abs();
         }
@@ -207,12 +218,14 @@ struct Open<const A: usize> {
 }
 
 /// The path acceleration and jerk limits of a zone with speed limit `worst.v` (see the
-/// module docs; `jerk = ∞` leaves the jerk unlimited).
+/// module docs; `jerk = ∞` leaves the jerk unlimited), the jerk at most
+/// `a_z·rate/MIN_JERK_TICKS` ([`PlanOptions::MIN_JERK_TICKS`]).
 fn zone_limits<const A: usize>(
     worst: &Local<A>,
     limits: &Limits<A>,
     jerk: f64,
     share: f64,
+    rate: f64,
 ) -> ZoneLimits {
     let a_max = limits.acceleration();
     let v = worst.v;
@@ -240,37 +253,224 @@ fn zone_limits<const A: usize>(
     }
     ZoneLimits {
         acceleration: a,
-        jerk: rest - turning * a,
+        jerk: (rest - turning * a).min(a * rate / PlanOptions::MIN_JERK_TICKS),
     }
 }
 
-/// `true` when the tangent direction turns by more than the corner angle (`cos_corner` its
-/// cosine) at the join after piece `piece`: the left tangent is taken one step of the
-/// parameter's resolution before the join, the right one at the join (the piece starting
-/// there). Joins where either tangent vanishes are not corners.
-fn is_corner<C: ParamCurveDeriv>(curve: &C, piece: usize, cos_corner: f64) -> bool {
-    let (lo, u_join) = curve.piece_domain(piece);
-    let (lo, u) = (lo.to_f64(), u_join.to_f64());
-    let step = 2.0 * ScalarOf::<C>::EPSILON.to_f64() * u.abs().max(1.0);
-    let left_at = to_param(curve, (u - step).max(lo));
-    let (left, right) = (curve.deriv(left_at, 1), curve.deriv(u_join, 1));
-    let (mut ll, mut rr, mut lr) = (0.0, 0.0, 0.0);
-    for i in 0..<C::Point as Point>::DIM {
-        let (l, r) = (left.coord(i).to_f64(), right.coord(i).to_f64());
-        ll += l * l;
-        rr += r * r;
-        lr += l * r;
+/// The parameters of the sampling grid: `2·m + 1` samples uniform in `[u0, u1]`, the ends
+/// exact.
+#[derive(Clone, Copy)]
+struct Grid {
+    u0: f64,
+    u1: f64,
+    m: usize,
+}
+
+impl Grid {
+    /// Sample `k` of `0 ..= 2m`.
+    fn at(&self, k: usize) -> f64 {
+        if k == 0 {
+            self.u0
+        } else if k >= 2 * self.m {
+            self.u1
+        } else {
+            #[allow(clippy::cast_precision_loss)]
+            let f = k as f64 / (2 * self.m) as f64;
+            self.u0 + (self.u1 - self.u0) * f
+        }
     }
-    greater(ll, 0.0) && greater(rr, 0.0) && lr < cos_corner * libm::sqrt(ll * rr)
+}
+
+/// The zones being collected, in order along the path.
+struct ZoneBuilder<'a, const A: usize, const Z: usize> {
+    limits: &'a Limits<A>,
+    /// The path jerk limit (`∞` for trapezoids).
+    jerk: f64,
+    share: f64,
+    rate: f64,
+    /// `1 + zone_tolerance`.
+    ratio: f64,
+    /// Arc lengths closer than this are the same point.
+    same: f64,
+    open: Option<Open<A>>,
+    out: Vec<ProfileZone, Z>,
+    /// Zones closed so far (beyond the capacity only the count goes on).
+    required: usize,
+}
+
+impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
+    /// Closes the open zone at `s_end` with the speed cap `exit_cap` at its end.
+    fn close(&mut self, s_end: f64, exit_cap: f64) {
+        if let Some(open) = &self.open {
+            self.required += 1;
+            let zl = zone_limits(&open.worst, self.limits, self.jerk, self.share, self.rate);
+            let mut zone =
+                ProfileZone::new(open.s_start, s_end, open.worst.v, zl.acceleration, zl.jerk);
+            zone.exit_cap = exit_cap;
+            let _ = self.out.push(zone);
+        }
+    }
+
+    /// Adds the sampling interval starting at arc length `s_here` with the limits `worst`:
+    /// to the open zone while its limits stay within the zone tolerance, else in a new zone.
+    fn interval(&mut self, s_here: f64, worst: Local<A>) {
+        let Some(z) = self.open.as_mut() else {
+            self.open = Some(Open {
+                s_start: s_here,
+                v_high: worst.v,
+                worst,
+            });
+            return;
+        };
+        let high = z.v_high.max(worst.v);
+        let low = z.worst.v.min(worst.v);
+        if high <= self.ratio * low || !greater(s_here, z.s_start) {
+            z.v_high = high;
+            z.worst.merge(&worst);
+        } else {
+            self.close(s_here, f64::INFINITY);
+            self.open = Some(Open {
+                s_start: s_here,
+                v_high: worst.v,
+                worst,
+            });
+        }
+    }
+
+    /// A point at the arc length `s()` (in the current interval, whose limits are `worst`)
+    /// that the motion passes at most at `cap`: the open zone ends there when the cap binds.
+    fn cap_at(&mut self, s: impl FnOnce() -> f64, cap: f64, worst: Local<A>) {
+        let Some(z) = self.open.as_ref() else {
+            return;
+        };
+        if cap >= z.worst.v {
+            return; // the zone's own limit is lower
+        }
+        let s = s();
+        if s - z.s_start > self.same {
+            self.close(s, cap);
+            self.open = Some(Open {
+                s_start: s,
+                v_high: worst.v,
+                worst,
+            });
+        } else if let Some(last) = self.out.last_mut() {
+            // at the start of the open zone: the end of the previous one
+            last.exit_cap = last.exit_cap.min(cap);
+        }
+    }
+
+    /// Closes the last zone at the path's `length`.
+    ///
+    /// # Errors
+    /// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed `Z`.
+    fn finish(mut self, length: f64) -> Result<Vec<ProfileZone, Z>, Error> {
+        self.close(length, f64::INFINITY);
+        if self.required > Z {
+            return Err(Error::ZoneCapacityExceeded {
+                capacity: Z,
+                required: self.required,
+            });
+        }
+        Ok(self.out)
+    }
+}
+
+/// Bisection steps of [`arc_at`] (it stops earlier when the bracket no longer shrinks).
+const ARC_STEPS: usize = 200;
+
+/// The arc length at which the table's inverse reaches the parameter `u`: the smallest `s`
+/// with `param_at(s) ≥ u`, by bisection (`param_at` is monotone). A motion that rests at this
+/// `s` rests at `u` itself, whatever the table's interpolation error between its samples
+/// (near a cusp, where `|c'|` has a kink, `length_at(u)` maps back to a parameter past it).
+fn arc_at<const N: usize>(table: &ArcLengthTable<f64, N>, u: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, table.length());
+    for _ in 0..ARC_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        if table.param_at(mid) >= u {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+/// The cusps in the two halves of a sampling interval: where the tangent of a sample points
+/// away from the last known tangent (`last`: its parameter and direction), located by
+/// bisection. `samples` are the interval's midpoint and end.
+fn cusps_in<C: ParamCurveDeriv, const A: usize>(
+    curve: &C,
+    last: &mut Option<(f64, [f64; A])>,
+    samples: [(f64, Option<&Local<A>>); 2],
+) -> [Option<f64>; 2] {
+    let mut out = [None; 2];
+    for ((u, l), slot) in samples.into_iter().zip(out.iter_mut()) {
+        let Some(l) = l else { continue };
+        if let Some((u_a, t_a)) = *last
+            && reverses(&t_a, &l.direction)
+        {
+            *slot = Some(locate_reversal(curve, (u_a, t_a), u));
+        }
+        *last = Some((u, l.direction));
+    }
+    out
+}
+
+/// The joins of the curve's pieces, in order, and how they are passed.
+struct Joins<const A: usize> {
+    rule: JoinRule<A>,
+    /// The number of joins (pieces − 1).
+    count: usize,
+    /// The next join to mark.
+    next: usize,
+}
+
+/// Marks the points of the current sampling interval (limits `worst`) where the speed is
+/// capped, in order along the path: the joins before `u_end` (all that are left for
+/// `None`) and the interval's `cusps`.
+fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usize>(
+    zones: &mut ZoneBuilder<'_, A, Z>,
+    curve: &C,
+    table: &ArcLengthTable<f64, N>,
+    joins: &mut Joins<A>,
+    mut cusps: [Option<f64>; 2],
+    u_end: Option<f64>,
+    worst: Local<A>,
+) {
+    loop {
+        let u_join = (joins.next < joins.count)
+            .then(|| curve.piece_domain(joins.next).1.to_f64())
+            .filter(|u| u_end.is_none_or(|end| *u < end));
+        let cusp = cusps.iter().flatten().next().copied();
+        let join_first = match (u_join, cusp) {
+            (None, None) => break,
+            (Some(uj), Some(uc)) => uj <= uc,
+            (Some(_), None) => true,
+            (None, Some(_)) => false,
+        };
+        if let (true, Some(uj)) = (join_first, u_join) {
+            let cap = joins.rule.cap(curve, joins.next);
+            zones.cap_at(|| arc_at(table, uj), cap, worst);
+            joins.next += 1;
+        } else if let Some(uc) = cusps.iter_mut().find_map(Option::take) {
+            zones.cap_at(|| arc_at(table, uc), 0.0, worst);
+        }
+    }
 }
 
 /// Samples the speed limit on `options.samples()` intervals uniform in the parameter (each
-/// interval at its ends and midpoint, taking the worst) and groups consecutive intervals
-/// into zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
-/// smallest. Returns the zones (arc lengths from `table`, limits set, no phases).
+/// interval at its ends and midpoint, taking the worst), groups consecutive intervals into
+/// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
+/// smallest, and ends a zone at every join and cusp whose speed cap binds (see
+/// [`PlanOptions`] and `profile/joins.rs`). Returns the zones (arc lengths from `table`,
+/// limits and exit caps set, no phases).
 ///
 /// # Errors
-/// [`Error::CapacityExceeded`] with the number of zones needed when they exceed `Z`;
+/// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed `Z`;
 /// [`Error::Curve`] for non-finite derivatives.
 pub(super) fn zones<C, const A: usize, const N: usize, const Z: usize>(
     curve: &C,
@@ -286,116 +486,57 @@ where
         ProfileShape::SCurve => limits.jerk(),
         ProfileShape::Trapezoid => f64::INFINITY,
     };
-    let ratio = 1.0 + options.zone_tolerance();
-    let m = options.samples();
     let (u0, u1) = table.domain();
-    let length = table.length();
-    #[allow(clippy::cast_precision_loss)]
-    let at = |k: usize| -> f64 {
-        if k == 0 {
-            u0
-        } else if k >= 2 * m {
-            u1
-        } else {
-            u0 + (u1 - u0) * (k as f64 / (2 * m) as f64)
-        }
+    let grid = Grid {
+        u0,
+        u1,
+        m: options.samples(),
     };
-    let sample =
-        |k: usize| -> Result<Option<Local<A>>, Error> { local(curve, at(k), limits, jerk, share) };
-
-    let mut out: Vec<ProfileZone, Z> = Vec::new();
-    let mut required = 0_usize;
-    let mut close = |open: &Open<A>, s_end: f64, stop: bool, out: &mut Vec<ProfileZone, Z>| {
-        required += 1;
-        let zl = zone_limits(&open.worst, limits, jerk, share);
-        let mut zone =
-            ProfileZone::new(open.s_start, s_end, open.worst.v, zl.acceleration, zl.jerk);
-        zone.stop = stop;
-        // Beyond the capacity only the count goes on.
-        let _ = out.push(zone);
+    let sample = |k: usize| local(curve, grid.at(k), limits, jerk, share);
+    let mut joins = Joins {
+        rule: JoinRule::new(limits, jerk, options),
+        count: curve.piece_count().saturating_sub(1),
+        next: 0,
     };
-    let joins = curve.piece_count().saturating_sub(1);
-    let cos_corner = libm::cos(options.corner_angle());
-    let mut join = 0;
-
+    let mut zones = ZoneBuilder::<A, Z> {
+        limits,
+        jerk,
+        share,
+        rate: options.rate(),
+        ratio: 1.0 + options.zone_tolerance(),
+        same: 1e-12 * table.length(),
+        open: None,
+        out: Vec::new(),
+        required: 0,
+    };
     let mut prev = sample(0)?;
-    let mut open: Option<Open<A>> = None;
-    for k in 0..m {
-        let mid = sample(2 * k + 1)?;
-        let next = sample(2 * k + 2)?;
+    let mut last = prev.as_ref().map(|l| (grid.at(0), l.direction));
+    for k in 0..grid.m {
+        let (mid, next) = (sample(2 * k + 1)?, sample(2 * k + 2)?);
         let mut worst = Local::<A>::neutral(limits.velocity());
         for l in [&prev, &mid, &next].into_iter().flatten() {
             worst.merge(l);
         }
+        zones.interval(table.length_at(grid.at(2 * k)), worst);
+        let u_next = grid.at(2 * k + 2);
+        let cusps = cusps_in(
+            curve,
+            &mut last,
+            [(grid.at(2 * k + 1), mid.as_ref()), (u_next, next.as_ref())],
+        );
+        let u_end = (k + 1 < grid.m).then_some(u_next);
+        mark_points(&mut zones, curve, table, &mut joins, cusps, u_end, worst);
         prev = next;
-        let u_here = at(2 * k);
-        match open.as_mut() {
-            None => {
-                open = Some(Open {
-                    s_start: 0.0,
-                    v_high: worst.v,
-                    worst,
-                });
-            }
-            Some(z) => {
-                let high = z.v_high.max(worst.v);
-                let low = z.worst.v.min(worst.v);
-                let s_here = table.length_at(u_here);
-                if high <= ratio * low || !greater(s_here, z.s_start) {
-                    z.v_high = high;
-                    z.worst.merge(&worst);
-                } else {
-                    close(z, s_here, false, &mut out);
-                    *z = Open {
-                        s_start: s_here,
-                        v_high: worst.v,
-                        worst,
-                    };
-                }
-            }
-        }
-        // Corners in this interval: the zone ends there, at rest.
-        let u_next = at(2 * k + 2);
-        while join < joins {
-            let u_join = curve.piece_domain(join).1.to_f64();
-            if k + 1 < m && u_join >= u_next {
-                break;
-            }
-            join += 1;
-            if !is_corner(curve, join - 1, cos_corner) {
-                continue;
-            }
-            let s_join = table.length_at(u_join);
-            if let Some(z) = open.as_mut() {
-                if greater(s_join, z.s_start) {
-                    close(z, s_join, true, &mut out);
-                    *z = Open {
-                        s_start: s_join,
-                        v_high: worst.v,
-                        worst,
-                    };
-                } else if let Some(last) = out.last_mut() {
-                    last.stop = true;
-                }
-            }
-        }
     }
-    if let Some(z) = open.as_ref() {
-        close(z, length, false, &mut out);
-    }
-    if required > Z {
-        return Err(Error::CapacityExceeded {
-            capacity: Z,
-            required,
-        });
-    }
-    Ok(out)
+    zones.finish(table.length())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use strak_curves::{Bezier, Nurbs};
+
+    const RATE: f64 = PlanOptions::DEFAULT_RATE;
 
     #[test]
     fn circle_limits() {
@@ -427,7 +568,7 @@ mod tests {
         assert!((l.v - 500.0_f64.sqrt()).abs() < 1e-9);
         // x is loaded only centripetally there (T_x = 0): the path's own budget is left,
         // a_max² − (v²κ)² = 1000² − 50²
-        let zl = zone_limits(&l, &limits, f64::INFINITY, 0.5);
+        let zl = zone_limits(&l, &limits, f64::INFINITY, 0.5, RATE);
         assert!((zl.acceleration - (1e6_f64 - 2500.0).sqrt()).abs() < 1e-9);
         assert_eq!(zl.jerk, f64::INFINITY);
     }
@@ -489,7 +630,8 @@ mod tests {
             .unwrap()
             .with_axis_acceleration([4.0])
             .unwrap();
-        let a = |w: &Local<1>, l: &Limits<1>, q| zone_limits(w, l, f64::INFINITY, q).acceleration;
+        let a =
+            |w: &Local<1>, l: &Limits<1>, q| zone_limits(w, l, f64::INFINITY, q, RATE).acceleration;
         // what the centripetal part (25·0.02 = 0.5) leaves: (4 − 0.5)/0.5 = 7
         assert_eq!(a(&w, &limits, 0.25), 7.0);
         // never below (1 − share)·a_i/|T_i| (only reached through rounding)
@@ -517,7 +659,7 @@ mod tests {
             (50.0, split(50.0, 8750.0, 15.0)),
         ] {
             w.v = v;
-            let zl = zone_limits(&w, &limits, 1e4, 0.5);
+            let zl = zone_limits(&w, &limits, 1e4, 0.5, RATE);
             assert!((zl.acceleration - a_expected).abs() < 1e-9 * a_expected);
             // tangential + turning-while-accelerating + turning at speed = j_max
             let total = zl.jerk + 3.0 * v * w.kappa * zl.acceleration + v * v * v * w.turn;
@@ -533,7 +675,24 @@ mod tests {
         assert!(time(best) < time(best * 1.01) && time(best) < time(best * 0.99));
         // a straight stretch keeps the whole budget
         let straight = Local::<1>::neutral(100.0);
-        let zl = zone_limits(&straight, &limits, 1e4, 0.5);
+        let zl = zone_limits(&straight, &limits, 1e4, 0.5, RATE);
         assert_eq!((zl.acceleration, zl.jerk), (1000.0, 1e4));
+    }
+
+    #[test]
+    fn jerk_phases_last_sixteen_ticks() {
+        // j = 10⁸ with a = 1000: T_j = 10 µs; at 1 kHz the jerk is capped at a·f/16
+        let limits = Limits::<1>::new(100.0, 1000.0, 1e8).unwrap();
+        let straight = Local::<1>::neutral(100.0);
+        let zl = zone_limits(&straight, &limits, 1e8, 0.5, 1000.0);
+        assert_eq!(zl.acceleration, 1000.0);
+        assert_eq!(zl.jerk, 1000.0 * 1000.0 / 16.0);
+        assert_eq!(zl.acceleration / zl.jerk * 1000.0, 16.0);
+        // at 100 kHz: 6.25·10⁶
+        let zl = zone_limits(&straight, &limits, 1e8, 0.5, 1e5);
+        assert_eq!(zl.jerk, 6.25e6);
+        // a trapezoid keeps its infinite jerk
+        let zl = zone_limits(&straight, &limits, f64::INFINITY, 0.5, 1000.0);
+        assert_eq!(zl.jerk, f64::INFINITY);
     }
 }

@@ -16,8 +16,9 @@ impl<const Z: usize> MotionProfile<Z> {
     ///
     /// # Errors
     /// [`Error::EmptyPath`] unless `length` is finite and positive; [`Error::InvalidLimit`]
-    /// unless both limits are finite and positive (or the duration would be infinite);
-    /// [`Error::CapacityExceeded`] for `Z = 0`.
+    /// unless both limits are finite and positive;
+    /// [`Error::TooLong`] for a duration beyond `u32::MAX` ticks at 100 Hz (infinite
+    /// included); [`Error::ZoneCapacityExceeded`] for `Z = 0`.
     ///
     /// ```
     /// use strak_trajectory::MotionProfile;
@@ -105,7 +106,7 @@ mod tests {
         );
         assert_eq!(
             MotionProfile::<0>::trapezoid(1.0, 1.0, 1.0),
-            Err(Error::CapacityExceeded {
+            Err(Error::ZoneCapacityExceeded {
                 capacity: 0,
                 required: 1
             })

@@ -1008,7 +1008,8 @@ mod tests {
         assert_eq!(standing, 1000);
         assert!(count > u64::from(path.ticks()) + 1000);
         let held = held_at.unwrap();
-        assert!(held > 1500.0 && held < 2500.0, "{held}");
+        // the ramp to rest takes about 1300 ticks (its jerk budget includes 3·φ·φ̇·p'')
+        assert!(held > 1500.0 && held < 3000.0, "{held}");
     }
 
     #[test]
