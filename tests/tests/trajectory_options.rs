@@ -67,7 +67,7 @@ struct Ratios {
 fn play<N: Number, const A: usize>(
     path: &Path<N, A, PIECES>,
     machine: &Limits<A>,
-    mut control: impl FnMut(u64, &mut Sampler<'_, N, A, PIECES>),
+    mut control: impl FnMut(u64, &mut Sampler<'_, N, A>),
 ) -> (Ratios, u64) {
     let t = path.period();
     let mut s = Sampler::new(path);
