@@ -61,7 +61,7 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Plan and compile a job exactly as `run` does and write the path as a blob
-    /// (`Path::to_bytes`) for firmware to embed and play (`Path::from_bytes`). The number format
+    /// (`Path::to_bytes`) for firmware to embed and play (`PathBlob::from_bytes`). The number format
     /// is chosen here, not by the job: `f32` (curve and playback in f32) or `fixed` (curve in
     /// I32F32, playback in Q40).
     Compile {

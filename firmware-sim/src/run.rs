@@ -651,7 +651,9 @@ mod tests {
         assert_eq!(job.rate_hz, 1000.0);
         assert_eq!(job.profile.kind(), ProfileKind::SCurve);
         let limits = planning_limits::<3>(&job).unwrap();
-        assert_eq!(limits.acceleration(), job.limits.acceleration * 0.75);
+        // the planner reserves the feed share (¼) of the acceleration and jerk itself
+        assert_eq!(limits.acceleration(), job.limits.acceleration);
+        assert_eq!(crate::pipeline::plan_options(&job).feed_share(), 0.25);
         assert_eq!(
             limits.velocity(),
             job.limits.velocity * (1.0 - VELOCITY_RESERVE)
