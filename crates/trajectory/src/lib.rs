@@ -15,10 +15,10 @@ mod timing;
 
 pub use blob::{BLOB_MAGIC, BLOB_VERSION, crc32};
 pub use compile::{CompileOptions, Tolerance, compile};
-pub use error::Error;
+pub use error::{Error, Quantity};
 pub use limits::Limits;
 pub use number::{Number, Q40};
 pub use path::{AxisState, Path, Piece};
 pub use profile::*;
 pub use sampler::{Sample, Sampler, SamplerState};
-pub use timing::Timing;
+pub use timing::{MotionLimits, Timing};
