@@ -43,10 +43,17 @@
 //! * acceleration: `√A·e_a` sampled, `2√A·e_v/T` by differences;
 //! * jerk: `2√A·e_a/T`;
 //!
-//! plus `10⁻⁹` relative for the `f64` arithmetic of the differences themselves (`f64`
-//! sums of at most `2³²` terms carry a relative error far below it). In `f64` playback the
-//! allowance is at the level of `10⁻¹⁰` of the limits; in `Q40` below `10⁻⁶`; in `f32` a few
-//! `10⁻⁴` at 1 kHz (the float additions of the velocity chain dominate).
+//! plus `10⁻⁹` relative for the arithmetic of the comparison (the rounding of the `f64`
+//! samples themselves is part of `e_x`, `e_v`, `e_a`). In `f64` and `Q40` playback the
+//! allowance is orders of magnitude below the limits. In `f32` the allowance for the speed
+//! by differences of positions grows with the coordinates' magnitude, the piece length and
+//! the rate (`2√A·e_x/T`, `e_x ≈ n·½ε·|x|`): the `f32` position channel does not resolve
+//! the speed better than that, and at 10 kHz with coordinates of a few hundred units the
+//! allowance is several per cent of a speed limit of 200 units/s.
+//!
+//! Across a piece switch the samples of the next piece are the previous piece's polynomial
+//! at its end (the spline is C²), so a difference over the last tick of a piece is the
+//! mean over that tick as well; the last sample is the path's end, the spline's end.
 
 use strak_curves::Scalar;
 use strak_trajectory::{AxisState, Number, Path, Sampler};

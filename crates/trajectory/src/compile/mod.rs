@@ -54,9 +54,15 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///    refinement: the jerk steps sit within half a tick of a knot. A break closer than 8
 ///    ticks to its neighbouring breaks (or the ends) gets no knot: half a tick off a knot,
 ///    a jerk step `Δj` disturbs the jerk of a piece of `h` ticks by about `Δj/(2h)`, and
-///    chains of short pieces ring (the planner's zones can hold phases of a few ticks). The
-///    uniform grid is laid out between the break knots, so that no grid knot sits a tick or
-///    two from a break.
+///    chains of short pieces ring (the planner's zones can hold phases of a few ticks).
+///    When *every* break is that close to another (all jerk phases last a few ticks, as
+///    with a high jerk limit), every break gets knots on the ticks before and after it
+///    instead: a piece of one tick holds the step and the pieces between follow single
+///    phases. A one-tick piece turns the rounding `σ` of the positions in the curve's
+///    scalar into a jerk of about `6σ/T³`, so this needs `6·ε·|x|/T³` within 1 % of the
+///    law's jerk limit (`f64` curves; fixed-point curves at low rates). The uniform grid is
+///    laid out between the break knots, so that no grid knot sits a tick or two from a
+///    break.
 /// 4. **Adaptive knots.** Each piece is checked at its quarter points (`n/4, n/2, 3n/4`)
 ///    against half the tolerance; pieces that fail are split at their middle tick, the
 ///    spline is solved again, until every piece passes. At the knots the spline is exact;
@@ -72,8 +78,14 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///    exactly, from the roots of `d|ẋ|²/dt`; the acceleration at the piece ends; the
 ///    constant jerk) are compared with the limits, and if one is exceeded by the factor
 ///    `r` (speed `r`, acceleration `r²`, jerk `r³`) the whole motion is slowed down by `r`
-///    (more ticks, steps 1–4 again), up to [`CompileOptions::max_slowdown`] in all; otherwise
-///    [`Error::LimitExceeded`]. [`Path::time_scale`] reports the slow-down.
+///    and a small margin (more ticks, steps 1–4 again), up to
+///    [`CompileOptions::max_slowdown`] in all (and a tick); otherwise
+///    [`Error::LimitExceeded`]. [`Path::time_scale`] reports the slow-down. The same check
+///    catches a law that exceeds its own limits between its samples: the C² spline smooths
+///    a trapezoid's acceleration steps with an overshoot (slowed down by about 15 %), and a
+///    jerk-limited law along a path whose curvature jumps (the C¹ joins of Hermite or
+///    Catmull-Rom splines, quadratic B-splines) steps its acceleration by `v²·Δκ` there,
+///    which usually needs more than the largest slow-down (`LimitExceeded` for the jerk).
 /// 6. **States.** Each piece becomes its forward-difference start state per axis, rounded
 ///    once into the number format `N` (range-checked: [`Error::OutOfRange`]).
 ///
@@ -333,7 +345,7 @@ fn path_meta(
     options: &CompileOptions,
 ) -> PathMeta {
     let share = options.feed_share();
-    let (v_peak, a_peak, j_peak) = (peaks.velocity, peaks.acceleration, peaks.jerk);
+    let (v_peak, a_peak, j_peak) = (peaks.velocity_bound, peaks.acceleration, peaks.jerk);
     let (acceleration_limit, jerk_limit) = options.limits().unwrap_or_else(|| {
         let a = if a_peak > 0.0 {
             a_peak / (1.0 - share)
@@ -685,9 +697,9 @@ mod tests {
             let vp = path.eval(f64::from(k)).velocity;
             v_path = v_path.max(libm::sqrt(vp.iter().map(|x| x * x).sum()));
         }
-        // the compiled polynomial's peak speed, which is the law's within the fit
+        // an upper bound of the compiled polynomial's speed, close to the law's
         assert!(
-            path.peak_velocity() >= v_path && (path.peak_velocity() - v).abs() < v * 1e-6,
+            path.peak_velocity() >= v_path && path.peak_velocity() < v * 1.001,
             "{} {v_path} {v}",
             path.peak_velocity()
         );
@@ -787,6 +799,37 @@ mod tests {
                     }
                 }
             }
+        });
+    }
+
+    /// Jerk phases of 4.25 ticks (all breaks close): with the law's limits and an `f64`
+    /// curve every break sits in a piece of one tick; without limits, or with an `f32`
+    /// curve (whose rounding a one-tick piece would turn into jerk), no break gets a knot.
+    #[test]
+    fn one_tick_pieces_hold_the_breaks_of_short_phases() {
+        super::testing::big_stack(|| {
+            let lim = crate::Limits::<2>::new(21.23, 823.0, 193_600.0).unwrap();
+            let one_tick =
+                |path: &Path<f64, 2, 4096>| path.pieces().iter().filter(|p| p.ticks() == 1).count();
+            let o = CompileOptions::new();
+            let line = Bezier::new([[0.0_f64, 0.0], [52.255, 52.255]]).unwrap();
+            let plan = crate::PathTiming::<_, 64, 4>::scurve(&line, &lim).unwrap();
+            let mut breaks = 0;
+            plan.breaks(&mut |_| breaks += 1);
+            assert_eq!(breaks, 6);
+            let kept: Path<f64, 2, 4096> = compile(&line, &plan, 1_000.0, &o).unwrap();
+            assert_eq!(one_tick(&kept), breaks, "{:?}", kept.pieces().len());
+            let law = Forward {
+                law: &plan,
+                breaks: true,
+                limits: false,
+            };
+            let free: Path<f64, 2, 4096> = compile(&line, &law, 1_000.0, &o).unwrap();
+            assert_eq!(one_tick(&free), 0);
+            let line32 = Bezier::new([[0.0_f32, 0.0], [52.255, 52.255]]).unwrap();
+            let plan32 = crate::PathTiming::<_, 64, 4>::scurve(&line32, &lim).unwrap();
+            let coarse: Path<f64, 2, 4096> = compile(&line32, &plan32, 1_000.0, &o).unwrap();
+            assert_eq!(one_tick(&coarse), 0);
         });
     }
 

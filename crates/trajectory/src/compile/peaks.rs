@@ -19,6 +19,9 @@ pub(super) struct Peaks {
     pub(super) velocity: f64,
     pub(super) acceleration: f64,
     pub(super) jerk: f64,
+    /// An upper bound of the speed from three samples per piece (see
+    /// [`Peaks::of_piece`]), which the feed ramps are derived from.
+    pub(super) velocity_bound: f64,
 }
 
 impl Peaks {
@@ -28,6 +31,7 @@ impl Peaks {
             velocity: self.velocity.max(other.velocity),
             acceleration: self.acceleration.max(other.acceleration),
             jerk: self.jerk.max(other.jerk),
+            velocity_bound: self.velocity_bound.max(other.velocity_bound),
         }
     }
 
@@ -40,11 +44,16 @@ impl Peaks {
     /// an end or at a root of `g`. The roots of `g'` split `[0, n]` into at most three
     /// intervals on which `g` is monotone; a sign change of `g` on one of them brackets one
     /// root, found by bisection. So the speed peak is exact up to rounding.
+    ///
+    /// The speed bound: `ẋ(s + δ) = ẋ(s) + δ·ẍ(s) + ½δ²·x⃛` exactly; around the samples
+    /// `s ∈ {0, n/2, n}` with `|δ| ≤ Δ = (n/4)·T`,
+    /// `|ẋ| ≤ max(|ẋ(s) + Δẍ(s)|, |ẋ(s) − Δẍ(s)|) + ½Δ²|x⃛|` (the norm of an affine function
+    /// of `δ` is largest at an end of the interval).
     pub(super) fn of_piece<const A: usize>(coeffs: &[[f64; 4]; A], n: f64, period: f64) -> Peaks {
         let sq = |f: &dyn Fn(&[f64; 4]) -> f64| coeffs.iter().map(|c| f(c) * f(c)).sum::<f64>();
         let speed2 = |i: f64| sq(&|&[_, b, c, d]| b + i * (2.0 * c + 3.0 * d * i));
-        let acc2 = |i: f64| sq(&|&[_, _, c, d]| 2.0 * c + 6.0 * d * i);
-        let jerk2 = sq(&|&[_, _, _, d]| 6.0 * d);
+        let tt = period * period;
+        let acc = |i: f64| libm::sqrt(sq(&|&[_, _, c, d]| (2.0 * c + 6.0 * d * i) / tt));
         let mut g = [0.0_f64; 4];
         for &[_, b, c, d] in coeffs {
             g[0] += 2.0 * b * c;
@@ -54,11 +63,11 @@ impl Peaks {
         }
         let mut best = speed2(0.0).max(speed2(n));
         for_each_root(g, n, &mut |i| best = best.max(speed2(i)));
-        let tt = period * period;
         Peaks {
             velocity: libm::sqrt(best) / period,
-            acceleration: libm::sqrt(acc2(0.0).max(acc2(n))) / tt,
-            jerk: libm::sqrt(jerk2) / (tt * period),
+            acceleration: acc(0.0).max(acc(n)),
+            jerk: libm::sqrt(sq(&|c| 6.0 * c[3] / (tt * period))),
+            velocity_bound: speed_bound(coeffs, n, period),
         }
     }
 
@@ -94,6 +103,30 @@ impl Peaks {
         }
         Ok(worst)
     }
+}
+
+/// The speed bound of [`Peaks::of_piece`].
+fn speed_bound<const A: usize>(coeffs: &[[f64; 4]; A], n: f64, period: f64) -> f64 {
+    let vel = |i: f64, a: usize| {
+        coeffs.get(a).map_or(0.0, |[_, b, c, d]| {
+            (b + i * (2.0 * c + 3.0 * d * i)) / period
+        })
+    };
+    let acc = |i: f64, a: usize| {
+        coeffs.get(a).map_or(0.0, |[_, _, c, d]| {
+            (2.0 * c + 6.0 * d * i) / (period * period)
+        })
+    };
+    let norm = |f: &dyn Fn(usize) -> f64| libm::sqrt((0..A).map(|a| f(a) * f(a)).sum());
+    let jerk = norm(&|a| coeffs.get(a).map_or(0.0, |c| 6.0 * c[3]) / (period * period * period));
+    let delta = 0.25 * n * period;
+    let mut v_max = 0.0_f64;
+    for s in [0.0, 0.5 * n, n] {
+        let plus = norm(&|a| vel(s, a) + delta * acc(s, a));
+        let minus = norm(&|a| vel(s, a) - delta * acc(s, a));
+        v_max = v_max.max(plus.max(minus) + 0.5 * delta * delta * jerk);
+    }
+    v_max
 }
 
 /// Calls `out` with every root in `(0, n)` of the cubic `g[0] + g[1] i + g[2] i² + g[3] i³`
@@ -193,6 +226,12 @@ mod tests {
             let s = sampled_speed(&coeffs, 100.0, period);
             assert!(p.velocity >= s * (1.0 - 1e-12), "{} < {s}", p.velocity);
             assert!(p.velocity <= s * (1.0 + 1e-7), "{} > {s}", p.velocity);
+            assert!(
+                p.velocity_bound >= p.velocity,
+                "{} {}",
+                p.velocity_bound,
+                p.velocity
+            );
         }
         // the bump: b + 2ci + 3di² peaks at i = −c/(3d) = 33.3
         let bump = [[0.0, 0.1, 0.01, -1e-4]];
@@ -220,12 +259,14 @@ mod tests {
             velocity: 10.0,
             acceleration: 50.0,
             jerk: 1000.0,
+            velocity_bound: 10.0,
         };
         assert_eq!(within.slowdown(&limits), Ok((1.0, None)));
         let fast = Peaks {
             velocity: 10.5,
             acceleration: 121.0,
             jerk: 1000.0,
+            velocity_bound: 11.0,
         };
         // √(121/100) = 1.1 > 1.05
         let (f, q) = fast.slowdown(&limits).unwrap();
