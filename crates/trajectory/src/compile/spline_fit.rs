@@ -1,6 +1,6 @@
 //! The C² cubic spline in time with knots on the tick grid, clamped at both ends, refined by
-//! adaptive knot insertion (seeds/003, "Splines": the interpolating cubic spline, here in the
-//! Hermite form with the knot slopes as unknowns).
+//! adaptive knot insertion (the complete cubic spline interpolant in Hermite form, with the
+//! knot slopes as unknowns: de Boor, *A Practical Guide to Splines*, ch. IV).
 //!
 //! The spline interpolates the exact positions `y_j = x(k_j)` at the knot ticks `k_j`; its
 //! slopes `s_j` (units per tick) solve the tridiagonal system of C² continuity at the inner
@@ -95,8 +95,8 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
         Ok(fit)
     }
 
-    /// Lays out the uniform initial grid of [`SplineFit::new`] in place (whatever the spline
-    /// held before).
+    /// Lays out the uniform initial grid of [`SplineFit::new`] in place, over whatever the
+    /// spline holds.
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when the grid needs more than `P` pieces; errors of `exact`.
