@@ -9,6 +9,7 @@
 use proptest::prelude::*;
 use strak_curves::Point;
 
+pub mod limits_check;
 pub mod spline_cases;
 
 /// The coordinates of a point as strak-ref's `Vec<f64>`.

@@ -67,6 +67,13 @@ pub enum Error {
         /// The format the blob holds.
         found: BlobFormat,
     },
+    /// The compiled pieces would exceed a limit the time law promises
+    /// ([`Timing::limits`](crate::Timing::limits)) even after the largest slow-down the
+    /// compiler applies to absorb its fit (see [`compile`](crate::compile)).
+    LimitExceeded {
+        /// The quantity whose limit the compiled motion exceeds.
+        quantity: Quantity,
+    },
 }
 
 /// The number format and axis count of a serialized path.
@@ -108,6 +115,33 @@ impl fmt::Display for BlobFormat {
     }
 }
 
+/// A kinematic quantity of a motion in space.
+///
+/// ```
+/// use strak_trajectory::Quantity;
+/// assert_eq!(Quantity::Jerk.to_string(), "jerk");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Quantity {
+    /// The speed `|ẋ|`.
+    Velocity,
+    /// The acceleration `|ẍ|`.
+    Acceleration,
+    /// The jerk `|x⃛|`.
+    Jerk,
+}
+
+impl fmt::Display for Quantity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Quantity::Velocity => "velocity",
+            Quantity::Acceleration => "acceleration",
+            Quantity::Jerk => "jerk",
+        })
+    }
+}
+
 impl From<strak_curves::Error> for Error {
     fn from(e: strak_curves::Error) -> Self {
         Error::Curve(e)
@@ -144,6 +178,10 @@ impl fmt::Display for Error {
             Error::FormatMismatch { expected, found } => {
                 write!(f, "serialized path is for {found}, expected {expected}")
             }
+            Error::LimitExceeded { quantity } => write!(
+                f,
+                "the compiled path would exceed the time law's {quantity} limit even slowed down"
+            ),
         }
     }
 }

@@ -13,7 +13,7 @@ mod sampler;
 mod timing;
 
 pub use compile::{CompileOptions, Tolerance, compile};
-pub use error::{BlobFormat, Error};
+pub use error::{BlobFormat, Error, Quantity};
 pub use limits::Limits;
 pub use number::{Number, Q40};
 pub use path::{
@@ -22,4 +22,4 @@ pub use path::{
 };
 pub use profile::*;
 pub use sampler::{Sampler, SamplerState};
-pub use timing::Timing;
+pub use timing::{MotionLimits, Timing};

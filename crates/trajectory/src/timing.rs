@@ -1,5 +1,27 @@
 //! The interface between planning and compiling: where on the curve the motion is at time t.
 
+/// The limits a time law keeps along its curve: the speed `|ẋ|` and the Euclidean norms of
+/// the acceleration `|ẍ|` and the jerk `|x⃛|` of the motion in space (path units and
+/// seconds), `f64::INFINITY` for a quantity the law does not bound. A planned law reports
+/// them through [`Timing::limits`], and [`compile`](crate::compile) keeps its pieces within
+/// them.
+///
+/// ```
+/// use strak_trajectory::MotionLimits;
+/// let trapezoid = MotionLimits { velocity: 200.0, acceleration: 2_000.0, jerk: f64::INFINITY };
+/// assert!(trapezoid.jerk.is_infinite());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct MotionLimits {
+    /// The largest speed `|ẋ|`.
+    pub velocity: f64,
+    /// The largest acceleration `|ẍ|`.
+    pub acceleration: f64,
+    /// The largest jerk `|x⃛|`.
+    pub jerk: f64,
+}
+
 /// A time law mapped onto a curve: the curve parameter `u(t)` and its rate `du/dt` over
 /// `t ∈ [0, duration]`.
 ///
@@ -55,5 +77,25 @@ pub trait Timing {
     /// ```
     fn breaks(&self, out: &mut dyn FnMut(f64)) {
         let _ = out;
+    }
+
+    /// The limits the motion keeps, if the time law promises any ([`MotionLimits`]); the
+    /// compiler then keeps the compiled pieces within them, slowing the motion down by the
+    /// small factor the fit needs or failing with
+    /// [`Error::LimitExceeded`](crate::Error::LimitExceeded) (see
+    /// [`compile`](crate::compile)). The default promises none (unplanned laws: a parameter
+    /// rate, a constant speed).
+    ///
+    /// ```
+    /// use strak_trajectory::{MotionLimits, Timing};
+    /// struct Slow;
+    /// impl Timing for Slow {
+    ///     fn duration(&self) -> f64 { 1.0 }
+    ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 1.0), 1.0) }
+    /// }
+    /// assert_eq!(Slow.limits(), None);
+    /// ```
+    fn limits(&self) -> Option<MotionLimits> {
+        None
     }
 }

@@ -25,6 +25,9 @@ pub enum Tolerance {
 /// * tolerance: default [`Tolerance::Relative`]`(1e-4)`;
 /// * maximal piece length: default 256 ticks (bounds the forward-differencing error, see
 ///   [`Number`](crate::Number));
+/// * the largest slow-down (default 1.25): the factor by which [`compile`](crate::compile)
+///   may stretch a time law's duration so that the compiled pieces keep the limits the law
+///   promises ([`Timing::limits`](crate::Timing::limits)); 1 allows none;
 /// * the acceleration and jerk limits of the machine (norms along the path, as in
 ///   [`Limits`]) and the share of them reserved for feed changes (default ¼): feed override,
 ///   hold and resume ramp the feed factor `φ` with `|φ̇|·v_peak ≤ a_ramp` and
@@ -55,6 +58,7 @@ pub struct CompileOptions {
     max_piece_ticks: u32,
     limits: Option<(f64, f64)>,
     feed_share: f64,
+    max_slowdown: f64,
 }
 
 impl Default for CompileOptions {
@@ -70,6 +74,8 @@ impl CompileOptions {
     pub const DEFAULT_MAX_PIECE_TICKS: u32 = 256;
     /// The default share of the acceleration and jerk limits reserved for feed changes.
     pub const DEFAULT_FEED_SHARE: f64 = 0.25;
+    /// The default largest slow-down.
+    pub const DEFAULT_MAX_SLOWDOWN: f64 = 1.25;
 
     /// The defaults (see the type docs).
     pub const fn new() -> Self {
@@ -78,6 +84,7 @@ impl CompileOptions {
             max_piece_ticks: Self::DEFAULT_MAX_PIECE_TICKS,
             limits: None,
             feed_share: Self::DEFAULT_FEED_SHARE,
+            max_slowdown: Self::DEFAULT_MAX_SLOWDOWN,
         }
     }
 
@@ -117,6 +124,24 @@ impl CompileOptions {
         self
     }
 
+    /// The largest factor (finite, `≥ 1`; checked by `compile`) by which `compile` may
+    /// stretch the time law's duration so that the compiled pieces keep the law's limits.
+    ///
+    /// ```
+    /// use strak_trajectory::CompileOptions;
+    /// let strict = CompileOptions::new().with_max_slowdown(1.0); // an error rather than slower
+    /// assert_eq!(strict.max_slowdown(), 1.0);
+    /// ```
+    pub const fn with_max_slowdown(mut self, factor: f64) -> Self {
+        self.max_slowdown = factor;
+        self
+    }
+
+    /// The largest slow-down.
+    pub const fn max_slowdown(&self) -> f64 {
+        self.max_slowdown
+    }
+
     /// The tolerance.
     pub const fn tolerance(&self) -> Tolerance {
         self.tolerance
@@ -141,7 +166,8 @@ impl CompileOptions {
     ///
     /// # Errors
     /// [`Error::InvalidLimit`] for a tolerance, limit or share that is not finite and
-    /// positive (share: in `(0, 1)`), or a maximal piece length of 0.
+    /// positive (share: in `(0, 1)`), a maximal piece length of 0, or a largest slow-down
+    /// that is not finite and at least 1.
     pub(crate) fn validate(&self) -> Result<(), Error> {
         let positive = |x: f64| x.is_finite() && x > 0.0;
         let tol = match self.tolerance {
@@ -156,6 +182,8 @@ impl CompileOptions {
             && self.max_piece_ticks >= 1
             && positive(self.feed_share)
             && self.feed_share < 1.0
+            && self.max_slowdown.is_finite()
+            && self.max_slowdown >= 1.0
         {
             Ok(())
         } else {
@@ -179,6 +207,9 @@ mod tests {
             CompileOptions::new().with_limits(1.0, f64::INFINITY),
             CompileOptions::new().with_feed_share(1.0),
             CompileOptions::new().with_feed_share(0.0),
+            CompileOptions::new().with_max_slowdown(0.99),
+            CompileOptions::new().with_max_slowdown(f64::NAN),
+            CompileOptions::new().with_max_slowdown(f64::INFINITY),
         ];
         for o in bad {
             assert_eq!(o.validate(), Err(Error::InvalidLimit), "{o:?}");

@@ -1,6 +1,6 @@
 //! The C² cubic spline in time with knots on the tick grid, clamped at both ends, refined by
-//! adaptive knot insertion (seeds/003, "Splines": the interpolating cubic spline, here in the
-//! Hermite form with the knot slopes as unknowns).
+//! adaptive knot insertion (the complete cubic spline interpolant in Hermite form, with the
+//! knot slopes as unknowns: de Boor, *A Practical Guide to Splines*, ch. IV).
 //!
 //! The spline interpolates the exact positions `y_j = x(k_j)` at the knot ticks `k_j`; its
 //! slopes `s_j` (units per tick) solve the tridiagonal system of C² continuity at the inner
@@ -62,11 +62,27 @@ pub(crate) fn hermite_coefficients(y0: f64, y1: f64, s0: f64, s1: f64, n: f64) -
 }
 
 impl<const A: usize, const P: usize> SplineFit<A, P> {
+    /// A spline without knots; [`SplineFit::init`] lays out its grid.
+    pub(crate) const fn empty() -> Self {
+        SplineFit {
+            m: 0,
+            ends: [0; P],
+            values: [[0.0; A]; P],
+            slopes: [[0.0; A]; P],
+            start_value: [0.0; A],
+            start_slope: [0.0; A],
+            end_slope: [0.0; A],
+            scratch: [0.0; P],
+            split: [false; P],
+        }
+    }
+
     /// The spline on a uniform initial grid: `⌈ticks / max_len⌉` pieces of at most `max_len`
     /// ticks, with the positions from `exact`.
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when the grid needs more than `P` pieces; errors of `exact`.
+    #[cfg(test)]
     pub(crate) fn new(
         ticks: u32,
         max_len: u32,
@@ -74,6 +90,24 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
         end_slope: [f64; A],
         exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
     ) -> Result<Self, Error> {
+        let mut fit = Self::empty();
+        fit.init(ticks, max_len, start_slope, end_slope, exact)?;
+        Ok(fit)
+    }
+
+    /// Lays out the uniform initial grid of [`SplineFit::new`] in place, over whatever the
+    /// spline holds.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the grid needs more than `P` pieces; errors of `exact`.
+    pub(crate) fn init(
+        &mut self,
+        ticks: u32,
+        max_len: u32,
+        start_slope: [f64; A],
+        end_slope: [f64; A],
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
         let m = ticks.div_ceil(max_len.max(1)).max(1) as usize;
         if m > P {
             return Err(Error::CapacityExceeded {
@@ -81,25 +115,19 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
                 required: m,
             });
         }
-        let mut fit = SplineFit {
-            m,
-            ends: [0; P],
-            values: [[0.0; A]; P],
-            slopes: [[0.0; A]; P],
-            start_value: exact(0)?,
-            start_slope,
-            end_slope,
-            scratch: [0.0; P],
-            split: [false; P],
-        };
+        self.m = m;
+        self.start_value = exact(0)?;
+        self.start_slope = start_slope;
+        self.end_slope = end_slope;
+        self.split = [false; P];
         for j in 0..m {
             // ⌊(j+1)·N/m⌋: strictly increasing (N ≥ m), steps of at most ⌈N/m⌉ ≤ max_len.
             #[allow(clippy::cast_possible_truncation)]
             let k = ((j as u64 + 1) * u64::from(ticks) / m as u64) as u32;
-            fit.ends[j] = k;
-            fit.values[j] = exact(k)?;
+            self.ends[j] = k;
+            self.values[j] = exact(k)?;
         }
-        Ok(fit)
+        Ok(())
     }
 
     /// Inserts a knot at tick `k` with the position from `exact`, unless `k` is already a
@@ -212,7 +240,7 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     /// Solves for the inner knot slopes (Thomas algorithm, `O(m)`).
     pub(crate) fn solve(&mut self) {
         let m = self.m;
-        if let Some(last) = self.slopes.get_mut(m - 1) {
+        if let Some(last) = self.slopes.get_mut(m.wrapping_sub(1)) {
             *last = self.end_slope;
         }
         if m < 2 {

@@ -4,14 +4,14 @@ use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, S
 
 use super::greater;
 use super::motion::{MotionProfile, Phase};
-use super::options::PlanOptions;
+use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion;
 use crate::compile::{CompileOptions, compile};
 use crate::error::Error;
 use crate::limits::Limits;
 use crate::number::Number;
 use crate::path::Path;
-use crate::timing::Timing;
+use crate::timing::{MotionLimits, Timing};
 
 /// Chords summed for the length estimate that scales the arc-length accuracy.
 const ESTIMATE_CHORDS: usize = 64;
@@ -73,11 +73,32 @@ impl<C: ParamCurveDeriv> ParamCurve for SpeedCurve<'_, C> {
 impl<C: ParamCurveDeriv> ParamCurveDeriv for SpeedCurve<'_, C> {
     fn deriv(&self, u: f64, k: usize) -> [f64; 1] {
         if k == 1 {
-            [norm64(&self.0.deriv(to_param(self.0, u), 1))]
+            [norm64(&self.0.deriv(param_on_side(self.0, u), 1))]
         } else {
             [0.0]
         }
     }
+}
+
+/// The curve's parameter for the table's `f64` parameter `u`, on the side of `u`: where
+/// rounding into the curve's scalar moves `u` up by at most a few `f64` units, the value
+/// two of the scalar's units below is taken instead. [`ArcLengthTable`] evaluates the
+/// left-sided speed at a knot two `f64` units below it; in a coarser scalar (`f32`,
+/// fixed-point) that point rounds back onto the knot, where the curve's derivative is the
+/// right piece's, and the table's interval left of the knot would get the speed of the
+/// piece after it as its end slope (a polyline with unequal segments then plans a time law
+/// whose acceleration misses the plan by several times the limit).
+fn param_on_side<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
+    let s = to_param(curve, u);
+    let rounded = s.to_f64();
+    if !(rounded > u && rounded - u <= 8.0 * f64::EPSILON * u.abs().max(1.0)) {
+        return s;
+    }
+    let lower = to_param(
+        curve,
+        rounded - 2.0 * ScalarOf::<C>::EPSILON * rounded.abs().max(1.0),
+    );
+    if lower < s { lower } else { s }
 }
 
 /// The arc-length table of `curve` in `f64`. The accuracy is `1e-10` of a length estimate
@@ -171,6 +192,8 @@ struct FeedReserve {
     acceleration: f64,
     jerk: f64,
     share: f64,
+    /// What the law promises ([`Timing::limits`]).
+    limits: Option<MotionLimits>,
 }
 
 /// Cloning shares the curve reference (the curve need not be `Clone`).
@@ -182,6 +205,7 @@ impl<C, const N: usize, const Z: usize> Clone for PathTiming<'_, C, N, Z> {
             motion: self.motion.clone(),
             rate: self.rate,
             feed: self.feed,
+            limits: self.limits,
         }
     }
 }
@@ -218,6 +242,7 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             motion,
             rate: PlanOptions::DEFAULT_RATE,
             feed: None,
+            limits: None,
         })
     }
 
@@ -241,12 +266,19 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     pub fn trapezoid(curve: &'a C, v_max: f64, a_max: f64) -> Result<Self, Error> {
         let table = arc_table(curve)?;
         let motion = MotionProfile::trapezoid(table.length(), v_max, a_max)?;
+        // The speed along the path; the acceleration only tangentially (not in curves).
+        let limits = Some(MotionLimits {
+            velocity: v_max,
+            acceleration: f64::INFINITY,
+            jerk: f64::INFINITY,
+        });
         Ok(PathTiming {
             curve,
             table,
             motion,
             rate: PlanOptions::DEFAULT_RATE,
             feed: None,
+            limits,
         })
     }
 
@@ -341,6 +373,18 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         options.validate()?;
         let table = arc_table(curve)?;
         let motion = plan_motion(curve, &table, limits, options)?;
+        // What holds at feed 1: the plan leaves the feed share of the acceleration and jerk
+        // free for feed ramps.
+        let keep = 1.0 - options.feed_share();
+        let jerk = match options.shape() {
+            ProfileShape::SCurve => keep * limits.jerk(),
+            ProfileShape::Trapezoid => f64::INFINITY,
+        };
+        let promise = Some(MotionLimits {
+            velocity: limits.velocity(),
+            acceleration: keep * limits.acceleration(),
+            jerk,
+        });
         Ok(PathTiming {
             curve,
             table,
@@ -351,6 +395,7 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
                 jerk: limits.jerk(),
                 share: options.feed_share(),
             }),
+            limits: promise,
         })
     }
 
@@ -454,6 +499,15 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
             (u, 0.0)
         }
     }
+
+    /// The planned laws ([`plan`](Self::plan), [`scurve`](Self::scurve)) promise the path
+    /// limits they were planned with (the jerk only for the S-curve);
+    /// [`trapezoid`](Self::trapezoid) the speed; [`constant_speed`](Self::constant_speed)
+    /// nothing.
+    fn limits(&self) -> Option<MotionLimits> {
+        self.limits
+    }
+
     /// The phase boundaries of the motion profile where its jerk `s⃛` jumps and its
     /// acceleration is continuous (the S-curve's; zone boundaries included), strictly inside
     /// `(0, duration)`. The trapezoid's acceleration steps are left out: a C² spline with a
