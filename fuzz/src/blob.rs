@@ -80,7 +80,9 @@ fn load<N: Number, const A: usize>(bytes: &[u8]) -> Result<(), Violation> {
     if let Ok(s) = &small
         && s.pieces() != path.pieces()
     {
-        return Err(violation!("capacities {SMALL} and {PIECES} load other pieces"));
+        return Err(violation!(
+            "capacities {SMALL} and {PIECES} load other pieces"
+        ));
     }
     let mut again = vec![0_u8; path.blob_len()];
     match path.to_bytes(&mut again) {

@@ -143,7 +143,11 @@ fn check_end<N: Number, const A: usize, const P: usize>(
     let rest = sampler.next();
     let zero = <N::Out as Scalar>::ZERO;
     if rest.position != path.end_position()
-        || rest.velocity.iter().chain(&rest.acceleration).any(|v| *v != zero)
+        || rest
+            .velocity
+            .iter()
+            .chain(&rest.acceleration)
+            .any(|v| *v != zero)
     {
         return Err(violation!(
             "after the end the sampler does not stand still at the end: {rest:?}"
@@ -161,7 +165,10 @@ pub fn last_piece_end<N: Number, const A: usize, const P: usize>(
     let n = f64::from(piece.ticks());
     let (c2, c3) = (n * (n - 1.0) / 2.0, n * (n - 1.0) * (n - 2.0) / 6.0);
     Some(piece.axes().map(|s| {
-        s.position.to_f64() + n * s.delta1.to_f64() + c2 * s.delta2.to_f64() + c3 * s.delta3.to_f64()
+        s.position.to_f64()
+            + n * s.delta1.to_f64()
+            + c2 * s.delta2.to_f64()
+            + c3 * s.delta3.to_f64()
     }))
 }
 
@@ -303,7 +310,14 @@ struct Meter {
 }
 
 impl Meter {
-    fn measure(&mut self, quantity: &'static str, tick: u64, value: f64, limit: f64, allowance: f64) {
+    fn measure(
+        &mut self,
+        quantity: &'static str,
+        tick: u64,
+        value: f64,
+        limit: f64,
+        allowance: f64,
+    ) {
         if !(value <= limit * (1.0 + RELATIVE) + allowance) {
             let e = Excess {
                 quantity,
@@ -339,7 +353,13 @@ pub fn check_limits<const A: usize>(
         let dx: [f64; A] = core::array::from_fn(|i| d(|s| s.position, i));
         let dv: [f64; A] = core::array::from_fn(|i| d(|s| s.velocity, i));
         let da: [f64; A] = core::array::from_fn(|i| d(|s| s.acceleration, i));
-        m.measure("speed |v|", k, norm(dx.into_iter()), bounds.velocity, allow.velocity);
+        m.measure(
+            "speed |v|",
+            k,
+            norm(dx.into_iter()),
+            bounds.velocity,
+            allow.velocity,
+        );
         let acc = if bounds.tangential {
             let v = norm(s.velocity.into_iter());
             if v > 0.0 {
@@ -350,12 +370,24 @@ pub fn check_limits<const A: usize>(
         } else {
             norm(dv.into_iter())
         };
-        m.measure("acceleration |a|", k, acc, bounds.acceleration, allow.acceleration);
+        m.measure(
+            "acceleration |a|",
+            k,
+            acc,
+            bounds.acceleration,
+            allow.acceleration,
+        );
         if let Some(j) = bounds.jerk {
             m.measure("jerk |j|", k, norm(da.into_iter()), j, allow.jerk);
         }
         for i in 0..A {
-            m.measure("axis velocity", k, dx[i].abs(), bounds.axis_velocity[i], allow.velocity);
+            m.measure(
+                "axis velocity",
+                k,
+                dx[i].abs(),
+                bounds.axis_velocity[i],
+                allow.velocity,
+            );
             m.measure(
                 "axis acceleration",
                 k,

@@ -18,9 +18,9 @@ use std::time::{Duration, Instant};
 
 use strak_curves::{
     ArcLengthTable, BSpline, Bezier, BezierChain, CubicSpline, HermiteSegment, HermiteSpline,
-    I16F16, I32F32, KnotVector, LagrangeCurve, NodeSource, Nurbs, ParabolicBlend,
-    Parameterization, PieceDeriv, Point, PowerSpline, Scalar, ScalarOf, SplineBoundary,
-    arc_length, basis::MonomialCurve, classify_breaks, flatten, flatten_count,
+    I16F16, I32F32, KnotVector, LagrangeCurve, NodeSource, Nurbs, ParabolicBlend, Parameterization,
+    PieceDeriv, Point, PowerSpline, Scalar, ScalarOf, SplineBoundary, arc_length,
+    basis::MonomialCurve, classify_breaks, flatten, flatten_count,
 };
 
 use crate::decode::Bytes;
@@ -58,13 +58,21 @@ impl FuzzScalar for f32 {
 
 impl FuzzScalar for I16F16 {
     fn from_fuzz(v: f64) -> Self {
-        if v.is_nan() { I16F16::ZERO } else { I16F16::saturating_from_num(v) }
+        if v.is_nan() {
+            I16F16::ZERO
+        } else {
+            I16F16::saturating_from_num(v)
+        }
     }
 }
 
 impl FuzzScalar for I32F32 {
     fn from_fuzz(v: f64) -> Self {
-        if v.is_nan() { I32F32::ZERO } else { I32F32::saturating_from_num(v) }
+        if v.is_nan() {
+            I32F32::ZERO
+        } else {
+            I32F32::saturating_from_num(v)
+        }
     }
 }
 
@@ -128,7 +136,11 @@ fn sorted<S: FuzzScalar>(b: &mut Bytes<'_>, count: usize, min_step: i64) -> Vec<
 
 impl<S: FuzzScalar, const D: usize> Args<S, D> {
     fn decode(b: &mut Bytes<'_>) -> Self {
-        let scale = if b.one_in(16) { b.magnitude(4, 12) } else { b.magnitude(-3, 2) };
+        let scale = if b.one_in(16) {
+            b.magnitude(4, 12)
+        } else {
+            b.magnitude(-3, 2)
+        };
         let n = b.int(0, MAX_POINTS as i64) as usize;
         let points = (0..n).map(|_| point(b, scale)).collect();
         let tangents = (0..n).map(|_| point(b, scale)).collect();
@@ -136,10 +148,24 @@ impl<S: FuzzScalar, const D: usize> Args<S, D> {
         let knots = sorted(b, k, 0);
         let nodes = sorted(b, n, 1);
         let weights = (0..n)
-            .map(|_| S::from_fuzz(if b.one_in(16) { b.coord(1.0) } else { b.positive(-2, 2) }))
+            .map(|_| {
+                S::from_fuzz(if b.one_in(16) {
+                    b.coord(1.0)
+                } else {
+                    b.positive(-2, 2)
+                })
+            })
             .collect();
         let degree = b.int(0, 6) as usize;
-        Args { points, tangents, knots, nodes, weights, degree, scale }
+        Args {
+            points,
+            tangents,
+            knots,
+            nodes,
+            weights,
+            degree,
+            scale,
+        }
     }
 
     fn point(&self, i: usize) -> [S; D] {
@@ -172,7 +198,11 @@ fn case<S: FuzzScalar, const D: usize>(b: &mut Bytes<'_>) -> Result<(), Violatio
             let c = LagrangeCurve::<_, 8>::new(&a.points, a.nodes(b));
             exercise_result("LagrangeCurve::new", c, b)
         }
-        7 => exercise_result("ParabolicBlend::new", ParabolicBlend::<_, N>::new(&a.points), b),
+        7 => exercise_result(
+            "ParabolicBlend::new",
+            ParabolicBlend::<_, N>::new(&a.points),
+            b,
+        ),
         8 => monomial(&a, b),
         9 => {
             let c = Nurbs::<[S; D], 9, 12>::circle(a.point(0), scalar(b, a.scale));
@@ -186,11 +216,17 @@ fn case<S: FuzzScalar, const D: usize>(b: &mut Bytes<'_>) -> Result<(), Violatio
     }
 }
 
-fn boundary<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> SplineBoundary<[S; D]> {
+fn boundary<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> SplineBoundary<[S; D]> {
     match b.choice(3) {
         0 => SplineBoundary::Natural,
         1 => SplineBoundary::Periodic,
-        _ => SplineBoundary::Clamped { start: point(b, a.scale), end: point(b, a.scale) },
+        _ => SplineBoundary::Clamped {
+            start: point(b, a.scale),
+            end: point(b, a.scale),
+        },
     }
 }
 
@@ -198,7 +234,10 @@ fn array<S: FuzzScalar, const D: usize, const K: usize>(a: &Args<S, D>) -> [[S; 
     core::array::from_fn(|i| a.point(i))
 }
 
-fn bezier<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
+fn bezier<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
     match a.degree {
         0 | 1 => bezier_of::<S, D, 2>(a, b),
         2 => bezier_of::<S, D, 3>(a, b),
@@ -238,11 +277,22 @@ fn bezier_of<S: FuzzScalar, const D: usize, const K: usize>(
     Ok(())
 }
 
-fn chain<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
+fn chain<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
     if b.one_in(2) {
-        exercise_result("BezierChain::new (linear)", BezierChain::<_, 2, 8>::new(&a.points), b)
+        exercise_result(
+            "BezierChain::new (linear)",
+            BezierChain::<_, 2, 8>::new(&a.points),
+            b,
+        )
     } else {
-        exercise_result("BezierChain::new (cubic)", BezierChain::<_, 4, 4>::new(&a.points), b)?;
+        exercise_result(
+            "BezierChain::new (cubic)",
+            BezierChain::<_, 4, 4>::new(&a.points),
+            b,
+        )?;
         let segments: Vec<Bezier<[S; D], 4>> = a
             .points
             .chunks_exact(4)
@@ -253,18 +303,40 @@ fn chain<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Re
     }
 }
 
-fn bspline<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
+fn bspline<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
     let (p, g) = (&a.points[..], a.degree);
     let (u0, u1) = (scalar::<S>(b, 1.0), scalar::<S>(b, 1.0));
     let (what, c) = match b.choice(8) {
         0 => ("BSpline::new", BSpline::<_, N, M>::new(g, p, &a.knots)),
-        1 => ("BSpline::clamped_uniform", BSpline::clamped_uniform(g, p, u0, u1)),
+        1 => (
+            "BSpline::clamped_uniform",
+            BSpline::clamped_uniform(g, p, u0, u1),
+        ),
         2 => ("BSpline::closed", BSpline::closed(g, p, None)),
-        3 => ("BSpline::closed (knots)", BSpline::closed(g, p, Some(&a.knots))),
-        4 => ("KnotVector::new", KnotVector::new(g, &a.knots).and_then(|k| BSpline::from_knot_vector(p, k))),
-        5 => ("KnotVector::uniform", KnotVector::uniform(g, p.len(), u0, u1).and_then(|k| BSpline::from_knot_vector(p, k))),
-        6 => ("KnotVector::periodic", KnotVector::periodic(g, p.len(), u0, u1).and_then(|k| BSpline::from_knot_vector(p, k))),
-        _ => ("KnotVector::clamped_uniform", KnotVector::clamped_uniform(g, p.len(), u0, u1).and_then(|k| BSpline::from_knot_vector(p, k))),
+        3 => (
+            "BSpline::closed (knots)",
+            BSpline::closed(g, p, Some(&a.knots)),
+        ),
+        4 => (
+            "KnotVector::new",
+            KnotVector::new(g, &a.knots).and_then(|k| BSpline::from_knot_vector(p, k)),
+        ),
+        5 => (
+            "KnotVector::uniform",
+            KnotVector::uniform(g, p.len(), u0, u1).and_then(|k| BSpline::from_knot_vector(p, k)),
+        ),
+        6 => (
+            "KnotVector::periodic",
+            KnotVector::periodic(g, p.len(), u0, u1).and_then(|k| BSpline::from_knot_vector(p, k)),
+        ),
+        _ => (
+            "KnotVector::clamped_uniform",
+            KnotVector::clamped_uniform(g, p.len(), u0, u1)
+                .and_then(|k| BSpline::from_knot_vector(p, k)),
+        ),
     };
     let Ok(c) = c else { return Ok(()) };
     exercise(what, &c, b)?;
@@ -276,17 +348,30 @@ fn bspline<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> 
             exercise_result("BSpline::to_bezier_segments", Bezier::new(*s), b)?;
         }
     }
-    exercise_result("PowerSpline::from_bspline", PowerSpline::<_, 6, 16>::from_bspline(&c), b)
+    exercise_result(
+        "PowerSpline::from_bspline",
+        PowerSpline::<_, 6, 16>::from_bspline(&c),
+        b,
+    )
 }
 
-fn nurbs<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
+fn nurbs<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
     let (p, w, g) = (&a.points[..], &a.weights[..], a.degree);
     let (u0, u1) = (scalar::<S>(b, 1.0), scalar::<S>(b, 1.0));
     let (what, c) = match b.choice(4) {
         0 => ("Nurbs::new", Nurbs::<_, N, M>::new(g, p, w, &a.knots)),
-        1 => ("Nurbs::clamped_uniform", Nurbs::clamped_uniform(g, p, w, u0, u1)),
+        1 => (
+            "Nurbs::clamped_uniform",
+            Nurbs::clamped_uniform(g, p, w, u0, u1),
+        ),
         2 => ("Nurbs::closed", Nurbs::closed(g, p, w, None)),
-        _ => ("Nurbs::closed (knots)", Nurbs::closed(g, p, w, Some(&a.knots))),
+        _ => (
+            "Nurbs::closed (knots)",
+            Nurbs::closed(g, p, w, Some(&a.knots)),
+        ),
     };
     let Ok(c) = c else { return Ok(()) };
     exercise(what, &c, b)?;
@@ -296,12 +381,22 @@ fn nurbs<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Re
     Ok(())
 }
 
-fn hermite<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
+fn hermite<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
     let (p, m) = (&a.points[..], &a.tangents[..]);
     match b.choice(4) {
         0 => {
             let (u0, u1) = (scalar::<S>(b, 1.0), scalar::<S>(b, 1.0));
-            let c = HermiteSegment::new(u0, u1, a.point(0), a.point(1), point(b, a.scale), point(b, a.scale));
+            let c = HermiteSegment::new(
+                u0,
+                u1,
+                a.point(0),
+                a.point(1),
+                point(b, a.scale),
+                point(b, a.scale),
+            );
             exercise_result("HermiteSegment::new", c, b)
         }
         1 => {
@@ -320,19 +415,31 @@ fn hermite<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> 
     }
 }
 
-fn monomial<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
+fn monomial<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
     let coeffs: [[S; D]; 4] = array(a);
     if b.one_in(2) {
         exercise_result("MonomialCurve::new", MonomialCurve::new(coeffs), b)
     } else {
         let (s, e) = (scalar::<S>(b, 1.0), scalar::<S>(b, 1.0));
-        exercise_result("MonomialCurve::with_domain", MonomialCurve::with_domain(coeffs, s, e), b)
+        exercise_result(
+            "MonomialCurve::with_domain",
+            MonomialCurve::with_domain(coeffs, s, e),
+            b,
+        )
     }
 }
 
 /// The basis functions at a fuzzed parameter: finite wherever the parameter is finite.
-fn bases<S: FuzzScalar, const D: usize>(a: &Args<S, D>, b: &mut Bytes<'_>) -> Result<(), Violation> {
-    use strak_curves::basis::{LagrangeBasis, bernstein_all, bernstein_deriv_all, hermite, hermite_deriv};
+fn bases<S: FuzzScalar, const D: usize>(
+    a: &Args<S, D>,
+    b: &mut Bytes<'_>,
+) -> Result<(), Violation> {
+    use strak_curves::basis::{
+        LagrangeBasis, bernstein_all, bernstein_deriv_all, hermite, hermite_deriv,
+    };
     let t = S::from_fuzz(b.coord(1.0));
     let finite = |what: &str, v: &[S]| {
         if t.is_finite() && !v.iter().all(|x| x.is_finite()) {
@@ -401,23 +508,31 @@ where
         for k in 0..=4 {
             let p = c.deriv(u, k);
             if k <= 2 && !p.is_finite() {
-                return Err(violation!("{what}: derivative {k} at u = {u:?} is not finite: {p:?}"));
+                return Err(violation!(
+                    "{what}: derivative {k} at u = {u:?} is not finite: {p:?}"
+                ));
             }
         }
         let p = c.eval(u);
         if !p.is_finite() {
-            return Err(violation!("{what}: point at u = {u:?} is not finite: {p:?}"));
+            return Err(violation!(
+                "{what}: point at u = {u:?} is not finite: {p:?}"
+            ));
         }
     }
     for i in 0..pieces.min(8) {
         let (a, z) = c.piece_domain(i);
         if !(a.is_finite() && z.is_finite() && lo <= a && a <= z && z <= hi) {
-            return Err(violation!("{what}: piece {i} domain [{a:?}, {z:?}] outside [{lo:?}, {hi:?}]"));
+            return Err(violation!(
+                "{what}: piece {i} domain [{a:?}, {z:?}] outside [{lo:?}, {hi:?}]"
+            ));
         }
         for u in [a, z, mid(a, z)] {
             let p = c.piece_deriv(i, u, b.choice(4));
             if !p.is_finite() {
-                return Err(violation!("{what}: piece {i} derivative at u = {u:?} is not finite"));
+                return Err(violation!(
+                    "{what}: piece {i} derivative at u = {u:?} is not finite"
+                ));
             }
         }
     }
@@ -430,7 +545,10 @@ fn timed<T>(what: &str, call: &str, f: impl FnOnce() -> T) -> Result<T, Violatio
     let v = f();
     let took = start.elapsed();
     if took > ANALYSIS_BUDGET {
-        return Err(violation!("{what}: {call} took {:.1} s", took.as_secs_f64()));
+        return Err(violation!(
+            "{what}: {call} took {:.1} s",
+            took.as_secs_f64()
+        ));
     }
     Ok(v)
 }
@@ -442,7 +560,9 @@ where
     let accuracy = b.positive(-12, 0);
     let tolerance = b.positive(-10, 1);
     if b.one_in(2) {
-        let length = timed(what, &format!("arc_length({accuracy:e})"), || arc_length(c, accuracy))?;
+        let length = timed(what, &format!("arc_length({accuracy:e})"), || {
+            arc_length(c, accuracy)
+        })?;
         if let Ok(l) = length
             && !(l.is_finite() && l >= 0.0)
         {
@@ -456,19 +576,29 @@ where
             let u = t.param_at(s);
             let (lo, hi) = c.domain();
             if !(u.is_finite() && lo <= u && u <= hi) {
-                return Err(violation!("{what}: param_at({s:?}) = {u:?} outside the domain"));
+                return Err(violation!(
+                    "{what}: param_at({s:?}) = {u:?} outside the domain"
+                ));
             }
         }
     } else {
-        let _ = timed(what, &format!("flatten_count({tolerance:e})"), || flatten_count(c, tolerance))?;
+        let _ = timed(what, &format!("flatten_count({tolerance:e})"), || {
+            flatten_count(c, tolerance)
+        })?;
         let mut out = [<C::Point as Point>::zero(); 32];
-        let n = timed(what, &format!("flatten({tolerance:e})"), || flatten(c, tolerance, &mut out))?;
+        let n = timed(what, &format!("flatten({tolerance:e})"), || {
+            flatten(c, tolerance, &mut out)
+        })?;
         if let Ok(n) = n
             && !(n <= out.len() && out[..n].iter().all(|p| p.is_finite()))
         {
-            return Err(violation!("{what}: flatten wrote {n} points, not all finite"));
+            return Err(violation!(
+                "{what}: flatten wrote {n} points, not all finite"
+            ));
         }
-        let _ = timed(what, &format!("classify_breaks({tolerance:e})"), || classify_breaks(c, tolerance))?;
+        let _ = timed(what, &format!("classify_breaks({tolerance:e})"), || {
+            classify_breaks(c, tolerance)
+        })?;
     }
     Ok(())
 }
@@ -485,7 +615,9 @@ fn derivatives_agree<S: FuzzScalar, const D: usize>(
     let mut out = [[S::ZERO; D]; 3];
     derivatives(u, &mut out);
     if !out.iter().all(|p| p.is_finite()) {
-        return Err(violation!("{what}: derivatives at u = {u:?} not finite: {out:?}"));
+        return Err(violation!(
+            "{what}: derivatives at u = {u:?} not finite: {out:?}"
+        ));
     }
     Ok(())
 }

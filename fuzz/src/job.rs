@@ -63,7 +63,9 @@ fn curve_file(file: &CurveFile) -> Result<(), Violation> {
         if let Ok(rows) = sample_rows(file, &options)
             && let Some(row) = rows.iter().find(|r| !r.iter().all(|v| v.is_finite()))
         {
-            return Err(violation!("{number:?} curve file sample not finite: {row:?}"));
+            return Err(violation!(
+                "{number:?} curve file sample not finite: {row:?}"
+            ));
         }
     }
     Ok(())
@@ -85,15 +87,22 @@ fn valid_job(job: &Job) -> Result<(), Violation> {
 fn by_number<const D: usize>(job: &Job) -> Result<(), Violation> {
     let n = job.number.curve_number();
     match job.number {
-        JobNumber::F64 => build_dyn::<f64, D>(&job.path, n).map_or(Ok(()), |c| plan::<f64, f64, D>(job, &c)),
-        JobNumber::F32 => build_dyn::<f32, D>(&job.path, n).map_or(Ok(()), |c| plan::<f32, f32, D>(job, &c)),
+        JobNumber::F64 => {
+            build_dyn::<f64, D>(&job.path, n).map_or(Ok(()), |c| plan::<f64, f64, D>(job, &c))
+        }
+        JobNumber::F32 => {
+            build_dyn::<f32, D>(&job.path, n).map_or(Ok(()), |c| plan::<f32, f32, D>(job, &c))
+        }
         JobNumber::Fixed => {
             build_dyn::<I32F32, D>(&job.path, n).map_or(Ok(()), |c| plan::<Q40, I32F32, D>(job, &c))
         }
     }
 }
 
-fn plan<N: Number, S: Scalar, const D: usize>(job: &Job, curve: &DynCurve<S, D>) -> Result<(), Violation> {
+fn plan<N: Number, S: Scalar, const D: usize>(
+    job: &Job,
+    curve: &DynCurve<S, D>,
+) -> Result<(), Violation> {
     let Ok(limits) = planning_limits::<D>(job) else {
         return Ok(());
     };
@@ -104,7 +113,10 @@ fn plan<N: Number, S: Scalar, const D: usize>(job: &Job, curve: &DynCurve<S, D>)
             Err(_) => return Ok(()),
         },
         ProfileKind::ConstantSpeed => {
-            match PathTiming::<_, TABLE, ZONES>::constant_speed(curve, p.speed.unwrap_or(job.limits.velocity)) {
+            match PathTiming::<_, TABLE, ZONES>::constant_speed(
+                curve,
+                p.speed.unwrap_or(job.limits.velocity),
+            ) {
                 Ok(t) => Box::new(t),
                 Err(_) => return Ok(()),
             }
@@ -119,7 +131,9 @@ fn plan<N: Number, S: Scalar, const D: usize>(job: &Job, curve: &DynCurve<S, D>)
     if !(timing.duration() * job.rate_hz <= MAX_TICKS) {
         return Ok(());
     }
-    let Ok(path) = compile::<N, D, PIECES, _, _>(curve, &*timing, job.rate_hz, &compile_options(job)) else {
+    let Ok(path) =
+        compile::<N, D, PIECES, _, _>(curve, &*timing, job.rate_hz, &compile_options(job))
+    else {
         return Ok(());
     };
     play(job, curve, &*timing, &path)
@@ -131,10 +145,17 @@ fn play<N: Number, S: Scalar, const D: usize>(
     timing: &dyn Timing,
     path: &Path<N, D, PIECES>,
 ) -> Result<(), Violation> {
-    let planned = matches!(job.profile.kind, ProfileKind::Trapezoid | ProfileKind::SCurve);
+    let planned = matches!(
+        job.profile.kind,
+        ProfileKind::Trapezoid | ProfileKind::SCurve
+    );
     let l = &job.limits;
     let axis = |v: &Option<Vec<f64>>| -> [f64; D] {
-        core::array::from_fn(|i| v.as_ref().and_then(|v| v.get(i).copied()).unwrap_or(f64::INFINITY))
+        core::array::from_fn(|i| {
+            v.as_ref()
+                .and_then(|v| v.get(i).copied())
+                .unwrap_or(f64::INFINITY)
+        })
     };
     let bounds = Bounds {
         velocity: l.velocity,
@@ -156,6 +177,20 @@ fn play<N: Number, S: Scalar, const D: usize>(
             Action::Abort => None,
         })
         .collect();
-    check_compiled(curve, timing, path, &events, planned.then_some(&bounds), planned)
-        .map_err(|v| violation!("job ({} axes, {}, {}): {v}", D, job.number.name(), job.profile.kind.name()))
+    check_compiled(
+        curve,
+        timing,
+        path,
+        &events,
+        planned.then_some(&bounds),
+        planned,
+    )
+    .map_err(|v| {
+        violation!(
+            "job ({} axes, {}, {}): {v}",
+            D,
+            job.number.name(),
+            job.profile.kind.name()
+        )
+    })
 }

@@ -21,6 +21,9 @@
 //! }
 //! ```
 
+// Every check is written `!(value <= limit)`, so that a NaN fails it.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod blob;
 pub mod check;
 pub mod curves;

@@ -20,12 +20,12 @@
 //!   given the machine's limits), and then the machine's.
 
 use strak_curves::{
-    BSpline, Bezier, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv,
-    Parameterization, Point, Scalar, ScalarOf, SplineBoundary,
+    BSpline, Bezier, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization, Point,
+    Scalar, ScalarOf, SplineBoundary,
 };
 use strak_trajectory::{
-    CompileOptions, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions,
-    ProfileShape, Q40, Sample, Timing, compile,
+    CompileOptions, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape,
+    Q40, Sample, Timing, compile,
 };
 
 use crate::check::{self, Allowance, Bounds, FeedEvent, MAX_SAMPLES, MAX_TICKS};
@@ -108,9 +108,11 @@ fn points<const A: usize>(b: &mut Bytes<'_>) -> Vec<[f64; A]> {
 fn extent<const A: usize>(p: &[[f64; A]]) -> f64 {
     (0..A)
         .map(|i| {
-            let (lo, hi) = p.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
-                (l.min(q[i]), h.max(q[i]))
-            });
+            let (lo, hi) = p
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
+                    (l.min(q[i]), h.max(q[i]))
+                });
             hi - lo
         })
         .fold(0.0, f64::max)
@@ -129,7 +131,11 @@ fn axis<const A: usize>(b: &mut Bytes<'_>, base: f64) -> Option<[f64; A]> {
 fn plan_options(b: &mut Bytes<'_>) -> PlanOptions {
     let mut o = PlanOptions::new().with_samples(b.int(0, 300) as usize);
     if b.one_in(2) {
-        o = o.with_zone_tolerance(if b.one_in(8) { b.raw() } else { b.magnitude(-4, 0) });
+        o = o.with_zone_tolerance(if b.one_in(8) {
+            b.raw()
+        } else {
+            b.magnitude(-4, 0)
+        });
     }
     if b.one_in(2) {
         o = o.with_centripetal_share(if b.one_in(8) { b.raw() } else { b.unit() });
@@ -142,9 +148,11 @@ fn plan_options(b: &mut Bytes<'_>) -> PlanOptions {
 
 fn compile_options(b: &mut Bytes<'_>, size: f64, limits: (f64, f64, f64)) -> CompileOptions {
     let mut o = CompileOptions::new();
+    // Mostly the tolerances of machining (10⁻⁹ to 10⁻³ of the size), now and then coarse.
+    let coarse = if b.one_in(16) { 2 } else { 0 };
     match b.choice(3) {
-        0 => o = o.with_tolerance(size * b.positive(-9, -1)),
-        1 => o = o.with_relative_tolerance(b.positive(-9, -1)),
+        0 => o = o.with_tolerance(size * b.positive(-9, -3 + coarse)),
+        1 => o = o.with_relative_tolerance(b.positive(-9, -3 + coarse)),
         _ => {}
     }
     if b.one_in(2) {
@@ -197,7 +205,11 @@ fn decode<const A: usize>(b: &mut Bytes<'_>) -> Case<A> {
         _ => [Law::ConstantSpeed, Law::Parameter][b.choice(2)],
     };
     let limits = if b.one_in(16) {
-        (b.positive(-300, 300), b.positive(-300, 300), b.positive(-300, 300))
+        (
+            b.positive(-300, 300),
+            b.positive(-300, 300),
+            b.positive(-300, 300),
+        )
     } else {
         let v = size * b.positive(-1, 3);
         let a = v * b.positive(-1, 3);
@@ -246,10 +258,14 @@ fn with_curve<const A: usize>(case: &Case<A>) -> Result<(), Violation> {
             let q: [[f64; A]; 4] = core::array::from_fn(|i| p[i.min(p.len() - 1)]);
             Bezier::new(q).map_or(Ok(()), |c| by_number(&Dyn(&c), case))
         }
-        2 => BSpline::<_, 8, 12>::clamped_uniform(1, p, 0.0, 1.0).map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
-        3 => BSpline::<_, 8, 12>::clamped_uniform(3, p, 0.0, 1.0).map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
-        4 => HermiteSpline::<_, 8>::catmull_rom(p, chord).map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
-        5 => CubicSpline::<_, 8>::new(p, chord, SplineBoundary::Natural).map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
+        2 => BSpline::<_, 8, 12>::clamped_uniform(1, p, 0.0, 1.0)
+            .map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
+        3 => BSpline::<_, 8, 12>::clamped_uniform(3, p, 0.0, 1.0)
+            .map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
+        4 => HermiteSpline::<_, 8>::catmull_rom(p, chord)
+            .map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
+        5 => CubicSpline::<_, 8>::new(p, chord, SplineBoundary::Natural)
+            .map_or(Ok(()), |c| by_number(&Dyn(&c), case)),
         _ => {
             let r = p[1][0].abs();
             Nurbs::<[f64; A], 9, 12>::circle(p[0], r).map_or(Ok(()), |c| by_number(&Dyn(&c), case))
@@ -288,14 +304,21 @@ fn limits<const A: usize>(case: &Case<A>) -> Option<(Limits<A>, Bounds<A>)> {
     Some((planned, bounds))
 }
 
-fn pipeline<N: Number, const A: usize>(curve: &Dyn<'_, [f64; A]>, case: &Case<A>) -> Result<(), Violation> {
+fn pipeline<N: Number, const A: usize>(
+    curve: &Dyn<'_, [f64; A]>,
+    case: &Case<A>,
+) -> Result<(), Violation> {
     let Some((planned, mut bounds)) = limits(case) else {
         return Ok(());
     };
     let v = case.limits.0;
     let timing: Box<dyn Timing + '_> = match case.law {
         Law::SCurve | Law::PlannedTrapezoid => {
-            let shape = if case.law == Law::SCurve { ProfileShape::SCurve } else { ProfileShape::Trapezoid };
+            let shape = if case.law == Law::SCurve {
+                ProfileShape::SCurve
+            } else {
+                ProfileShape::Trapezoid
+            };
             let options = case.plan.with_shape(shape);
             match PathTiming::<_, TABLE, ZONES>::plan(curve, &planned, &options) {
                 Ok(t) => Box::new(t),
@@ -330,7 +353,10 @@ fn pipeline<N: Number, const A: usize>(curve: &Dyn<'_, [f64; A]>, case: &Case<A>
     let Ok(path) = compile::<N, A, PIECES, _, _>(curve, &*timing, case.rate, &case.compile) else {
         return Ok(());
     };
-    let limited = matches!(case.law, Law::SCurve | Law::PlannedTrapezoid | Law::Trapezoid);
+    let limited = matches!(
+        case.law,
+        Law::SCurve | Law::PlannedTrapezoid | Law::Trapezoid
+    );
     let rest_to_rest = limited;
     let ticks = f64::from(path.ticks());
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
@@ -382,9 +408,17 @@ pub fn check_compiled<N: Number, C: ParamCurveDeriv, const A: usize, const P: us
         ));
     }
     check::check_end_agrees(path)?;
-    let last = events.iter().map(|e| e.0).max().unwrap_or(0).max(u64::from(path.ticks()));
+    let last = events
+        .iter()
+        .map(|e| e.0)
+        .max()
+        .unwrap_or(0)
+        .max(u64::from(path.ticks()));
     let mut all = events.to_vec();
-    all.extend([(last + 1, FeedEvent::Resume), (last + 1, FeedEvent::Feed(1.0))]);
+    all.extend([
+        (last + 1, FeedEvent::Resume),
+        (last + 1, FeedEvent::Feed(1.0)),
+    ]);
     let all = if events.is_empty() { &[][..] } else { &all[..] };
     let played = check::play(path, all, MAX_SAMPLES)?;
     if events.is_empty() {
@@ -415,19 +449,16 @@ fn accuracy<N: Number, C: ParamCurveDeriv, const A: usize, const P: usize>(
         let t = d * (s.tick as f64) / n;
         let u = ScalarOf::<C>::from_f64(timing.param(t).0).unwrap_or(curve.domain().1);
         let want: [f64; A] = coords(curve.eval(u));
-        for i in 0..A {
-            let allowed = path.tolerance()
-                + path.playback_bound()
-                + 2.0 * check::resolution::<N>(want[i].abs());
-            let err = (s.position[i] - want[i]).abs();
+        for (i, (x, w)) in s.position.iter().zip(want).enumerate() {
+            let allowed =
+                path.tolerance() + path.playback_bound() + 2.0 * check::resolution::<N>(w.abs());
+            let err = (x - w).abs();
             if !(err <= allowed * (1.0 + 1e-9)) {
                 return Err(violation!(
-                    "{}: tick {} axis {i}: position {} is {err:e} from c(u(t)) = {} \
+                    "{}: tick {} axis {i}: position {x} is {err:e} from c(u(t)) = {w} \
                      (tolerance {:e}, playback bound {:e})",
                     N::NAME,
                     s.tick,
-                    s.position[i],
-                    want[i],
                     path.tolerance(),
                     path.playback_bound()
                 ));

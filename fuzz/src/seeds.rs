@@ -19,23 +19,74 @@ pub struct Seed {
 
 /// strak-sim's bundled job and curve files.
 const FILES: [(&str, &str); 17] = [
-    ("job-pick-and-place", include_str!("../../firmware-sim/examples/jobs/pick-and-place.toml")),
-    ("job-feed-hold", include_str!("../../firmware-sim/examples/jobs/feed-hold.toml")),
-    ("job-circle-f32", include_str!("../../firmware-sim/examples/jobs/circle-f32.toml")),
-    ("job-contour-fixed", include_str!("../../firmware-sim/examples/jobs/contour-fixed.toml")),
-    ("curve-bezier-chain", include_str!("../../firmware-sim/examples/bezier-chain.toml")),
-    ("curve-bezier", include_str!("../../firmware-sim/examples/bezier.toml")),
-    ("curve-bspline-closed", include_str!("../../firmware-sim/examples/bspline-closed.toml")),
-    ("curve-bspline-nonuniform", include_str!("../../firmware-sim/examples/bspline-nonuniform.toml")),
-    ("curve-bspline", include_str!("../../firmware-sim/examples/bspline.toml")),
-    ("curve-catmull-rom", include_str!("../../firmware-sim/examples/catmull-rom.toml")),
-    ("curve-cubic-spline-clamped", include_str!("../../firmware-sim/examples/cubic-spline-clamped.toml")),
-    ("curve-cubic-spline-periodic", include_str!("../../firmware-sim/examples/cubic-spline-periodic.toml")),
-    ("curve-cubic-spline", include_str!("../../firmware-sim/examples/cubic-spline.toml")),
-    ("curve-hermite", include_str!("../../firmware-sim/examples/hermite.toml")),
-    ("curve-lagrange", include_str!("../../firmware-sim/examples/lagrange.toml")),
-    ("curve-nurbs-circle", include_str!("../../firmware-sim/examples/nurbs-circle.toml")),
-    ("curve-parabolic-blend", include_str!("../../firmware-sim/examples/parabolic-blend.toml")),
+    (
+        "job-pick-and-place",
+        include_str!("../../firmware-sim/examples/jobs/pick-and-place.toml"),
+    ),
+    (
+        "job-feed-hold",
+        include_str!("../../firmware-sim/examples/jobs/feed-hold.toml"),
+    ),
+    (
+        "job-circle-f32",
+        include_str!("../../firmware-sim/examples/jobs/circle-f32.toml"),
+    ),
+    (
+        "job-contour-fixed",
+        include_str!("../../firmware-sim/examples/jobs/contour-fixed.toml"),
+    ),
+    (
+        "curve-bezier-chain",
+        include_str!("../../firmware-sim/examples/bezier-chain.toml"),
+    ),
+    (
+        "curve-bezier",
+        include_str!("../../firmware-sim/examples/bezier.toml"),
+    ),
+    (
+        "curve-bspline-closed",
+        include_str!("../../firmware-sim/examples/bspline-closed.toml"),
+    ),
+    (
+        "curve-bspline-nonuniform",
+        include_str!("../../firmware-sim/examples/bspline-nonuniform.toml"),
+    ),
+    (
+        "curve-bspline",
+        include_str!("../../firmware-sim/examples/bspline.toml"),
+    ),
+    (
+        "curve-catmull-rom",
+        include_str!("../../firmware-sim/examples/catmull-rom.toml"),
+    ),
+    (
+        "curve-cubic-spline-clamped",
+        include_str!("../../firmware-sim/examples/cubic-spline-clamped.toml"),
+    ),
+    (
+        "curve-cubic-spline-periodic",
+        include_str!("../../firmware-sim/examples/cubic-spline-periodic.toml"),
+    ),
+    (
+        "curve-cubic-spline",
+        include_str!("../../firmware-sim/examples/cubic-spline.toml"),
+    ),
+    (
+        "curve-hermite",
+        include_str!("../../firmware-sim/examples/hermite.toml"),
+    ),
+    (
+        "curve-lagrange",
+        include_str!("../../firmware-sim/examples/lagrange.toml"),
+    ),
+    (
+        "curve-nurbs-circle",
+        include_str!("../../firmware-sim/examples/nurbs-circle.toml"),
+    ),
+    (
+        "curve-parabolic-blend",
+        include_str!("../../firmware-sim/examples/parabolic-blend.toml"),
+    ),
 ];
 
 /// Every seed of every target.
