@@ -5,6 +5,9 @@
 //! cargo xtask test     formatting, clippy -D warnings, host tests + doctests, rustdoc,
 //!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf,
 //!                      then `qemu`
+//! cargo xtask fuzz [--time SECONDS] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]
+//!                      the coverage-guided fuzz targets of fuzz/ (cargo-fuzz, libFuzzer), each
+//!                      for SECONDS (default 60); executions and result per target
 //! cargo xtask qemu [--bless]
 //!                      the example firmware under QEMU (Cortex-M4F and Cortex-M3), its samples
 //!                      compared bit for bit with the host's; firmware sizes checked against
@@ -18,6 +21,7 @@
 //! be installed fails loudly.
 
 mod compare;
+mod fuzz;
 mod icount;
 mod qemu;
 mod size;
@@ -46,6 +50,7 @@ fn main() -> ExitCode {
             )),
         },
         Some("bench") => bench(),
+        Some("fuzz") => fuzz::parse(&args[1..]).and_then(|o| fuzz::fuzz(&o)),
         Some("help") | Some("--help") | Some("-h") | None => {
             print_help();
             Ok(())
@@ -78,6 +83,14 @@ fn print_help() {
     println!("         icount-budgets.txt");
     println!("  bench  criterion benchmarks of strak against its peers (bench/), then");
     println!("         BENCHMARKS.md from their results and the QEMU counts in target/qemu");
+    println!("  fuzz [--time SECONDS] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]");
+    println!("         the fuzz targets of fuzz/ (blob, curves, pipeline, job), each for");
+    println!("         SECONDS (default 60), with libFuzzer through cargo-fuzz (installed when");
+    println!("         missing; nightly, or stable with RUSTC_BOOTSTRAP=1); prints executions");
+    println!("         and failures. --keep-going goes on after a failure; --ignore masks the");
+    println!("         failures whose message contains FRAGMENT (known ones); --minimize merges");
+    println!("         the working corpus into fuzz/corpus/. The checked-in corpora are");
+    println!("         replayed by `cargo test` (tests/tests/fuzz_replay.rs)");
 }
 
 /// `cargo xtask bench`: the host benchmarks (one criterion run, peers included) and the

@@ -1,0 +1,196 @@
+//! strak-sim's job and curve files: TOML text through [`Job::parse`] and
+//! [`CurveFile::parse`], then what `strak-sim run` does with a valid job, in small
+//! capacities.
+//!
+//! Invariants:
+//!
+//! * parsing and checking never panic; an error names a field and says what is wrong;
+//! * a valid curve file builds in every number format or is rejected with an error, and
+//!   its samples (`strak-sim sample`) are finite;
+//! * a valid job's curve builds in the job's number format or is rejected; its time law is
+//!   planned with [`planning_limits`] and [`plan_options`] (at most [`MAX_PLAN_SAMPLES`]
+//!   sampling intervals) and compiled with [`compile_options`] when it takes at most
+//!   [`MAX_TICKS`] ticks; the compiled path is checked and played with the job's events
+//!   as in [`pipeline`](crate::pipeline) ([`check_compiled`]), the job's limits holding for
+//!   the planned laws (trapezoid, S-curve).
+
+use strak_curves::{I32F32, Scalar};
+use strak_sim::curve_file::CurveFile;
+use strak_sim::dyn_curve::{DynCurve, build_dyn};
+use strak_sim::job::{Action, Job, JobNumber, ProfileKind};
+use strak_sim::run::{compile_options, plan_options, planning_limits};
+use strak_sim::sample::{Number as CurveNumber, SampleOptions, sample_rows};
+use strak_trajectory::{Number, ParameterTiming, Path, PathTiming, Q40, Timing, compile};
+
+use crate::check::{Bounds, FeedEvent, MAX_TICKS};
+use crate::pipeline::check_compiled;
+use crate::{Violation, violation};
+
+/// Planner sampling intervals are capped at this many (strak-sim's default is 1024).
+pub const MAX_PLAN_SAMPLES: usize = 256;
+/// Arc-length table size and zone capacity of the plans, pieces of the paths.
+const TABLE: usize = 128;
+const ZONES: usize = 128;
+const PIECES: usize = 256;
+
+/// The harness: `data` as UTF-8 text (other bytes are no case).
+///
+/// # Errors
+/// The first broken invariant.
+pub fn run(data: &[u8]) -> Result<(), Violation> {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return Ok(());
+    };
+    if let Ok(file) = CurveFile::parse(text) {
+        curve_file(&file)?;
+    }
+    match Job::parse(text) {
+        Ok(job) => valid_job(&job),
+        Err(e) if e.field.trim().is_empty() || e.message.trim().is_empty() => {
+            Err(violation!("a job error without a field or message: {e:?}"))
+        }
+        Err(_) => Ok(()),
+    }
+}
+
+fn curve_file(file: &CurveFile) -> Result<(), Violation> {
+    for number in [CurveNumber::F64, CurveNumber::F32, CurveNumber::Fixed] {
+        let options = SampleOptions {
+            count: 9,
+            derivatives: 2,
+            number,
+        };
+        if let Ok(rows) = sample_rows(file, &options)
+            && let Some(row) = rows.iter().find(|r| !r.iter().all(|v| v.is_finite()))
+        {
+            return Err(violation!(
+                "{number:?} curve file sample not finite: {row:?}"
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn valid_job(job: &Job) -> Result<(), Violation> {
+    let mut job = job.clone();
+    let samples = job.profile.samples.unwrap_or(MAX_PLAN_SAMPLES);
+    job.profile.samples = Some(samples.min(MAX_PLAN_SAMPLES));
+    match job.axes() {
+        1 => by_number::<1>(&job),
+        2 => by_number::<2>(&job),
+        3 => by_number::<3>(&job),
+        4 => by_number::<4>(&job),
+        d => Err(violation!("a valid job with {d} axes")),
+    }
+}
+
+fn by_number<const D: usize>(job: &Job) -> Result<(), Violation> {
+    let n = job.number.curve_number();
+    match job.number {
+        JobNumber::F64 => {
+            build_dyn::<f64, D>(&job.path, n).map_or(Ok(()), |c| plan::<f64, f64, D>(job, &c))
+        }
+        JobNumber::F32 => {
+            build_dyn::<f32, D>(&job.path, n).map_or(Ok(()), |c| plan::<f32, f32, D>(job, &c))
+        }
+        JobNumber::Fixed => {
+            build_dyn::<I32F32, D>(&job.path, n).map_or(Ok(()), |c| plan::<Q40, I32F32, D>(job, &c))
+        }
+    }
+}
+
+fn plan<N: Number, S: Scalar, const D: usize>(
+    job: &Job,
+    curve: &DynCurve<S, D>,
+) -> Result<(), Violation> {
+    let Ok(limits) = planning_limits::<D>(job) else {
+        return Ok(());
+    };
+    let p = &job.profile;
+    let timing: Box<dyn Timing + '_> = match p.kind {
+        ProfileKind::Parameter => match ParameterTiming::over(curve, p.duration.unwrap_or(1.0)) {
+            Ok(t) => Box::new(t),
+            Err(_) => return Ok(()),
+        },
+        ProfileKind::ConstantSpeed => {
+            match PathTiming::<_, TABLE, ZONES>::constant_speed(
+                curve,
+                p.speed.unwrap_or(job.limits.velocity),
+            ) {
+                Ok(t) => Box::new(t),
+                Err(_) => return Ok(()),
+            }
+        }
+        ProfileKind::Trapezoid | ProfileKind::SCurve => {
+            match PathTiming::<_, TABLE, ZONES>::plan(curve, &limits, &plan_options(job)) {
+                Ok(t) => Box::new(t),
+                Err(_) => return Ok(()),
+            }
+        }
+    };
+    if !(timing.duration() * job.rate_hz <= MAX_TICKS) {
+        return Ok(());
+    }
+    let Ok(path) =
+        compile::<N, D, PIECES, _, _>(curve, &*timing, job.rate_hz, &compile_options(job))
+    else {
+        return Ok(());
+    };
+    play(job, curve, &*timing, &path)
+}
+
+fn play<N: Number, S: Scalar, const D: usize>(
+    job: &Job,
+    curve: &DynCurve<S, D>,
+    timing: &dyn Timing,
+    path: &Path<N, D, PIECES>,
+) -> Result<(), Violation> {
+    let planned = matches!(
+        job.profile.kind,
+        ProfileKind::Trapezoid | ProfileKind::SCurve
+    );
+    let l = &job.limits;
+    let axis = |v: &Option<Vec<f64>>| -> [f64; D] {
+        core::array::from_fn(|i| {
+            v.as_ref()
+                .and_then(|v| v.get(i).copied())
+                .unwrap_or(f64::INFINITY)
+        })
+    };
+    let bounds = Bounds {
+        velocity: l.velocity,
+        acceleration: l.acceleration,
+        jerk: (job.profile.kind == ProfileKind::SCurve).then_some(l.jerk),
+        axis_velocity: axis(&l.axis_velocity),
+        axis_acceleration: axis(&l.axis_acceleration),
+        tangential: false,
+    };
+    // An abort ends the motion on the path, not at its end: played without it.
+    let events: Vec<(u64, FeedEvent)> = job
+        .sorted_events()
+        .into_iter()
+        .filter_map(|(tick, a)| match a {
+            #[allow(clippy::cast_possible_truncation)]
+            Action::Feed(f) => Some((tick, FeedEvent::Feed(f as f32))),
+            Action::Hold => Some((tick, FeedEvent::Hold)),
+            Action::Resume => Some((tick, FeedEvent::Resume)),
+            Action::Abort => None,
+        })
+        .collect();
+    check_compiled(
+        curve,
+        timing,
+        path,
+        &events,
+        planned.then_some(&bounds),
+        planned,
+    )
+    .map_err(|v| {
+        violation!(
+            "job ({} axes, {}, {}): {v}",
+            D,
+            job.number.name(),
+            job.profile.kind.name()
+        )
+    })
+}
