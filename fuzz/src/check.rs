@@ -51,8 +51,8 @@ fn finite<T: Scalar, const A: usize>(s: &Sample<T, A>) -> bool {
         .all(|v| v.is_finite())
 }
 
-fn apply<N: Number, const A: usize, const P: usize>(
-    sampler: &mut Sampler<'_, N, A, P>,
+fn apply<N: Number, const A: usize>(
+    sampler: &mut Sampler<'_, N, A>,
     event: FeedEvent,
 ) {
     match event {
@@ -110,7 +110,7 @@ pub fn play<N: Number, const A: usize, const P: usize>(
 
 fn check_end<N: Number, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
-    sampler: &mut Sampler<'_, N, A, P>,
+    sampler: &mut Sampler<'_, N, A>,
     last: &Sample<N::Out, A>,
     feed_one: bool,
 ) -> Result<(), Violation> {

@@ -17,8 +17,8 @@
 use strak_curves::{I32F32, Scalar};
 use strak_sim::curve_file::CurveFile;
 use strak_sim::dyn_curve::{DynCurve, build_dyn};
-use strak_sim::job::{Action, Job, JobNumber, ProfileKind};
-use strak_sim::run::{compile_options, plan_options, planning_limits};
+use strak_sim::job::{Action, Job, JobNumber, Profile, ProfileKind};
+use strak_sim::pipeline::{compile_options, plan_options, planning_limits};
 use strak_sim::sample::{Number as CurveNumber, SampleOptions, sample_rows};
 use strak_trajectory::{Number, ParameterTiming, Path, PathTiming, Q40, Timing, compile};
 
@@ -73,8 +73,9 @@ fn curve_file(file: &CurveFile) -> Result<(), Violation> {
 
 fn valid_job(job: &Job) -> Result<(), Violation> {
     let mut job = job.clone();
-    let samples = job.profile.samples.unwrap_or(MAX_PLAN_SAMPLES);
-    job.profile.samples = Some(samples.min(MAX_PLAN_SAMPLES));
+    if let Profile::Trapezoid(p) | Profile::SCurve(p) = &mut job.profile {
+        p.samples = Some(p.samples.unwrap_or(MAX_PLAN_SAMPLES).min(MAX_PLAN_SAMPLES));
+    }
     match job.axes() {
         1 => by_number::<1>(&job),
         2 => by_number::<2>(&job),
@@ -106,13 +107,12 @@ fn plan<N: Number, S: Scalar, const D: usize>(
     let Ok(limits) = planning_limits::<D>(job) else {
         return Ok(());
     };
-    let p = &job.profile;
-    let timing: Box<dyn Timing + '_> = match p.kind {
-        ProfileKind::Parameter => match ParameterTiming::over(curve, p.duration.unwrap_or(1.0)) {
+    let timing: Box<dyn Timing + '_> = match &job.profile {
+        Profile::Parameter(p) => match ParameterTiming::over(curve, p.duration) {
             Ok(t) => Box::new(t),
             Err(_) => return Ok(()),
         },
-        ProfileKind::ConstantSpeed => {
+        Profile::ConstantSpeed(p) => {
             match PathTiming::<_, TABLE, ZONES>::constant_speed(
                 curve,
                 p.speed.unwrap_or(job.limits.velocity),
@@ -121,7 +121,7 @@ fn plan<N: Number, S: Scalar, const D: usize>(
                 Err(_) => return Ok(()),
             }
         }
-        ProfileKind::Trapezoid | ProfileKind::SCurve => {
+        Profile::Trapezoid(_) | Profile::SCurve(_) => {
             match PathTiming::<_, TABLE, ZONES>::plan(curve, &limits, &plan_options(job)) {
                 Ok(t) => Box::new(t),
                 Err(_) => return Ok(()),
@@ -146,7 +146,7 @@ fn play<N: Number, S: Scalar, const D: usize>(
     path: &Path<N, D, PIECES>,
 ) -> Result<(), Violation> {
     let planned = matches!(
-        job.profile.kind,
+        job.profile.kind(),
         ProfileKind::Trapezoid | ProfileKind::SCurve
     );
     let l = &job.limits;
@@ -160,7 +160,7 @@ fn play<N: Number, S: Scalar, const D: usize>(
     let bounds = Bounds {
         velocity: l.velocity,
         acceleration: l.acceleration,
-        jerk: (job.profile.kind == ProfileKind::SCurve).then_some(l.jerk),
+        jerk: (job.profile.kind() == ProfileKind::SCurve).then_some(l.jerk),
         axis_velocity: axis(&l.axis_velocity),
         axis_acceleration: axis(&l.axis_acceleration),
         tangential: false,
@@ -190,7 +190,7 @@ fn play<N: Number, S: Scalar, const D: usize>(
             "job ({} axes, {}, {}): {v}",
             D,
             job.number.name(),
-            job.profile.kind.name()
+            job.profile.kind().name()
         )
     })
 }

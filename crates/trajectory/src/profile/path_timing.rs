@@ -184,6 +184,8 @@ pub struct PathTiming<'a, C, const N: usize, const Z: usize> {
     /// The feed-change limits and share for the compiler (none for the laws without
     /// [`Limits`]).
     feed: Option<FeedReserve>,
+    /// What the law promises ([`Timing::limits`]).
+    limits: Option<MotionLimits>,
 }
 
 /// What a plan reserved for feed changes: the limits of a feed ramp and the share.
@@ -192,8 +194,6 @@ struct FeedReserve {
     acceleration: f64,
     jerk: f64,
     share: f64,
-    /// What the law promises ([`Timing::limits`]).
-    limits: Option<MotionLimits>,
 }
 
 /// Cloning shares the curve reference (the curve need not be `Clone`).
