@@ -131,18 +131,19 @@ where
         feed_share,
         rate,
     } = *spec;
-    // the documented planning limits of `strak-sim run`: a and j reduced by the feed share,
-    // velocities by 0.5 %
-    let keep = 1.0 - feed_share;
+    // the documented planning of `strak-sim run`: velocities reduced by 0.5 %, the feed
+    // share of a and j reserved by the planner, at the job's rate
     let v_keep = 1.0 - 0.005;
-    let plan_limits = Limits::<A>::new(limits[0] * v_keep, limits[1] * keep, limits[2] * keep)
+    let plan_limits = Limits::<A>::new(limits[0] * v_keep, limits[1], limits[2])
         .unwrap()
         .with_axis_velocity(axis_v.map(|v| v * v_keep))
         .unwrap()
-        .with_axis_acceleration(axis_a.map(|a| a * keep))
+        .with_axis_acceleration(axis_a)
         .unwrap();
-    let timing =
-        PathTiming::<_, TABLE, ZONES>::plan(curve, &plan_limits, &PlanOptions::new()).unwrap();
+    let plan = PlanOptions::new()
+        .with_rate(rate)
+        .with_feed_share(feed_share);
+    let timing = PathTiming::<_, TABLE, ZONES>::plan(curve, &plan_limits, &plan).unwrap();
     let a_feed = axis_a.iter().fold(limits[1], |m, a| m.min(*a));
     let options = CompileOptions::new()
         .with_feed_share(feed_share)

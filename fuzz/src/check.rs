@@ -51,10 +51,7 @@ fn finite<T: Scalar, const A: usize>(s: &Sample<T, A>) -> bool {
         .all(|v| v.is_finite())
 }
 
-fn apply<N: Number, const A: usize>(
-    sampler: &mut Sampler<'_, N, A>,
-    event: FeedEvent,
-) {
+fn apply<N: Number, const A: usize>(sampler: &mut Sampler<'_, N, A>, event: FeedEvent) {
     match event {
         FeedEvent::Feed(f) => sampler.set_feed(f),
         FeedEvent::Hold => sampler.hold(),

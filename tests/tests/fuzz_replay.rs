@@ -17,36 +17,6 @@ use strak_fuzz::{TARGETS, Target};
 /// fragment of the failure message. Each is a bug in the library, reported with the
 /// input; remove the entry when it is fixed.
 const KNOWN_FAILURES: &[(&str, &str, &str)] = &[
-    // `Path::from_bytes` does not check that the end position agrees with the last piece: a
-    // resealed Q40 blob whose end is 0.355 units from where its last piece ends loads, and
-    // its last tick jumps there.
-    (
-        "blob",
-        "end-far-from-last-piece",
-        "from the last piece's end",
-    ),
-    // `flatten_count` with a tolerance finer than the scalar resolves (8.2e-10 on a
-    // cardinal spline) runs for seconds before it returns.
-    ("curves", "flatten-count-slow", "took"),
-    // The compiled pieces do not keep the planned limits (the plan does): a 1-axis cubic
-    // Bézier S-curve at 100 Hz, f64, jerk 4.11e9 against 6.22e7 (+6 514 %).
-    ("pipeline", "scurve-jerk-f64", "limits exceeded: jerk |j|"),
-    // f32, a 1-axis cubic B-spline 5 530 units from the origin: jerk +152 487 %,
-    // acceleration +4 621 %.
-    (
-        "pipeline",
-        "scurve-jerk-f32-off-origin",
-        "limits exceeded: jerk |j|",
-    ),
-    // The global trapezoid on a natural cubic spline, f64 at 100 kHz, feed changes within
-    // the reserved share: speed 2 534 against 2 079 (+21.9 %).
-    (
-        "pipeline",
-        "trapezoid-speed-f64",
-        "limits exceeded: speed |v|",
-    ),
-    // The global trapezoid on a NURBS circle in Q40: speed +4.07 %.
-    ("pipeline", "circle-speed-q40", "limits exceeded: speed |v|"),
     // A planned trapezoid on a 3-axis cubic B-spline, f64: axis velocity +21.3 %.
     (
         "pipeline",

@@ -815,7 +815,10 @@ mod tests {
                 |path: &Path<f64, 2, 4096>| path.pieces().iter().filter(|p| p.ticks() == 1).count();
             let o = CompileOptions::new();
             let line = Bezier::new([[0.0_f64, 0.0], [52.255, 52.255]]).unwrap();
-            let plan = crate::PathTiming::<_, 64, 4>::scurve(&line, &lim).unwrap();
+            // planned for 100 kHz: its jerk phases last 16 ticks there, a fraction of a tick
+            // at the 1 kHz it is compiled for
+            let fine = crate::PlanOptions::new().with_rate(100_000.0);
+            let plan = crate::PathTiming::<_, 64, 4>::plan(&line, &lim, &fine).unwrap();
             let mut breaks = 0;
             plan.breaks(&mut |_| breaks += 1);
             assert_eq!(breaks, 6);
@@ -829,7 +832,7 @@ mod tests {
             let free: Path<f64, 2, 4096> = compile(&line, &law, 1_000.0, &o).unwrap();
             assert_eq!(one_tick(&free), 0);
             let line32 = Bezier::new([[0.0_f32, 0.0], [52.255, 52.255]]).unwrap();
-            let plan32 = crate::PathTiming::<_, 64, 4>::scurve(&line32, &lim).unwrap();
+            let plan32 = crate::PathTiming::<_, 64, 4>::plan(&line32, &lim, &fine).unwrap();
             let coarse: Path<f64, 2, 4096> = compile(&line32, &plan32, 1_000.0, &o).unwrap();
             assert_eq!(one_tick(&coarse), 0);
         });
@@ -845,11 +848,22 @@ mod tests {
             let strict = CompileOptions::new().with_max_slowdown(1.0);
             let r: Result<Path<f64, 2, 4096>, _> = compile(&line, &plan, 1_000.0, &strict);
             assert!(matches!(r, Err(Error::LimitExceeded { .. })), "{r:?}");
-            // a speed limit so low that the ticks overflow (∞ ticks, not one)
+            // a law so long that its ticks overflow to ∞ (∞ ticks, not one): the planner
+            // refuses such a plan itself, so a law of its own
+            struct Crawl;
+            impl Timing for Crawl {
+                fn duration(&self) -> f64 {
+                    1.0e305
+                }
+                fn param(&self, t: f64) -> (f64, f64) {
+                    (t / 1.0e305, 1.0 / 1.0e305)
+                }
+            }
             let crawl = crate::Limits::<2>::new(1.5e-304, 1130.7, 21_713.0).unwrap();
-            let plan = crate::PathTiming::<_, 64, 4>::scurve(&line, &crawl).unwrap();
+            let planned = crate::PathTiming::<_, 64, 4>::scurve(&line, &crawl);
+            assert_eq!(planned.err(), Some(Error::TooLong));
             let r: Result<Path<f64, 2, 8>, _> =
-                compile(&line, &plan, 1_000.0, &CompileOptions::new());
+                compile(&line, &Crawl, 1_000.0, &CompileOptions::new());
             assert_eq!(r.err(), Some(Error::TooLong));
         });
     }
