@@ -196,7 +196,7 @@ fn max_abs(job: &Job) -> f64 {
 /// In `fixed`, every point within the range of Q40 playback, `±`[`Q40`]`::LIMIT` (2²²):
 /// the error names the first coordinate outside it (`path.points[3][1]`). Points within the
 /// range keep a B-spline, Bézier or NURBS curve inside it (the convex hull); an interpolating
-/// curve may still overshoot between its points ([`compile_error`]).
+/// curve may still overshoot between its points ([`compile_error()`]).
 ///
 /// # Errors
 /// A [`JobError`] on the coordinate.

@@ -222,7 +222,7 @@ pub struct Playback {
 /// Plays `path` to its end and checks every sample against [`exact_position`]: the position
 /// error is within the documented bound `tolerance + playback_bound + output rounding`
 /// (`½ε·|x|` for floats via [`Number::rounding_error`], [`Number::OUT_ERROR`] for fixed-point);
-/// the number of samples is `ticks + 1`; the last sample is [`Path::end_position`] bit for
+/// the number of samples is `ticks + 1`; the last sample is [`Path::end_position`](strak_trajectory::PathHeader::end_position) bit for
 /// bit. Panics (naming `name`) on a violation.
 pub fn check_playback<C, T, N, const A: usize, const P: usize>(
     name: &str,

@@ -30,13 +30,13 @@
 //! number format, propagated by forward differencing, plus the rounding of each addition
 //! (floats) and of the conversion into the sample type. Per piece of `n` ticks and axis,
 //! with the stored values `v, Δv¹, Δv²` and `a, Δa` (magnitudes including their growth over
-//! the piece, as in [`Path::playback_bound`] for the position):
+//! the piece, as in [`Path::playback_bound`](strak_trajectory::PathHeader::playback_bound) for the position):
 //!
 //! * `e_v = r(v) + n·(r(Δv¹) + add(v)) + C(n,2)·(r(Δv²) + add(Δv¹)) + out`,
 //! * `e_a = r(a) + n·(r(Δa) + add(a)) + out`,
 //!
 //! (`r`, `add`: [`Number::rounding_error`], [`Number::addition_error`]; `out`:
-//! [`Number::OUT_ERROR`]), and `e_x` = [`Path::playback_bound`]. Over `A` axes a norm moves
+//! [`Number::OUT_ERROR`]), and `e_x` = [`Path::playback_bound`](strak_trajectory::PathHeader::playback_bound). Over `A` axes a norm moves
 //! by at most `√A` times the per-axis error, a difference of two samples by twice that, so
 //!
 //! * speed: `√A·e_v` sampled, `2√A·e_x/T` by differences;

@@ -138,7 +138,7 @@ const Q40_SCALE: f64 = (1_u64 << 40) as f64;
 /// over the piece: after `i` ticks the position is off by at most
 /// `½·2⁻⁴⁰·(1 + i + C(i,2) + C(i,3))`, about 1.3·10⁻⁶ units at `i = 256`. A piece switch loads
 /// the next piece's state, so the error does not grow from piece to piece. In `f32` and `f64`
-/// every addition rounds as well; [`Path::playback_bound`](crate::Path::playback_bound) states
+/// every addition rounds as well; [`Path::playback_bound`](crate::PathHeader::playback_bound) states
 /// the resulting bound of each path. In `f32` it is dominated by the `n` position additions
 /// per piece, about `½ε·|x|·(n + 1)` ≈ 1.5·10⁻⁵·|x| at `n = 256` for positions of magnitude
 /// `|x|` (a worst case; measured errors are about a quarter of it). For positions of more

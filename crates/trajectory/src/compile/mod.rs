@@ -80,7 +80,7 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///    `r` (speed `r`, acceleration `r²`, jerk `r³`) the whole motion is slowed down by `r`
 ///    and a small margin (more ticks, steps 1–4 again), up to
 ///    [`CompileOptions::max_slowdown`] in all (and a tick); otherwise
-///    [`Error::LimitExceeded`]. [`Path::time_scale`] reports the slow-down. The same check
+///    [`Error::LimitExceeded`]. [`Path::time_scale`](crate::PathHeader::time_scale) reports the slow-down. The same check
 ///    catches a law that exceeds its own limits between its samples: the C² spline smooths
 ///    a trapezoid's acceleration steps with an overshoot (slowed down by about 15 %), and a
 ///    jerk-limited law along a path whose curvature jumps (the C¹ joins of Hermite or
@@ -90,7 +90,7 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///    once into the number format `N` (range-checked: [`Error::OutOfRange`]).
 ///
 /// The first sample (tick 0) is the curve's point at the time law's start; the last (tick
-/// [`Path::ticks`]) is the curve's point at the end, exactly as the curve computes it in its
+/// [`Path::ticks`](crate::PathHeader::ticks)) is the curve's point at the end, exactly as the curve computes it in its
 /// own scalar type, converted once into the sample type.
 ///
 /// # Memory

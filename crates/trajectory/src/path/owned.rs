@@ -18,15 +18,15 @@ use crate::number::Number;
 /// the sampler plays.
 ///
 /// Tick `k` of the path is at time `k·T` (`T = 1/rate`), `k = 0 ..= ticks()`. The time law
-/// was stretched by [`time_scale`](Path::time_scale) ≤ 1 so that the motion ends exactly on
-/// tick [`ticks()`](Path::ticks): path time `t` corresponds to time `t · time_scale` of the
+/// was stretched by [`time_scale`](crate::PathHeader::time_scale) ≤ 1 so that the motion ends exactly on
+/// tick [`ticks()`](crate::PathHeader::ticks): path time `t` corresponds to time `t · time_scale` of the
 /// [`Timing`](crate::Timing).
 ///
 /// # Accuracy
 /// At every tick the position of the compiled spline is within
-/// [`tolerance()`](Path::tolerance) of the exact `c(u(t))` (the compiler checks the quarter
+/// [`tolerance()`](crate::PathHeader::tolerance) of the exact `c(u(t))` (the compiler checks the quarter
 /// points of every piece against half the tolerance; tests check every tick), and playback in
-/// the number format adds at most [`playback_bound()`](Path::playback_bound).
+/// the number format adds at most [`playback_bound()`](crate::PathHeader::playback_bound).
 ///
 /// # Range
 /// Every path was checked, in `f64`, to keep every value and partial sum playback forms
@@ -70,8 +70,8 @@ impl<N: Number, const A: usize, const P: usize> Deref for Path<N, A, P> {
 }
 
 impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
-    /// An empty path (no pieces, no ticks): storage for [`compile_into`](crate::compile_into)
-    /// that can sit in a `static` or be built in place. Played, it gives one sample at the
+    /// An empty path (no pieces, no ticks): storage that can sit in a `static` (filled by
+    /// [`Path::read_bytes`]). Played, it gives one sample at the
     /// origin and is finished.
     ///
     /// ```

@@ -34,8 +34,8 @@ pub enum SamplerState {
 /// (firmware keeps the path in a `static`, the sampler in the interrupt's state) and holds
 /// only the view, the current forward-difference states and the feed ramp: `O(A)` memory. [`Sampler::next`] has no panic path and a constant cost (see below).
 ///
-/// The first sample is tick 0 of the path, the sample at path tick [`Path::ticks`] is the
-/// end point exactly ([`Path::end_position`], bit for bit in every number format), with the
+/// The first sample is tick 0 of the path, the sample at path tick [`Path::ticks`](crate::PathHeader::ticks) is the
+/// end point exactly ([`Path::end_position`](crate::PathHeader::end_position), bit for bit in every number format), with the
 /// path's end velocity and acceleration; after it [`Sampler::is_finished`] is `true` and
 /// every further call returns the end point with zero velocity and acceleration.
 ///
