@@ -77,10 +77,9 @@ pub enum SamplerState {
 /// plus comparisons and the conversion into the sample type (free for floats, an addition
 /// and a shift per value for `Q40`). A `Q40` multiplication is an `i64 × i64 → i128`
 /// product (a library call on Cortex-M0/M3); a multiplication by an integer is an `i64`
-/// product. On the host (x86-64, release, 3 axes) a forward-differencing sample takes about
-/// 8–10 ns (BENCHMARKS.md); on a Cortex-M4F 56 instructions in `f32` (32 positions only), on a
-/// Cortex-M3 173 in `Q40` (58 positions only; firmware-sim/qemu/ICOUNT.md). The counts do not depend on the path; there is
-/// no search and no loop other than over the axes. The interpolation mode sets the
+/// product. The counts do not depend on the path (the measured times and instruction counts
+/// per tick are in the project's benchmark report); there is no search and no loop other
+/// than over the axes. The interpolation mode sets the
 /// worst-case budget of an interrupt.
 ///
 /// ```

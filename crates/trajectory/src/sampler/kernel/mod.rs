@@ -7,8 +7,8 @@
 //!
 //! Why assembly on Cortex-M: a tick reads the nine state values of every axis and writes six
 //! back. The compiler moves them one register at a time (`vldr`/`vstr`, 27 loads and 18
-//! stores for 3 axes: over the 72-instruction budget before a single addition);
-//! Armv7-M moves a whole axis in one `vldm`/`vstm` (measured: firmware-sim/qemu/ICOUNT.md).
+//! stores for 3 axes before a single addition); Armv7-M moves a whole axis in one
+//! `vldm`/`vstm`.
 //! Which kernel a format uses is chosen by [`Number`]'s hidden `tick_*` methods.
 
 /// Axes the assembly kernels handle unrolled (more axes use the portable kernel).

@@ -174,7 +174,7 @@ unsafe fn axis_sample<const A: usize, const K: usize>(
 
 /// Axis `K` of a position-only tick: the position chain only, the position stored to `o`
 /// straight from the kernel (values returned in registers would wait in spilled registers
-/// for the end of the tick: measured, 61 instead of 58 instructions for 3 axes).
+/// for the end of the tick).
 ///
 /// # Safety
 /// As [`axis_sample`], with `o` a writable `[I32F32; A]`.
