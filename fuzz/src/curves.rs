@@ -12,15 +12,16 @@
 //!   finite points and first and second derivatives at every parameter in and outside its
 //!   domain ("evaluation has no error path"; constructors reject what could overflow);
 //! * arc length, arc-length tables, flattening and continuity classification return (an
-//!   error or a value) within [`ANALYSIS_BUDGET`].
+//!   error or a value) within the work bound each documents, counted in evaluations of the
+//!   curve ([`Counted`]; counts, unlike times, do not depend on the machine's load).
 
-use std::time::{Duration, Instant};
+use std::cell::Cell;
 
 use strak_curves::{
     ArcLengthTable, BSpline, Bezier, BezierChain, CubicSpline, HermiteSegment, HermiteSpline,
-    I16F16, I32F32, KnotVector, LagrangeCurve, NodeSource, Nurbs, ParabolicBlend, Parameterization,
-    PieceDeriv, Point, PowerSpline, Scalar, ScalarOf, SplineBoundary, arc_length,
-    basis::MonomialCurve, classify_breaks, flatten, flatten_count,
+    I16F16, I32F32, KnotVector, LagrangeCurve, NodeSource, Nurbs, ParabolicBlend, ParamCurve,
+    ParamCurveDeriv, Parameterization, PieceDeriv, Point, PowerSpline, Scalar, ScalarOf,
+    SplineBoundary, arc_length, basis::MonomialCurve, classify_breaks, flatten, flatten_count,
 };
 
 use crate::decode::Bytes;
@@ -32,8 +33,12 @@ pub const MAX_POINTS: usize = 10;
 /// Capacities: points and knots of B-splines and NURBS.
 const N: usize = 12;
 const M: usize = 20;
-/// The longest an analysis call may take.
-pub const ANALYSIS_BUDGET: Duration = Duration::from_secs(2);
+/// Speed evaluations of one piece's arc-length quadrature at most: 16 parts, 16 + 2·(2·2¹⁶
+/// + 16) Gauss rules of 16 nodes (the work bound of `arc_length`).
+const ARC_LENGTH_PER_PIECE: u64 = 16 * (16 + 2 * (2 * (1 << 16) + 16));
+/// Evaluations of flattening at most: 12·2²⁰ chord certificates of 8 evaluations (the work
+/// bound of `flatten`).
+const FLATTEN_CERTIFICATES: u64 = 12 * (1 << 20) * 8;
 
 /// A scalar the harness builds from any `f64` (floats by a cast, so NaN and infinities
 /// reach the constructors; fixed-point saturating, NaN as 0).
@@ -539,18 +544,75 @@ where
     analysis(what, c, b)
 }
 
-/// Runs `f` and fails when it takes longer than [`ANALYSIS_BUDGET`].
-fn timed<T>(what: &str, call: &str, f: impl FnOnce() -> T) -> Result<T, Violation> {
-    let start = Instant::now();
-    let v = f();
-    let took = start.elapsed();
-    if took > ANALYSIS_BUDGET {
-        return Err(violation!(
-            "{what}: {call} took {:.1} s",
-            took.as_secs_f64()
-        ));
+/// A curve that counts its evaluations (points and derivatives of any order).
+#[derive(Debug)]
+pub struct Counted<'a, C> {
+    curve: &'a C,
+    calls: Cell<u64>,
+}
+
+impl<'a, C: PieceDeriv> Counted<'a, C> {
+    fn new(curve: &'a C) -> Self {
+        Self {
+            curve,
+            calls: Cell::new(0),
+        }
     }
-    Ok(v)
+
+    fn tick(&self) {
+        self.calls.set(self.calls.get() + 1);
+    }
+
+    /// Runs `f` on the counted curve and fails when it evaluates the curve more than `bound`
+    /// times.
+    fn bounded<T>(
+        &self,
+        what: &str,
+        call: &str,
+        bound: u64,
+        f: impl FnOnce(&Self) -> T,
+    ) -> Result<T, Violation> {
+        self.calls.set(0);
+        let v = f(self);
+        let calls = self.calls.get();
+        if calls > bound {
+            return Err(violation!(
+                "{what}: {call} evaluated the curve {calls} times, more than its bound {bound}"
+            ));
+        }
+        Ok(v)
+    }
+}
+
+impl<C: PieceDeriv> ParamCurve for Counted<'_, C> {
+    type Point = C::Point;
+    fn domain(&self) -> (ScalarOf<C>, ScalarOf<C>) {
+        self.curve.domain()
+    }
+    fn eval(&self, u: ScalarOf<C>) -> C::Point {
+        self.tick();
+        self.curve.eval(u)
+    }
+    fn piece_count(&self) -> usize {
+        self.curve.piece_count()
+    }
+    fn piece_domain(&self, i: usize) -> (ScalarOf<C>, ScalarOf<C>) {
+        self.curve.piece_domain(i)
+    }
+}
+
+impl<C: PieceDeriv> ParamCurveDeriv for Counted<'_, C> {
+    fn deriv(&self, u: ScalarOf<C>, k: usize) -> C::Point {
+        self.tick();
+        self.curve.deriv(u, k)
+    }
+}
+
+impl<C: PieceDeriv> PieceDeriv for Counted<'_, C> {
+    fn piece_deriv(&self, piece: usize, u: ScalarOf<C>, k: usize) -> C::Point {
+        self.tick();
+        self.curve.piece_deriv(piece, u, k)
+    }
 }
 
 fn analysis<C: PieceDeriv>(what: &str, c: &C, b: &mut Bytes<'_>) -> Result<(), Violation>
@@ -559,18 +621,31 @@ where
 {
     let accuracy = b.positive(-12, 0);
     let tolerance = b.positive(-10, 1);
+    let counted = Counted::new(c);
+    let pieces = c.piece_count() as u64;
+    // The resolution check every routine starts with.
+    let check = 2 * pieces + 2;
+    let length_bound = check + pieces * ARC_LENGTH_PER_PIECE;
     if b.one_in(2) {
-        let length = timed(what, &format!("arc_length({accuracy:e})"), || {
-            arc_length(c, accuracy)
-        })?;
+        let length = counted.bounded(
+            what,
+            &format!("arc_length({accuracy:e})"),
+            length_bound,
+            |c| arc_length(c, accuracy),
+        )?;
         if let Ok(l) = length
             && !(l.is_finite() && l >= 0.0)
         {
             return Err(violation!("{what}: arc length {l}"));
         }
-        let table = timed(what, &format!("ArcLengthTable::new({accuracy:e})"), || {
-            ArcLengthTable::<ScalarOf<C>, 16>::new(c, accuracy)
-        })?;
+        const SAMPLES: usize = 16;
+        let table_bound = check + 2 * (SAMPLES as u64 - 1) * length_bound + 3 * SAMPLES as u64;
+        let table = counted.bounded(
+            what,
+            &format!("ArcLengthTable::new({accuracy:e})"),
+            table_bound,
+            |c| ArcLengthTable::<ScalarOf<C>, SAMPLES>::new(c, accuracy),
+        )?;
         if let Ok(t) = table {
             let s = ScalarOf::<C>::from_fuzz(t.length().to_f64() * b.unit());
             let u = t.param_at(s);
@@ -582,13 +657,20 @@ where
             }
         }
     } else {
-        let _ = timed(what, &format!("flatten_count({tolerance:e})"), || {
-            flatten_count(c, tolerance)
-        })?;
+        let flatten_bound = check + FLATTEN_CERTIFICATES;
+        let _ = counted.bounded(
+            what,
+            &format!("flatten_count({tolerance:e})"),
+            flatten_bound,
+            |c| flatten_count(c, tolerance),
+        )?;
         let mut out = [<C::Point as Point>::zero(); 32];
-        let n = timed(what, &format!("flatten({tolerance:e})"), || {
-            flatten(c, tolerance, &mut out)
-        })?;
+        let n = counted.bounded(
+            what,
+            &format!("flatten({tolerance:e})"),
+            flatten_bound + out.len() as u64,
+            |c| flatten(c, tolerance, &mut out),
+        )?;
         if let Ok(n) = n
             && !(n <= out.len() && out[..n].iter().all(|p| p.is_finite()))
         {
@@ -596,9 +678,13 @@ where
                 "{what}: flatten wrote {n} points, not all finite"
             ));
         }
-        let _ = timed(what, &format!("classify_breaks({tolerance:e})"), || {
-            classify_breaks(c, tolerance)
-        })?;
+        let joins = pieces.saturating_sub(1);
+        let _ = counted.bounded(
+            what,
+            &format!("classify_breaks({tolerance:e})"),
+            8 * joins,
+            |c| classify_breaks(c, tolerance),
+        )?;
     }
     Ok(())
 }

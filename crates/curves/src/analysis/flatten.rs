@@ -12,7 +12,8 @@ use super::{c64, check_resolvable, greater, norm64, param, resolution, spacing};
 /// The highest derivative used in the bound on `|c''|` (exact for degree ≤ 8).
 const MAX_ORDER: usize = 8;
 
-/// The largest number of segments per piece; more means the tolerance is unreachable.
+/// The largest number of segments of the whole curve (all pieces together); more means the
+/// tolerance is unreachable.
 const MAX_SEGMENTS: usize = 1 << 20;
 
 /// Bisection for the segment count stops when the bracket is below `1/2^BISECT_SHIFT` of
@@ -73,9 +74,10 @@ const BISECT_SHIFT: u32 = 6;
 /// The tolerance is checked against [`resolution`](crate::resolution) before anything else
 /// (`2·piece_count + 2` evaluations). Per piece, growing and bisecting take at most
 /// `12·n` chord certificates (each 7 derivatives and one point), `n` the larger of the first
-/// estimate and the count found, and `n` never exceeds 2²⁰ nor the number of parameter values
-/// the scalar has in the piece: a piece that would need more is an error, found within that
-/// work whatever the curve.
+/// estimate and the count found; `n` never exceeds the number of parameter values the scalar
+/// has in the piece, and the counts of all pieces together never exceed 2²⁰. A curve that
+/// would need more is an error, found within that work whatever the curve: at most
+/// `12·2²⁰` certificates in all.
 ///
 /// # Errors
 /// - [`Error::InvalidArgument`]: `tolerance` is not finite and positive.
@@ -84,9 +86,9 @@ const BISECT_SHIFT: u32 = 6;
 ///   curve's size), or a piece would need segments shorter than the spacing of its
 ///   parameter values.
 /// - [`Error::CapacityExceeded`]: `out` is too short; `required` is the number of vertices
-///   needed (then `out` holds the first `out.len()` of them). Also when one piece would need
-///   more than 2²⁰ segments (a tolerance far below the curve's size); then `capacity` is
-///   2²⁰ and `required` a lower estimate.
+///   needed (then `out` holds the first `out.len()` of them). Also when the pieces together
+///   would need more than 2²⁰ segments (a tolerance far below the curve's size); then
+///   `capacity` is 2²⁰ and `required` a lower estimate.
 /// - [`Error::NonFinite`]: a derivative of the curve is not finite.
 ///
 /// ```
@@ -166,6 +168,8 @@ fn run<C: ParamCurveDeriv>(
     check_resolvable::<ScalarOf<C>>(tolerance, resolution(curve))?;
     let (start, end) = curve.domain();
     let mut count = 0;
+    // Segments of the pieces done so far: the pieces share one budget of MAX_SEGMENTS.
+    let mut segments_so_far = 0;
     let mut put = |count: &mut usize, u: ScalarOf<C>| {
         if let Some(slot) = out.as_deref_mut().and_then(|o| o.get_mut(*count)) {
             *slot = curve.eval(u);
@@ -182,7 +186,15 @@ fn run<C: ParamCurveDeriv>(
         if !greater(b, a) {
             continue;
         }
-        let n = segments(curve, a, b, tolerance)?;
+        let budget = MAX_SEGMENTS - segments_so_far;
+        if budget == 0 {
+            return Err(Error::CapacityExceeded {
+                capacity: MAX_SEGMENTS,
+                required: MAX_SEGMENTS + 1,
+            });
+        }
+        let n = segments(curve, a, b, tolerance, budget)?;
+        segments_so_far += n;
         for j in 1..=n {
             put(&mut count, node(a, b, j, n));
         }
@@ -205,25 +217,25 @@ fn node<S: Scalar>(a: S, b: S, j: usize, n: usize) -> S {
     }
 }
 
-/// The largest segment count worth trying on `[a, b]`: [`MAX_SEGMENTS`], or fewer when the
-/// scalar has fewer distinct parameter values in the piece; and the error for a piece that
-/// needs more.
-fn segment_cap<S: Scalar>(a: S, b: S, needed: impl Fn() -> usize) -> (usize, Error) {
+/// The largest segment count worth trying on `[a, b]`: the `budget` left of
+/// [`MAX_SEGMENTS`], or fewer when the scalar has fewer distinct parameter values in the
+/// piece; and the error for a piece that needs more.
+fn segment_cap<S: Scalar>(a: S, b: S, budget: usize, needed: impl Fn() -> usize) -> (usize, Error) {
     let (af, bf) = (a.to_f64(), b.to_f64());
     let steps = (bf - af) / spacing::<S>(af.abs().max(bf.abs()));
     #[allow(clippy::cast_precision_loss)]
-    let limited = steps < MAX_SEGMENTS as f64;
+    let limited = steps < budget as f64;
     if limited {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let cap = (steps as usize).max(1);
         (cap, Error::ToleranceBelowResolution { scalar: S::NAME })
     } else {
-        let required = needed();
+        let required = MAX_SEGMENTS - budget + needed();
         let e = Error::CapacityExceeded {
             capacity: MAX_SEGMENTS,
             required,
         };
-        (MAX_SEGMENTS, e)
+        (budget, e)
     }
 }
 
@@ -235,13 +247,14 @@ fn segments<C: ParamCurveDeriv>(
     a: ScalarOf<C>,
     b: ScalarOf<C>,
     tolerance: f64,
+    budget: usize,
 ) -> Result<usize, Error> {
     let len = b.to_f64() - a.to_f64();
     // First guess from the linear part of c'' over the whole piece (the exact maximum of
     // |c''| for cubic pieces).
     let m0 = linear_part_bound(curve, a, len);
     let estimate = segment_count_for(len, m0, tolerance)?;
-    let (cap, too_many) = segment_cap(a, b, || estimate.max(MAX_SEGMENTS + 1));
+    let (cap, too_many) = segment_cap(a, b, budget, || estimate.max(budget + 1));
     let mut n = estimate.min(cap);
     // Grow until the certificate holds; `lo` is the largest count known to fail. Each step
     // grows by at least a quarter, so these passes add up to at most 5 times the last count.
@@ -625,6 +638,63 @@ mod tests {
             b: 1.0,
         };
         assert_eq!(flatten_count(&bad, 0.1), Err(Error::NonFinite));
+    }
+
+    /// Counts the evaluations (points and derivatives) of the curve it wraps.
+    struct Counted<'a, C> {
+        curve: &'a C,
+        calls: core::cell::Cell<usize>,
+    }
+
+    impl<C: ParamCurveDeriv> crate::curve::ParamCurve for Counted<'_, C> {
+        type Point = C::Point;
+        fn domain(&self) -> (ScalarOf<C>, ScalarOf<C>) {
+            self.curve.domain()
+        }
+        fn eval(&self, u: ScalarOf<C>) -> C::Point {
+            self.calls.set(self.calls.get() + 1);
+            self.curve.eval(u)
+        }
+        fn piece_count(&self) -> usize {
+            self.curve.piece_count()
+        }
+        fn piece_domain(&self, i: usize) -> (ScalarOf<C>, ScalarOf<C>) {
+            self.curve.piece_domain(i)
+        }
+    }
+
+    impl<C: ParamCurveDeriv> ParamCurveDeriv for Counted<'_, C> {
+        fn deriv(&self, u: ScalarOf<C>, k: usize) -> C::Point {
+            self.calls.set(self.calls.get() + 1);
+            self.curve.deriv(u, k)
+        }
+    }
+
+    #[test]
+    fn the_pieces_share_one_segment_budget() {
+        // (s, s²) on pieces of length 1: h²/8·2 ≤ tol needs n = √(1/(4 tol)) segments per
+        // piece, 6.3·10⁵ at tol = 6.3e-13. One piece fits 2²⁰ segments, three do not.
+        let piece: &[[f64; 2]] = &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let tol = 6.3e-13;
+        let one = PolyCurve::<f64>::new(&[0.0, 1.0], &[piece]);
+        let n = flatten_count(&one, tol).unwrap();
+        assert!((600_000..700_000).contains(&n), "{n}");
+        let three = PolyCurve::<f64>::new(&[0.0, 1.0, 2.0, 3.0], &[piece, piece, piece]);
+        let counted = Counted {
+            curve: &three,
+            calls: core::cell::Cell::new(0),
+        };
+        match flatten_count(&counted, tol) {
+            Err(Error::CapacityExceeded { capacity, required }) => {
+                assert_eq!(capacity, MAX_SEGMENTS);
+                assert!(required > MAX_SEGMENTS, "{required}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // The documented bound: the resolution check, then 12·2²⁰ certificates of 8
+        // evaluations in all.
+        let bound = 2 * 3 + 2 + 12 * MAX_SEGMENTS * 8;
+        assert!(counted.calls.get() <= bound, "{}", counted.calls.get());
     }
 
     #[test]
