@@ -12,7 +12,7 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_trajectory::{
-    CompileOptions, Limits, Number, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
+    CompileOptions, Kernel, Limits, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
 };
 
 use strak_sim::pipeline::{PIECES, TABLE, ZONES};
@@ -119,7 +119,7 @@ fn direct_run<N, C, const A: usize>(
     rows: &[Vec<String>],
 ) -> usize
 where
-    N: Number,
+    N: Kernel,
     N::Out: Cell,
     C: ParamCurveDeriv,
     C::Point: Point,

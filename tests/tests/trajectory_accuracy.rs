@@ -36,7 +36,7 @@
 use strak_curves::{BSpline, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Scalar};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing, compile,
+    CompileOptions, Kernel, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing, compile,
 };
 
 /// 100 kHz: 10⁶ ticks in 10 s.
@@ -77,7 +77,7 @@ fn exact<C, N, const A: usize, const P: usize, const T: usize, const Z: usize>(
 ) -> Exact<A>
 where
     C: ParamCurveDeriv<Point = [f64; A]>,
-    N: Number,
+    N: Kernel,
 {
     let t = if k >= path.ticks() {
         plan.duration()
@@ -106,12 +106,12 @@ fn reference_error(j: f64, x: f64) -> (f64, f64) {
 }
 
 /// The rounding of a value of magnitude `m` in `N`.
-fn rounding<N: Number>(m: f64) -> f64 {
+fn rounding<N: Kernel>(m: f64) -> f64 {
     N::rounding_error(m)
 }
 
 /// The output rounding of a sample value of magnitude `m`.
-fn out_rounding<N: Number>(m: f64) -> f64 {
+fn out_rounding<N: Kernel>(m: f64) -> f64 {
     if N::IS_FIXED {
         N::OUT_ERROR
     } else {
@@ -120,7 +120,7 @@ fn out_rounding<N: Number>(m: f64) -> f64 {
 }
 
 /// Tracks one number format's samples against the exact motion.
-struct Tracker<'a, N: Number, const A: usize, const P: usize> {
+struct Tracker<'a, N: Kernel, const A: usize, const P: usize> {
     path: &'a Path<N, A, P>,
     sampler: Sampler<'a, N, A>,
     piece: usize,
@@ -130,7 +130,7 @@ struct Tracker<'a, N: Number, const A: usize, const P: usize> {
     last: Option<Sample<N::Out, A>>,
 }
 
-impl<'a, N: Number, const A: usize, const P: usize> Tracker<'a, N, A, P> {
+impl<'a, N: Kernel, const A: usize, const P: usize> Tracker<'a, N, A, P> {
     fn new(path: &'a Path<N, A, P>) -> Self {
         Tracker {
             path,
@@ -356,7 +356,7 @@ fn end_point_of_curves_in_their_own_type() {
 }
 
 /// Plays a path to its end; returns the last sample (checks the sampler's end semantics).
-fn play_to_end<N: Number, const A: usize, const P: usize>(
+fn play_to_end<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
 ) -> Sample<N::Out, A> {
     let mut s = Sampler::new(path);

@@ -10,7 +10,7 @@ use proptest::test_runner::{Config, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Limits, MotionProfile, Number,
+    BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Kernel, Limits, MotionProfile,
     ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler, SamplerState,
     Timing, compile, crc32,
 };
@@ -554,7 +554,7 @@ fn curve_errors() {
 // ---------------------------------------------------------------------------------------------
 
 /// A small compiled path of `A` axes (a few pieces).
-fn small_path<N: Number, const A: usize>() -> Path<N, A, 16> {
+fn small_path<N: Kernel, const A: usize>() -> Path<N, A, 16> {
     let a: [f64; A] = core::array::from_fn(|i| i as f64);
     let b: [f64; A] = core::array::from_fn(|i| 10.0 - 3.0 * i as f64);
     let c: [f64; A] = core::array::from_fn(|i| (i as f64).sqrt() - 1.0);
@@ -565,7 +565,7 @@ fn small_path<N: Number, const A: usize>() -> Path<N, A, 16> {
     compile(&curve, &Linear(0.15), 1_000.0, &options).expect("small path")
 }
 
-fn blob<N: Number, const A: usize>(path: &Path<N, A, 16>) -> Vec<u8> {
+fn blob<N: Kernel, const A: usize>(path: &Path<N, A, 16>) -> Vec<u8> {
     let mut buf = vec![0_u8; path.blob_len()];
     let n = path.to_bytes(&mut buf).expect("to_bytes");
     assert_eq!(n, buf.len());
@@ -579,7 +579,7 @@ fn fix_crc(bytes: &mut [u8]) {
     bytes[n..].copy_from_slice(&crc.to_le_bytes());
 }
 
-fn round_trip<N: Number, const A: usize>() {
+fn round_trip<N: Kernel, const A: usize>() {
     let path = small_path::<N, A>();
     let bytes = blob(&path);
     assert_eq!(&bytes[..4], &BLOB_MAGIC);
@@ -607,7 +607,7 @@ fn blob_round_trip_is_bit_exact() {
     round_trip::<Q40, 6>();
 }
 
-fn flipped_bytes<N: Number>() {
+fn flipped_bytes<N: Kernel>() {
     let path = small_path::<N, 2>();
     let good = blob(&path);
     for i in 0..good.len() {
@@ -899,7 +899,7 @@ fn wild_rate() -> impl Strategy<Value = f64> {
 
 /// Plays a path to its end at feed 1 (exactly `ticks + 1` samples), and once more with an
 /// override, a hold and a resume, and once with an abort; nothing may panic, every run ends.
-fn play_everything<N: Number, const A: usize, const P: usize>(
+fn play_everything<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
 ) -> TestCaseResult {
     let ticks = u64::from(path.ticks());

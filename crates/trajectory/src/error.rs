@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-use crate::number::Number;
+use crate::num::Number;
 
 /// Why a path could not be planned, compiled or loaded.
 ///

@@ -3,6 +3,7 @@
 mod law;
 mod options;
 mod peaks;
+mod planned;
 mod spline_fit;
 #[cfg(test)]
 pub(crate) mod testing;
@@ -13,9 +14,9 @@ use heapless::Vec;
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use crate::error::{Error, Quantity};
-use crate::number::Number;
+use crate::num::Number;
 use crate::path::{AxisState, Path, PathEnd, PathMeta, Piece, RATE_RANGE};
-use crate::timing::Timing;
+use crate::plan::Timing;
 use law::TickLaw;
 use peaks::Peaks;
 use spline_fit::SplineFit;
@@ -406,7 +407,7 @@ mod tests {
     extern crate std;
     use super::testing::{Linear, Quintic, Smoothstep, TestTiming, Trapezoid, exact, helix};
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
     use strak_curves::{Bezier, I32F32, ParamCurve};
 
     fn line() -> Bezier<[f64; 2], 2> {

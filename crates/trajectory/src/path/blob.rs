@@ -9,7 +9,7 @@ use super::owned::Path;
 use super::state::{AxisState, Piece};
 use super::view::{PathView, decode_states, piece_record_len};
 use crate::error::{BlobFormat, Error};
-use crate::number::Number;
+use crate::num::Number;
 
 /// The magic bytes at the start of a serialized path.
 pub const BLOB_MAGIC: [u8; 4] = *b"STRK";
@@ -490,7 +490,7 @@ mod tests {
     use super::*;
     use crate::compile::testing::{Smoothstep, helix};
     use crate::compile::{CompileOptions, compile};
-    use crate::number::Q40;
+    use crate::num::Q40;
     use std::string::ToString;
     use std::vec;
     use strak_curves::I32F32;
@@ -672,7 +672,9 @@ mod tests {
 
     /// Plays `view` to the end, with a feed change, a hold and a resume on the way (so the
     /// interpolation mode's piece loads run too), collecting every sample.
-    fn play<N: Number>(view: PathView<'_, N, 3>) -> std::vec::Vec<(crate::Sample<N::Out, 3>, f64)> {
+    fn play<N: crate::Kernel>(
+        view: PathView<'_, N, 3>,
+    ) -> std::vec::Vec<(crate::Sample<N::Out, 3>, f64)> {
         let mut sampler = crate::Sampler::new(view);
         let mut out = std::vec::Vec::new();
         for k in 0..5 * u64::from(view.ticks()) {
@@ -692,7 +694,7 @@ mod tests {
         out
     }
 
-    fn blob_plays_as_the_path<N: Number>() {
+    fn blob_plays_as_the_path<N: crate::Kernel>() {
         let path = sample_path::<N>();
         // room for the blob at every offset 0..8 from an 8-byte aligned start
         let len = path.blob_len();

@@ -6,7 +6,7 @@ use strak_curves::Scalar;
 use super::sample::Sample;
 use super::state::{AxisState, Newton};
 use crate::error::Error;
-use crate::number::Number;
+use crate::num::Number;
 
 /// Where a path ends: the exact end point (as the curve computes it, converted once) and
 /// the end velocity and acceleration, in the sample type.
@@ -554,7 +554,7 @@ impl<N: Number> Validator<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
     #[test]
     fn q40_error_bound_formula() {
         // n = 256, dyadic values (exact in Q40): ½ulp·(1 + n + C(n,2) + C(n,3)) + output rounding

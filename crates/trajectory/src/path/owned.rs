@@ -9,7 +9,7 @@ use super::sample::Sample;
 use super::state::Piece;
 use super::view::PathView;
 use crate::error::Error;
-use crate::number::Number;
+use crate::num::Number;
 
 /// A compiled path with `A` axes and room for `P` pieces, played back in the number format
 /// `N` (see [`Number`]): what [`compile`](crate::compile) produces, [`Sampler`](crate::Sampler)

@@ -1,6 +1,6 @@
 //! The forward-difference state of an axis, and a piece of a path.
 
-use crate::number::Number;
+use crate::num::Number;
 
 /// The forward-difference state of one axis at one tick. Position differences are per tick,
 /// velocity in units/s, acceleration in units/s².
@@ -239,7 +239,7 @@ impl<N: Number, const A: usize> Piece<N, A> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
 
     fn cubic_state(a: f64, b: f64, c: f64, d: f64, t: f64) -> AxisState<f64> {
         AxisState {

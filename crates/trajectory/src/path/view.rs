@@ -7,7 +7,7 @@ use core::ops::Deref;
 use super::header::PathHeader;
 use super::sample::Sample;
 use super::state::{AxisState, Newton, Piece};
-use crate::number::Number;
+use crate::num::Number;
 
 /// A piece's state for a piece switch: decoded states, or a blob record's value bytes.
 #[derive(Clone, Copy, Debug)]

@@ -45,18 +45,17 @@
 //!
 //! The zone's jerk is further limited to `a_z·f/16` at the control rate `f`, so that a jerk
 //! phase to `a_z` lasts at least 16 ticks ([`PlanOptions::MIN_JERK_TICKS`]). Zones also end
-//! at the joins and cusps where the speed is capped (`profile/joins.rs`).
+//! at the joins and cusps where the speed is capped (`plan/joins.rs`).
 
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
 
-use super::greater;
 use super::joins::{JoinRule, locate_reversal, reverses};
+use super::limits::Limits;
 use super::motion::ProfileZone;
 use super::options::{PlanOptions, ProfileShape};
-use super::path_timing::to_param;
+use super::{greater, to_param};
 use crate::error::Error;
-use crate::limits::Limits;
 
 /// The limits sampled at one parameter (or the worst over an interval).
 #[derive(Clone, Copy, Debug)]
@@ -466,7 +465,7 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usiz
 /// interval at its ends and midpoint, taking the worst), groups consecutive intervals into
 /// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
 /// smallest, and ends a zone at every join and cusp whose speed cap binds (see
-/// [`PlanOptions`] and `profile/joins.rs`). Returns the zones (arc lengths from `table`,
+/// [`PlanOptions`] and `plan/joins.rs`). Returns the zones (arc lengths from `table`,
 /// limits and exit caps set, no phases).
 ///
 /// # Errors

@@ -19,7 +19,7 @@ use core::mem::{MaybeUninit, size_of};
 use strak_curves::I32F32;
 
 use super::{UNROLLED, portable};
-use crate::number::Q40;
+use crate::num::Q40;
 use crate::path::{AxisState, Sample};
 
 /// Bytes from an axis's state to its velocity (after `p`, `Δ¹`, `Δ²`, `Δ³`).

@@ -6,9 +6,6 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use strak_curves::{I32F32, Scalar};
 
-use crate::path::{AxisState, Sample};
-use crate::sampler::kernel::portable;
-
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -256,49 +253,6 @@ pub trait Number:
     /// (exact: `from_out(v).to_out() == v` for every `v` in range; the path checks it).
     #[doc(hidden)]
     fn from_out(v: Self::Out) -> Self;
-
-    /// Crate-internal (the trait is sealed): the sampler's tick kernel, the sample of
-    /// `state` at `tick`, then one forward-differencing step of every axis. Portable Rust
-    /// unless the format has a faster kernel on the target (`sampler::kernel`).
-    #[doc(hidden)]
-    #[inline(always)]
-    fn tick_sample<const A: usize>(
-        state: &mut [AxisState<Self>; A],
-        tick: u64,
-    ) -> Sample<Self::Out, A> {
-        portable::tick_sample(state, tick)
-    }
-
-    /// Crate-internal: [`Number::tick_sample`]'s positions and step.
-    #[doc(hidden)]
-    #[inline(always)]
-    fn tick_position<const A: usize>(state: &mut [AxisState<Self>; A]) -> [Self::Out; A] {
-        portable::tick_position(state)
-    }
-
-    /// Crate-internal: the sample of `state` at `tick`, then `state = *next` (a piece
-    /// switch).
-    #[doc(hidden)]
-    #[inline(always)]
-    fn switch_sample<const A: usize>(
-        state: &mut [AxisState<Self>; A],
-        next: &[AxisState<Self>; A],
-        tick: u64,
-    ) -> Sample<Self::Out, A> {
-        portable::switch_sample(state, next, tick)
-    }
-
-    /// Crate-internal: the sample of `state` at `tick`, then `state` read from the `9·A`
-    /// little-endian values of a blob's piece record (a piece switch from a blob).
-    #[doc(hidden)]
-    #[inline(always)]
-    fn switch_sample_bytes<const A: usize>(
-        state: &mut [AxisState<Self>; A],
-        next: &[u8],
-        tick: u64,
-    ) -> Sample<Self::Out, A> {
-        portable::switch_sample_bytes(state, next, tick)
-    }
 }
 
 fn write_bytes(src: &[u8], out: &mut [u8]) {
@@ -317,34 +271,6 @@ fn read_bytes<const B: usize>(bytes: &[u8]) -> [u8; B] {
 
 impl Number for f32 {
     type Out = f32;
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn tick_sample<const A: usize>(state: &mut [AxisState<f32>; A], tick: u64) -> Sample<f32, A> {
-        crate::sampler::kernel::vfp::tick_sample(state, tick)
-    }
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn tick_position<const A: usize>(state: &mut [AxisState<f32>; A]) -> [f32; A] {
-        crate::sampler::kernel::vfp::tick_position(state)
-    }
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn switch_sample<const A: usize>(
-        state: &mut [AxisState<f32>; A],
-        next: &[AxisState<f32>; A],
-        tick: u64,
-    ) -> Sample<f32, A> {
-        crate::sampler::kernel::vfp::switch_sample(state, next, tick)
-    }
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn switch_sample_bytes<const A: usize>(
-        state: &mut [AxisState<f32>; A],
-        next: &[u8],
-        tick: u64,
-    ) -> Sample<f32, A> {
-        crate::sampler::kernel::vfp::switch_sample_bytes(state, next, tick)
-    }
     const FORMAT_ID: u8 = 1;
     const NAME: &'static str = "f32";
     const IS_FIXED: bool = false;
@@ -466,37 +392,6 @@ impl Number for f64 {
 
 impl Number for Q40 {
     type Out = I32F32;
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn tick_sample<const A: usize>(
-        state: &mut [AxisState<Q40>; A],
-        tick: u64,
-    ) -> Sample<I32F32, A> {
-        crate::sampler::kernel::thumb2::tick_sample(state, tick)
-    }
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn tick_position<const A: usize>(state: &mut [AxisState<Q40>; A]) -> [I32F32; A] {
-        crate::sampler::kernel::thumb2::tick_position(state)
-    }
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn switch_sample<const A: usize>(
-        state: &mut [AxisState<Q40>; A],
-        next: &[AxisState<Q40>; A],
-        tick: u64,
-    ) -> Sample<I32F32, A> {
-        crate::sampler::kernel::thumb2::switch_sample(state, next, tick)
-    }
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn switch_sample_bytes<const A: usize>(
-        state: &mut [AxisState<Q40>; A],
-        next: &[u8],
-        tick: u64,
-    ) -> Sample<I32F32, A> {
-        crate::sampler::kernel::thumb2::switch_sample_bytes(state, next, tick)
-    }
     const FORMAT_ID: u8 = 3;
     const NAME: &'static str = "Q40";
     const IS_FIXED: bool = true;
