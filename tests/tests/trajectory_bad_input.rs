@@ -11,8 +11,8 @@ use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar,
 use strak_tests::big_stack;
 use strak_trajectory::{
     BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Kernel, Limits, MotionProfile,
-    ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler, SamplerState,
-    Timing, compile, crc32,
+    NumberFormat, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler,
+    SamplerState, Timing, compile, crc32,
 };
 
 const NAN: f64 = f64::NAN;
@@ -776,10 +776,13 @@ fn format_mismatch() {
     let f32_blob = blob(&small_path::<f32, 2>());
     let f64_blob = blob(&small_path::<f64, 2>());
     let q40_blob = blob(&small_path::<Q40, 2>());
-    let mismatch = |expected: BlobFormat, number: u8, axes: usize| {
+    let mismatch = |expected: BlobFormat, id: u8, axes: usize| {
         Some(Error::FormatMismatch {
             expected,
-            found: BlobFormat { number, axes },
+            found: BlobFormat {
+                number: NumberFormat::from_id(id).unwrap(),
+                axes,
+            },
         })
     };
     let of = BlobFormat::of::<f32>;
@@ -822,10 +825,10 @@ fn format_mismatch() {
     bad[6] = 9;
     fix_crc(&mut bad);
     let err = Path::<f32, 2, 16>::from_bytes(&bad).err();
-    assert_eq!(err, mismatch(of(2), 9, 2));
+    assert_eq!(err, Some(Error::UnknownNumberFormat { id: 9 }));
     assert_eq!(
         err.unwrap().to_string(),
-        "serialized path is for number format 9 with 2 axes, expected f32 with 2 axes"
+        "serialized path has number format id 9, which no format has (1 f32, 2 f64, 3 Q40)"
     );
 }
 
@@ -844,6 +847,7 @@ fn errors_display() {
         Error::TooLong,
         Error::CorruptBlob,
         Error::UnsupportedVersion { found: 7 },
+        Error::UnknownNumberFormat { id: 0 },
         Error::FormatMismatch {
             expected: BlobFormat::of::<f32>(3),
             found: BlobFormat::of::<Q40>(3),

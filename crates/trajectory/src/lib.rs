@@ -14,7 +14,7 @@ mod play;
 
 pub use compile::{CompileOptions, Tolerance, compile};
 pub use error::{BlobFormat, Error, Quantity};
-pub use num::{Number, Q40};
+pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use path::{
     AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, Path, PathBlob, PathHeader, PathView, Piece,
     Sample, crc32,

@@ -6,6 +6,10 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use strak_curves::{I32F32, Scalar};
 
+mod format;
+
+pub use format::{NumberFormat, ParseNumberFormatError};
+
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -170,14 +174,18 @@ pub trait Number:
 {
     /// The type samples are delivered in: `f32`, `f64` or [`I32F32`].
     type Out: Scalar;
-    /// The format id written into serialized paths (1 = `f32`, 2 = `f64`, 3 = `Q40`).
-    const FORMAT_ID: u8;
-    /// A short name: `"f32"`, `"f64"`, `"Q40"`.
-    const NAME: &'static str;
+    /// The format as a value ([`NumberFormat::F32`], [`NumberFormat::F64`],
+    /// [`NumberFormat::Q40`]).
+    const FORMAT: NumberFormat;
+    /// The format id written into serialized paths ([`NumberFormat::id`]: 1 = `f32`,
+    /// 2 = `f64`, 3 = `Q40`).
+    const FORMAT_ID: u8 = Self::FORMAT.id();
+    /// A short name ([`NumberFormat::name`]): `"f32"`, `"f64"`, `"Q40"`.
+    const NAME: &'static str = Self::FORMAT.name();
     /// `true` for [`Q40`].
     const IS_FIXED: bool;
-    /// Bytes per value in a serialized path.
-    const BYTES: usize;
+    /// Bytes per value in a serialized path ([`NumberFormat::bytes`]).
+    const BYTES: usize = Self::FORMAT.bytes();
     /// 0.
     const ZERO: Self;
     /// 1.
@@ -271,10 +279,8 @@ fn read_bytes<const B: usize>(bytes: &[u8]) -> [u8; B] {
 
 impl Number for f32 {
     type Out = f32;
-    const FORMAT_ID: u8 = 1;
-    const NAME: &'static str = "f32";
+    const FORMAT: NumberFormat = NumberFormat::F32;
     const IS_FIXED: bool = false;
-    const BYTES: usize = 4;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
@@ -332,10 +338,8 @@ impl Number for f32 {
 
 impl Number for f64 {
     type Out = f64;
-    const FORMAT_ID: u8 = 2;
-    const NAME: &'static str = "f64";
+    const FORMAT: NumberFormat = NumberFormat::F64;
     const IS_FIXED: bool = false;
-    const BYTES: usize = 8;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
@@ -392,10 +396,8 @@ impl Number for f64 {
 
 impl Number for Q40 {
     type Out = I32F32;
-    const FORMAT_ID: u8 = 3;
-    const NAME: &'static str = "Q40";
+    const FORMAT: NumberFormat = NumberFormat::Q40;
     const IS_FIXED: bool = true;
-    const BYTES: usize = 8;
     const ZERO: Self = Q40(0);
     const ONE: Self = Q40(1 << 40);
     const HALF: Self = Q40(1 << 39);

@@ -9,7 +9,7 @@ use super::owned::Path;
 use super::state::{AxisState, Piece};
 use super::view::{PathView, decode_states, piece_record_len};
 use crate::error::{BlobFormat, Error};
-use crate::num::Number;
+use crate::num::{Number, NumberFormat};
 
 /// The magic bytes at the start of a serialized path.
 pub const BLOB_MAGIC: [u8; 4] = *b"STRK";
@@ -121,7 +121,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// |--------|-----------------|-----------------------------------------------------------|
     /// | 0      | 4               | magic `"STRK"`                                            |
     /// | 4      | 2               | format version (`u16`) = 1                                |
-    /// | 6      | 1               | number format id ([`Number::FORMAT_ID`]: 1 f32, 2 f64, 3 Q40) |
+    /// | 6      | 1               | number format id ([`NumberFormat::id`]: 1 f32, 2 f64, 3 Q40) |
     /// | 7      | 1               | axes `A`                                                  |
     /// | 8      | 4               | piece count `m` (`u32`)                                   |
     /// | 12     | 4               | tick count (`u32`)                                        |
@@ -132,7 +132,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     ///
     /// Reading checks, in this order: length of the fixed header and magic
     /// ([`Error::CorruptBlob`]), version ([`Error::UnsupportedVersion`]), CRC
-    /// ([`Error::CorruptBlob`]), number format and axes ([`Error::FormatMismatch`]), exact
+    /// ([`Error::CorruptBlob`]), number format ([`Error::UnknownNumberFormat`] for an id no
+    /// format has) and axes ([`Error::FormatMismatch`]), exact
     /// length ([`Error::CorruptBlob`]), piece count against the capacity
     /// ([`Error::CapacityExceeded`], [`Path::from_bytes`] only); then the pieces and the end are
     /// validated like a freshly compiled path: the range of every value playback forms
@@ -226,8 +227,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     ///
     /// # Errors
     /// [`Error::CorruptBlob`] (truncated, bad magic, bad CRC, inconsistent content),
-    /// [`Error::UnsupportedVersion`], [`Error::FormatMismatch`] (other number format or axis
-    /// count), [`Error::CapacityExceeded`] (more pieces than `P`), [`Error::OutOfRange`] or
+    /// [`Error::UnsupportedVersion`], [`Error::UnknownNumberFormat`] (a format id no format
+    /// has), [`Error::FormatMismatch`] (other number format or axis count), [`Error::CapacityExceeded`] (more pieces than `P`), [`Error::OutOfRange`] or
     /// [`Error::InvalidRate`] / [`Error::InvalidLimit`] (content a compiler would not have
     /// produced).
     ///
@@ -307,12 +308,13 @@ impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
         if crc32(body) != u32::from_le_bytes(stored) {
             return Err(Error::CorruptBlob);
         }
-        let [format, axes] = r.take();
-        if format != N::FORMAT_ID || usize::from(axes) != A {
+        let [id, axes] = r.take();
+        let number = NumberFormat::from_id(id).ok_or(Error::UnknownNumberFormat { id })?;
+        if number != N::FORMAT || usize::from(axes) != A {
             return Err(Error::FormatMismatch {
                 expected: BlobFormat::of::<N>(A),
                 found: BlobFormat {
-                    number: format,
+                    number,
                     axes: usize::from(axes),
                 },
             });
@@ -642,6 +644,15 @@ mod tests {
                 found: q40
             })
         );
+        for id in [0_u8, 4, 255] {
+            let mut u = b.clone();
+            u[6] = id;
+            reseal(&mut u);
+            assert_eq!(
+                Path::<Q40, 3, 64>::from_bytes(&u),
+                Err(Error::UnknownNumberFormat { id })
+            );
+        }
         let path = sample_path::<Q40>();
         let m = path.pieces().len();
         assert_eq!(
