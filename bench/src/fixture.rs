@@ -143,9 +143,9 @@ pub fn strak_paths(n: usize) -> Paths {
                 .with_tolerance(TOLERANCE_MM)
                 .with_path_limits(&limits);
             Paths {
-                f32: Box::new(compile(&*curve, &timing, RATE_HZ, &options).expect("compile")),
-                f64: Box::new(compile(&*curve, &timing, RATE_HZ, &options).expect("compile")),
-                q40: Box::new(compile(&*curve, &timing, RATE_HZ, &options).expect("compile")),
+                f32: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
+                f64: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
+                q40: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
             }
         })
         .expect("spawn")

@@ -24,7 +24,7 @@ use strak_curves::{
     Scalar, ScalarOf, SplineBoundary,
 };
 use strak_trajectory::{
-    CompileOptions, Kernel, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions,
+    Along, CompileOptions, Kernel, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Q40, Sample, Timing, compile,
 };
 
@@ -350,7 +350,9 @@ fn pipeline<N: Kernel, const A: usize>(
     if !(duration * case.rate <= MAX_TICKS) {
         return Ok(());
     }
-    let Ok(path) = compile::<N, A, PIECES, _, _>(curve, &*timing, case.rate, &case.compile) else {
+    let Ok(path) =
+        compile::<N, A, PIECES, _>(&Along::new(curve, &*timing), case.rate, &case.compile)
+    else {
         return Ok(());
     };
     let limited = matches!(

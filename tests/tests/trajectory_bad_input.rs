@@ -10,9 +10,9 @@ use proptest::test_runner::{Config, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Kernel, Limits, MotionProfile,
-    NumberFormat, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler,
-    SamplerState, Timing, compile, crc32,
+    Along, BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Kernel, Limits,
+    MotionProfile, NumberFormat, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40,
+    Sampler, SamplerState, Timing, compile, crc32,
 };
 
 const NAN: f64 = f64::NAN;
@@ -230,7 +230,7 @@ fn invalid_limit_compile_options() {
         CompileOptions::new().with_feed_share(NAN),
     ];
     for o in bad_options {
-        let r: Result<Path<f64, 2, 8>, _> = compile(&c, &t, 1_000.0, &o);
+        let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &t), 1_000.0, &o);
         assert_eq!(r, Err(Error::InvalidLimit), "{o:?}");
     }
 }
@@ -245,13 +245,13 @@ fn invalid_rate() {
     let t = Linear(0.1);
     let o = CompileOptions::new();
     for rate in [99.999, 100_000.001, 0.0, -1_000.0, NAN, INF, -INF, 1e300] {
-        let r: Result<Path<f64, 2, 64>, _> = compile(&c, &t, rate, &o);
+        let r: Result<Path<f64, 2, 64>, _> = compile(&Along::new(&c, &t), rate, &o);
         assert_eq!(r, Err(Error::InvalidRate), "{rate} Hz");
-        let r: Result<Path<Q40, 2, 64>, _> = compile(&c, &t, rate, &o);
+        let r: Result<Path<Q40, 2, 64>, _> = compile(&Along::new(&c, &t), rate, &o);
         assert_eq!(r, Err(Error::InvalidRate), "{rate} Hz");
     }
     for rate in [100.0, 100_000.0] {
-        let r: Result<Path<f64, 2, 64>, _> = compile(&c, &t, rate, &o);
+        let r: Result<Path<f64, 2, 64>, _> = compile(&Along::new(&c, &t), rate, &o);
         assert!(r.is_ok(), "{rate} Hz is allowed");
     }
 }
@@ -298,7 +298,7 @@ fn empty_path_zero_length_curve() {
     // a standing curve under the parameter law is a valid (still) motion
     let t = ParameterTiming::over(&still, 0.01).expect("law");
     let path: Path<f64, 3, 8> =
-        compile(&still, &t, 1_000.0, &CompileOptions::new()).expect("still");
+        compile(&Along::new(&still, &t), 1_000.0, &CompileOptions::new()).expect("still");
     let mut s = Sampler::new(&path);
     while !s.is_finished() {
         assert_eq!(s.next().position, [5.0, -1.0, 2.0]);
@@ -311,7 +311,7 @@ fn empty_path_zero_duration() {
     assert_eq!(ParameterTiming::over(&c, 0.0), Err(Error::EmptyPath));
     for d in [0.0, -0.0, -1.0, NAN, -INF] {
         let r: Result<Path<f64, 2, 8>, _> =
-            compile(&c, &Linear(d), 1_000.0, &CompileOptions::new());
+            compile(&Along::new(&c, &Linear(d)), 1_000.0, &CompileOptions::new());
         assert_eq!(r, Err(Error::EmptyPath), "duration {d}");
     }
 }
@@ -334,9 +334,11 @@ fn axis_mismatch() {
         Err(Error::AxisMismatch { curve: 2, path: 1 })
     ));
     let t = Linear(0.1);
-    let r: Result<Path<f64, 3, 8>, _> = compile(&c, &t, 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 3, 8>, _> =
+        compile(&Along::new(&c, &t), 1_000.0, &CompileOptions::new());
     assert_eq!(r, Err(Error::AxisMismatch { curve: 2, path: 3 }));
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&line3(), &t, 1_000.0, &CompileOptions::new());
+    let r: Result<Path<Q40, 1, 8>, _> =
+        compile(&Along::new(&line3(), &t), 1_000.0, &CompileOptions::new());
     assert_eq!(r, Err(Error::AxisMismatch { curve: 3, path: 1 }));
 }
 
@@ -348,7 +350,11 @@ fn axis_mismatch() {
 fn capacity_exceeded_pieces() {
     let c = line2();
     // 1000 ticks in pieces of at most 256: 4 pieces
-    let r: Result<Path<f64, 2, 3>, _> = compile(&c, &Linear(1.0), 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 2, 3>, _> = compile(
+        &Along::new(&c, &Linear(1.0)),
+        1_000.0,
+        &CompileOptions::new(),
+    );
     assert_eq!(
         r,
         Err(Error::CapacityExceeded {
@@ -364,8 +370,7 @@ fn capacity_exceeded_pieces() {
     )
     .expect("plan");
     let r: Result<Path<f64, 2, 4>, _> = compile(
-        &circle,
-        &plan,
+        &Along::new(&circle, &plan),
         1_000.0,
         &CompileOptions::new().with_tolerance(1e-9),
     );
@@ -441,29 +446,29 @@ fn out_of_range_fixed_point_coordinates() {
     // beyond ±8 388 608 = 2²³ (Q23.40 cannot hold it at all), both signs, any axis
     for x in [8_388_609.0, 1.0e7, -8_388_609.0, -1.0e9] {
         let far = Bezier::new([[0.0, x], [1.0, x + 1.0]]).expect("curve");
-        let r: Result<Path<Q40, 2, 8>, _> = compile(&far, &t, 1_000.0, &o);
+        let r: Result<Path<Q40, 2, 8>, _> = compile(&Along::new(&far, &t), 1_000.0, &o);
         assert_eq!(r, Err(Error::OutOfRange), "{x}");
         // floats take them
-        let r: Result<Path<f32, 2, 8>, _> = compile(&far, &t, 1_000.0, &o);
+        let r: Result<Path<f32, 2, 8>, _> = compile(&Along::new(&far, &t), 1_000.0, &o);
         assert!(r.is_ok(), "{x} in f32");
     }
     // beyond the checked range 2²² = 4 194 304 (half the representable, so that sums cannot
     // overflow) is rejected as well
     let half = Bezier::new([[5.0e6], [5.0e6 + 1.0]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&half, &t, 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&half, &t), 1_000.0, &o);
     assert_eq!(r, Err(Error::OutOfRange));
     // inside: fine
     let inside = Bezier::new([[4.0e6], [4.0e6 + 1.0]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&inside, &t, 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&inside, &t), 1_000.0, &o);
     assert!(r.is_ok());
     // a fixed-point curve beyond the range (I32F32 holds it, Q40 does not)
     let q = |x: f64| I32F32::from_num(x);
     let fixed = Bezier::new([[q(9.0e6)], [q(9.0e6 + 10.0)]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&fixed, &t, 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&fixed, &t), 1_000.0, &o);
     assert_eq!(r, Err(Error::OutOfRange));
     // a velocity beyond the range: 10⁷ units in 10 ms
     let fast = Bezier::new([[-2.0e6], [2.0e6]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&fast, &Linear(0.4), 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&fast, &Linear(0.4)), 1_000.0, &o);
     assert_eq!(r, Err(Error::OutOfRange));
 }
 
@@ -471,11 +476,17 @@ fn out_of_range_fixed_point_coordinates() {
 fn out_of_range_f32() {
     // beyond half of f32::MAX
     let huge = Bezier::new([[0.0], [3.0e38]]).expect("curve");
-    let r: Result<Path<f32, 1, 8>, _> =
-        compile(&huge, &Linear(1.0), 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f32, 1, 8>, _> = compile(
+        &Along::new(&huge, &Linear(1.0)),
+        1_000.0,
+        &CompileOptions::new(),
+    );
     assert_eq!(r, Err(Error::OutOfRange));
-    let r: Result<Path<f64, 1, 8>, _> =
-        compile(&huge, &Linear(1.0), 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 1, 8>, _> = compile(
+        &Along::new(&huge, &Linear(1.0)),
+        1_000.0,
+        &CompileOptions::new(),
+    );
     assert!(r.is_ok());
 }
 
@@ -489,18 +500,18 @@ fn too_long() {
     let o = CompileOptions::new();
     // 10⁵ s at 100 kHz: 10¹⁰ ticks > u32::MAX
     let t = ParameterTiming::over(&c, 1.0e5).expect("law");
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &t, 100_000.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &t), 100_000.0, &o);
     assert_eq!(r, Err(Error::TooLong));
     // just above: u32::MAX + 1 ticks at 100 Hz
     let t = Linear((f64::from(u32::MAX) + 1.0) / 100.0);
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &t, 100.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &t), 100.0, &o);
     assert_eq!(r, Err(Error::TooLong));
     // an infinite duration
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &Linear(INF), 1_000.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &Linear(INF)), 1_000.0, &o);
     assert_eq!(r, Err(Error::TooLong));
     // a slow constant speed: 50 units at 10⁻⁵ units/s, 5·10⁶ s
     let slow = PathTiming::<_, 16, 1>::constant_speed(&c, 1e-5).expect("plan");
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &slow, 1_000.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &slow), 1_000.0, &o);
     assert_eq!(r, Err(Error::TooLong));
 }
 
@@ -533,7 +544,8 @@ fn curve_errors() {
         Err(Error::Curve(strak_curves::Error::InvalidArgument))
     ));
     // a time law with non-finite values
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &Broken, 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 2, 8>, _> =
+        compile(&Along::new(&c, &Broken), 1_000.0, &CompileOptions::new());
     assert_eq!(r, Err(Error::Curve(strak_curves::Error::NonFinite)));
     // a curve that stands still over a whole table interval (degree 1, a repeated point)
     let pause = strak_curves::BSpline::<[f64; 2], 4, 8>::clamped_uniform(
@@ -562,7 +574,7 @@ fn small_path<N: Kernel, const A: usize>() -> Path<N, A, 16> {
     let options = CompileOptions::new()
         .with_max_piece_ticks(64)
         .with_tolerance(1e-6);
-    compile(&curve, &Linear(0.15), 1_000.0, &options).expect("small path")
+    compile(&Along::new(&curve, &Linear(0.15)), 1_000.0, &options).expect("small path")
 }
 
 fn blob<N: Kernel, const A: usize>(path: &Path<N, A, 16>) -> Vec<u8> {
@@ -1005,15 +1017,15 @@ where
     T: Timing,
 {
     count(&ATTEMPTS, 3);
-    if let Ok(path) = compile::<f32, A, 512, _, _>(curve, timing, rate, o) {
+    if let Ok(path) = compile::<f32, A, 512, _>(&Along::new(curve, timing), rate, o) {
         count(&COMPILED, 1);
         play_everything(&path)?;
     }
-    if let Ok(path) = compile::<f64, A, 512, _, _>(curve, timing, rate, o) {
+    if let Ok(path) = compile::<f64, A, 512, _>(&Along::new(curve, timing), rate, o) {
         count(&COMPILED, 1);
         play_everything(&path)?;
     }
-    if let Ok(path) = compile::<Q40, A, 512, _, _>(curve, timing, rate, o) {
+    if let Ok(path) = compile::<Q40, A, 512, _>(&Along::new(curve, timing), rate, o) {
         count(&COMPILED, 1);
         play_everything(&path)?;
     }

@@ -35,8 +35,8 @@ use proptest::test_runner::{Config, TestRunner};
 use strak_curves::{BSpline, ParamCurve, Scalar};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sample, Sampler, SamplerState, Timing,
-    compile,
+    Along, CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sample, Sampler, SamplerState,
+    Timing, compile,
 };
 
 const RATE: f64 = 1_000.0;
@@ -84,7 +84,7 @@ fn plan(curve: &Curve) -> Plan<'_> {
 
 fn compile_path<N: Kernel>(curve: &Curve, plan: &Plan<'_>) -> Path<N, 3, PIECES> {
     let options = CompileOptions::new().with_path_limits(&machine());
-    compile(curve, plan, RATE, &options).expect("compile")
+    compile(&Along::new(curve, plan), RATE, &options).expect("compile")
 }
 
 fn norm(x: &[f64; 3]) -> f64 {

@@ -33,7 +33,7 @@ use strak_curves::{
 use strak_tests::big_stack;
 use strak_tests::limits_check::measure;
 use strak_trajectory::{
-    CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
+    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
     Quantity, compile,
 };
 
@@ -107,8 +107,7 @@ where
         Err(e) => return failed(what, format!("plan: {e:?}")),
     };
     let compiled: Result<Path<N, D, PIECES>, Error> = compile(
-        curve,
-        &plan,
+        &Along::new(curve, &plan),
         rate,
         &CompileOptions::new().with_path_limits(&limits),
     );
@@ -235,7 +234,8 @@ fn line_with_short_jerk_phases() {
         let limits = Limits::<3>::new(v, a, j).expect("limits");
         let plan = PathTiming::<_, TABLE, ZONES>::scurve(&line, &limits).expect("plan");
         let options = CompileOptions::new().with_path_limits(&limits);
-        let path: Path<f64, 3, PIECES> = compile(&line, &plan, 1_000.0, &options).expect("compile");
+        let path: Path<f64, 3, PIECES> =
+            compile(&Along::new(&line, &plan), 1_000.0, &options).expect("compile");
         let k = measure(&path);
         println!(
             "line: {:?}, time scale {}",
@@ -300,7 +300,7 @@ fn jerk_phases_shorter_than_a_tick() {
         for rate in RATES {
             let options = CompileOptions::new().with_path_limits(&limits);
             let path: Path<f64, 2, PIECES> =
-                compile(&line, &plan, rate, &options).expect("compile");
+                compile(&Along::new(&line, &plan), rate, &options).expect("compile");
             let k = measure(&path);
             println!(
                 "{rate} Hz: {:?}, time scale {}",

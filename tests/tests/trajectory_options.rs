@@ -35,7 +35,7 @@
 use strak_curves::{BSpline, Bezier, ParamCurveDeriv, Scalar};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Sampler, Timing,
+    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Sampler, Timing,
 };
 
 /// Relative `f64` rounding of the difference quotients.
@@ -218,7 +218,7 @@ fn a_join_at_speed_is_caught() {
         let m = machine2();
         let c = polyline(30.0_f64.to_radians());
         let path: Path<f64, 2, PIECES> =
-            strak_trajectory::compile(&c, &Through, 1_000.0, &CompileOptions::new())
+            strak_trajectory::compile(&Along::new(&c, &Through), 1_000.0, &CompileOptions::new())
                 .expect("compile");
         let (r, _) = play(&path, &m, |_, _| {});
         println!("30° at 150 mm/s: |a| {:.1} × the limit", r.acceleration);
@@ -400,7 +400,7 @@ fn a_plan_without_the_reserve_is_caught() {
         let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
         let options = CompileOptions::new().with_path_limits(&m3);
         let path: Path<f64, 3, PIECES> =
-            strak_trajectory::compile(&line, &plan, plan.rate(), &options).expect("compile");
+            strak_trajectory::compile(&plan, plan.rate(), &options).expect("compile");
         let r = feed_changes("line planned at the full limits", &path, &m3);
         assert!(r.acceleration > 1.01 || r.jerk > 1.01, "{r:?}");
     });

@@ -26,10 +26,11 @@ const LAYERS: [(&str, u8); 6] = [
 
 /// The modules of `plan` in dependency order (`mod` is the layer's own helpers): a module
 /// names only the modules before it.
-const PLAN_ORDER: [&str; 13] = [
+const PLAN_ORDER: [&str; 14] = [
     "mod",
     "limits",
     "timing",
+    "trajectory",
     "motion",
     "scurve",
     "trapezoid",

@@ -61,11 +61,6 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z>
         &self,
         options: &CompileOptions,
     ) -> Result<Path<Num, A, P>, Error> {
-        compile(
-            self.curve(),
-            self,
-            self.rate(),
-            &self.compile_options(options),
-        )
+        compile(self, self.rate(), &self.compile_options(options))
     }
 }

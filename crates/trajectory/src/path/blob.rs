@@ -147,7 +147,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// (`capacity` and `required` in bytes); [`Error::FormatMismatch`] for more than 255 axes.
     ///
     /// ```
-    /// use strak_trajectory::{compile, CompileOptions, Path, Timing};
+    /// use strak_trajectory::{compile, Along, CompileOptions, Path, Timing};
     /// use strak_curves::Bezier;
     /// struct Ramp;
     /// impl Timing for Ramp {
@@ -155,7 +155,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
     /// }
     /// let curve = Bezier::new([[0.0_f64, 1.0], [2.0, 3.0], [4.0, 1.0]])?;
-    /// let path: Path<f32, 2, 8> = compile(&curve, &Ramp, 1_000.0, &CompileOptions::new())?;
+    /// let trajectory = Along::new(&curve, &Ramp);
+    /// let path: Path<f32, 2, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
     /// let mut buf = [0_u8; 1024];
     /// let len = path.to_bytes(&mut buf)?;
     /// assert_eq!(&buf[..4], b"STRK");
@@ -401,7 +402,9 @@ impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
 /// `include_bytes!`:
 ///
 /// ```
-/// use strak_trajectory::{compile, AlignedBlob, CompileOptions, Path, PathBlob, Sampler, Timing};
+/// use strak_trajectory::{
+///     compile, AlignedBlob, Along, CompileOptions, Path, PathBlob, Sampler, Timing,
+/// };
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -411,7 +414,8 @@ impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
 /// // On the host: compile and serialize (in firmware the bytes come from
 /// // `static BLOB: &AlignedBlob<[u8]> = &AlignedBlob(*include_bytes!("path.bin"));`).
 /// let curve = Bezier::new([[0.0_f64, 1.0], [2.0, 3.0], [4.0, 1.0]])?;
-/// let path: Path<f32, 2, 8> = compile(&curve, &Ramp, 1_000.0, &CompileOptions::new())?;
+/// let trajectory = Along::new(&curve, &Ramp);
+/// let path: Path<f32, 2, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
 /// let mut bytes = AlignedBlob([0_u8; 1024]);
 /// let len = path.to_bytes(&mut bytes.0)?;
 ///
@@ -493,6 +497,7 @@ mod tests {
     use crate::compile::testing::{Smoothstep, helix};
     use crate::compile::{CompileOptions, compile};
     use crate::num::Q40;
+    use crate::plan::Along;
     use std::string::ToString;
     use std::vec;
     use strak_curves::I32F32;
@@ -500,8 +505,7 @@ mod tests {
     fn sample_path<N: Number>() -> Path<N, 3, 64> {
         let curve = helix(2.0, 1.5, 3.0);
         compile(
-            &curve,
-            &Smoothstep::new(0.3),
+            &Along::new(&curve, &Smoothstep::new(0.3)),
             5_000.0,
             &CompileOptions::new().with_tolerance(1e-4),
         )

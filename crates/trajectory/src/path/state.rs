@@ -196,7 +196,7 @@ impl<N: Number> AxisState<N> {
 /// start state of each axis.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Timing};
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -204,7 +204,8 @@ impl<N: Number> AxisState<N> {
 ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
 /// }
 /// let line = Bezier::new([[0.0_f64], [2.0]])?;
-/// let path: Path<f64, 1, 4> = compile(&line, &Ramp, 1_000.0, &CompileOptions::default())?;
+/// let trajectory = Along::new(&line, &Ramp);
+/// let path: Path<f64, 1, 4> = compile(&trajectory, 1_000.0, &CompileOptions::default())?;
 /// let piece = &path.pieces()[0];
 /// assert_eq!((piece.start(), piece.ticks()), (0, 100)); // one piece, 100 ticks
 /// assert_eq!(piece.axes()[0].position, 0.0);

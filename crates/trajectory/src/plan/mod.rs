@@ -27,6 +27,7 @@ mod planner;
 mod scurve;
 mod speed_limit;
 mod timing;
+mod trajectory;
 mod trapezoid;
 
 #[cfg(test)]
@@ -69,3 +70,4 @@ pub use options::{PlanOptions, ProfileShape};
 pub use parameter::ParameterTiming;
 pub use path_timing::PathTiming;
 pub use timing::{MotionLimits, Timing};
+pub use trajectory::{Along, Trajectory};

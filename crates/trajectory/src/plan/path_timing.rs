@@ -7,6 +7,7 @@ use super::motion::{MotionProfile, Phase};
 use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion;
 use super::timing::{MotionLimits, Timing};
+use super::trajectory::Trajectory;
 use super::{greater, norm64, to_param};
 use crate::error::Error;
 
@@ -459,6 +460,20 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
             }
             prev = Some(phase);
         }
+    }
+}
+
+/// A planned law holds its curve: it is the whole trajectory.
+impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Trajectory for PathTiming<'_, C, N, Z> {
+    type Curve = C;
+    type Law = Self;
+
+    fn curve(&self) -> &C {
+        self.curve
+    }
+
+    fn law(&self) -> &Self {
+        self
     }
 }
 

@@ -83,7 +83,7 @@ pub enum SamplerState {
 /// worst-case budget of an interrupt.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Q40, Sampler, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Q40, Sampler, Timing};
 /// use strak_curves::Bezier;
 ///
 /// /// Rest to rest in 50 ms: u = 3τ² − 2τ³.
@@ -98,7 +98,8 @@ pub enum SamplerState {
 ///
 /// // At start-up (or on the host, then serialized): compile the move.
 /// let curve = Bezier::new([[0.0_f64, 0.0], [5.0, 0.0], [5.0, 5.0]])?;
-/// let path: Path<Q40, 2, 32> = compile(&curve, &Smooth, 20_000.0, &CompileOptions::new())?;
+/// let trajectory = Along::new(&curve, &Smooth);
+/// let path: Path<Q40, 2, 32> = compile(&trajectory, 20_000.0, &CompileOptions::new())?;
 ///
 /// // The timer interrupt: one call per tick, constant time, no allocation, no panic.
 /// let mut sampler = Sampler::new(&path);
@@ -439,7 +440,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// [`next`](Self::next).
     ///
     /// ```
-    /// use strak_trajectory::{compile, CompileOptions, Path, Sampler, Timing};
+    /// use strak_trajectory::{compile, Along, CompileOptions, Path, Sampler, Timing};
     /// use strak_curves::Bezier;
     ///
     /// struct Linear;
@@ -448,7 +449,8 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.01) / 0.01, 100.0) }
     /// }
     /// let line = Bezier::new([[0.0_f64], [2.0]])?;
-    /// let path: Path<f32, 1, 8> = compile(&line, &Linear, 1_000.0, &CompileOptions::new())?;
+    /// let trajectory = Along::new(&line, &Linear);
+    /// let path: Path<f32, 1, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
     /// let (mut a, mut b) = (Sampler::new(&path), Sampler::new(&path));
     /// while !a.is_finished() {
     ///     assert_eq!(a.next_position(), b.next().position);
@@ -613,6 +615,7 @@ mod tests {
     use crate::compile::{CompileOptions, compile};
     use crate::num::Q40;
     use crate::path::Path;
+    use crate::plan::Along;
     use strak_curves::ParamCurveDeriv;
 
     fn f<T: Scalar, const A: usize>(x: [T; A]) -> [f64; A] {
@@ -630,8 +633,7 @@ mod tests {
         let timing = Smoothstep::new(10.0);
         let tol = 1e-6;
         let path: Path<N, 1, 16384> = compile(
-            &curve,
-            &timing,
+            &Along::new(&curve, &timing),
             100_000.0,
             &CompileOptions::new().with_tolerance(tol),
         )
@@ -697,8 +699,7 @@ mod tests {
 
     fn helix_path<N: Kernel>() -> Path<N, 3, 512> {
         compile(
-            &helix(2.0, 2.0, 1.0),
-            &Quintic(0.5),
+            &Along::new(&helix(2.0, 2.0, 1.0), &Quintic(0.5)),
             10_000.0,
             &CompileOptions::new().with_tolerance(1e-6),
         )
@@ -1131,8 +1132,7 @@ mod tests {
         let line = strak_curves::Bezier::new([[0.0_f64, 0.0], [30.0, 40.0]]).unwrap();
         let (a_max, j_max) = (1000.0, 1.0e5);
         let path: Path<N, 2, 64> = compile(
-            &line,
-            &crate::compile::testing::Linear(0.5),
+            &Along::new(&line, &crate::compile::testing::Linear(0.5)),
             10_000.0,
             &CompileOptions::new().with_limits(a_max, j_max),
         )

@@ -30,7 +30,7 @@ use strak_curves::basis::MonomialCurve;
 use strak_curves::{BSpline, ParamCurve, Point, Scalar};
 use strak_qemu::counter::{Calibration, Counter};
 use strak_qemu::{exit_failure, exit_success};
-use strak_trajectory::{CompileOptions, Kernel, Path, Sample, Sampler, Timing, compile};
+use strak_trajectory::{Along, CompileOptions, Kernel, Path, Sample, Sampler, Timing, compile};
 
 /// Control rate of the measured paths.
 const RATE_HZ: f64 = 10_000.0;
@@ -127,14 +127,17 @@ fn playback<N: Kernel, const A: usize, R>(
         defmt::error!("{=str}: the B-spline does not build", name);
         exit_failure()
     };
-    let path: Path<N, A, PIECES> =
-        match compile(&curve, &Quintic(DURATION), RATE_HZ, &CompileOptions::new()) {
-            Ok(p) => p,
-            Err(e) => {
-                defmt::error!("{=str}: compiling failed: {}", name, e);
-                exit_failure()
-            }
-        };
+    let path: Path<N, A, PIECES> = match compile(
+        &Along::new(&curve, &Quintic(DURATION)),
+        RATE_HZ,
+        &CompileOptions::new(),
+    ) {
+        Ok(p) => p,
+        Err(e) => {
+            defmt::error!("{=str}: compiling failed: {}", name, e);
+            exit_failure()
+        }
+    };
     if path.pieces().len() < 4 {
         defmt::error!("{=str}: only {=usize} pieces", name, path.pieces().len());
         exit_failure()
