@@ -24,7 +24,7 @@ use strak_bench::fixture::{
     random_params, sampler_at, strak_curve, strak_paths, strak_power,
 };
 use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar, ScalarOf};
-use strak_trajectory::{Number, Path, Sampler};
+use strak_trajectory::{Kernel, Path, Sampler};
 
 /// A 3-D point for the peers (they take any type with `+` and `* scalar`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -416,7 +416,7 @@ fn evaluation(c: &mut Criterion) {
     }
 }
 
-fn playback_one<N: Number>(
+fn playback_one<N: Kernel>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     n: usize,
     path: &Path<N, 3, PIECES>,
@@ -451,7 +451,7 @@ fn playback(c: &mut Criterion) {
 /// through `black_box` every tick so that it is stored and reloaded, the positions returned.
 /// No sampler bookkeeping, no sample construction: what is left is the chain
 /// `p(k+1) = p(k) + Δ¹(k)` through a store and a load per tick.
-fn floor_one<N: Number>(g: &mut BenchmarkGroup<'_, WallTime>, path: &Path<N, 3, PIECES>) {
+fn floor_one<N: Kernel>(g: &mut BenchmarkGroup<'_, WallTime>, path: &Path<N, 3, PIECES>) {
     let Some(first) = path.pieces().first() else {
         return;
     };
@@ -482,7 +482,7 @@ fn floor(c: &mut Criterion) {
 /// The size whose path the flatness benches play.
 const FLATNESS_N: usize = 1024;
 
-fn flatness_one<N: Number>(c: &mut Criterion, path: &Path<N, 3, PIECES>) {
+fn flatness_one<N: Kernel>(c: &mut Criterion, path: &Path<N, 3, PIECES>) {
     let ticks = u64::from(path.ticks());
     let pieces = path.pieces();
     // The tick whose `next()` loads a new piece: the last tick of a piece.

@@ -5,7 +5,7 @@ use std::boxed::Box;
 use std::thread;
 
 use strak_curves::{BSpline, ParamCurve, PowerSpline};
-use strak_trajectory::{CompileOptions, Limits, Number, Path, PathTiming, Q40, Sampler, compile};
+use strak_trajectory::{CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sampler, compile};
 
 /// The control-point counts measured: 8, 64, 1024 and 8192.
 pub const SIZES: [usize; 4] = [8, 64, 1024, 8192];
@@ -143,9 +143,9 @@ pub fn strak_paths(n: usize) -> Paths {
                 .with_tolerance(TOLERANCE_MM)
                 .with_path_limits(&limits);
             Paths {
-                f32: Box::new(compile(&*curve, &timing, RATE_HZ, &options).expect("compile")),
-                f64: Box::new(compile(&*curve, &timing, RATE_HZ, &options).expect("compile")),
-                q40: Box::new(compile(&*curve, &timing, RATE_HZ, &options).expect("compile")),
+                f32: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
+                f64: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
+                q40: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
             }
         })
         .expect("spawn")
@@ -154,7 +154,7 @@ pub fn strak_paths(n: usize) -> Paths {
 }
 
 /// A sampler of `path` advanced by `ticks` calls of [`Sampler::next`].
-pub fn sampler_at<N: Number, const A: usize, const P: usize>(
+pub fn sampler_at<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
     ticks: u64,
 ) -> Sampler<'_, N, A> {

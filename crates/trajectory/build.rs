@@ -1,5 +1,5 @@
 //! Tells the sampler which hand-scheduled tick kernels the target can run
-//! (`src/sampler/kernel/`): `strak_thumb2` for Armv7-M/Armv8-M Mainline (Thumb-2:
+//! (`src/play/kernel/`): `strak_thumb2` for Armv7-M/Armv8-M Mainline (Thumb-2:
 //! `ldm`/`stm` with any registers, `adds`/`adc` pairs), `strak_vfp` when the target also has a
 //! single-precision FPU in the hard-float ABI (Cortex-M4F/M7/M33F: `vldm`/`vstm`, `vadd.f32`).
 //! Every other target (the host included) uses the portable Rust kernel.

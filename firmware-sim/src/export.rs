@@ -12,7 +12,7 @@
 //! [`EventPlayer`].
 
 use strak_curves::{I32F32, Scalar};
-use strak_trajectory::{CompileOptions, Limits, Number, Path, PlanOptions, Q40, Sampler};
+use strak_trajectory::{CompileOptions, Kernel, Limits, Number, Path, PlanOptions, Q40, Sampler};
 
 use crate::curve_file::CurveFile;
 use crate::job::{Action, Job, JobError, JobNumber};
@@ -159,7 +159,7 @@ pub fn export(job: &Job, playback: Playback) -> Result<Export, JobError> {
 
 fn by_dim<N, S>(job: &Job, playback: Playback) -> Result<Export, JobError>
 where
-    N: Number,
+    N: Kernel,
     N::Out: OutBits,
     S: Scalar,
 {
@@ -200,7 +200,7 @@ fn to_blob<N: Number, const D: usize>(
 /// whether the sampler finished.
 fn play_bits<N, const D: usize>(job: &Job, path: &Path<N, D, PIECES>) -> (Vec<u64>, bool)
 where
-    N: Number,
+    N: Kernel,
     N::Out: OutBits,
 {
     let events = job.timed_events();
@@ -217,7 +217,7 @@ where
 
 fn export_typed<N, S, const D: usize>(job: &Job, playback: Playback) -> Result<Export, JobError>
 where
-    N: Number,
+    N: Kernel,
     N::Out: OutBits,
     S: Scalar,
 {

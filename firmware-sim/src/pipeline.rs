@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 
 use strak_curves::Scalar;
 use strak_trajectory::{
-    CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
+    Along, CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
     PlanOptions, ProfileShape, Q40, Timing, compile,
 };
 
@@ -350,8 +350,12 @@ impl<S: Scalar, const D: usize> Prepared<S, D> {
         let timing = plan_timing(job, &self.curve, &self.limits)?;
         let plan_time = started.elapsed();
         let path: Box<Path<N, D, PIECES>> = Box::new(
-            compile(&self.curve, &*timing, job.rate_hz, &compile_options(job))
-                .map_err(|e| compile_error(job, e, timing.duration()))?,
+            compile(
+                &Along::new(&self.curve, &*timing),
+                job.rate_hz,
+                &compile_options(job),
+            )
+            .map_err(|e| compile_error(job, e, timing.duration()))?,
         );
         Ok(Compiled {
             timing,

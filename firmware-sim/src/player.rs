@@ -10,7 +10,7 @@
 //! The core uses neither `std` nor allocation: [`EventPlayer`] borrows the events and drives
 //! any [`Playable`] sampler.
 
-use strak_trajectory::{Number, Sampler};
+use strak_trajectory::{Kernel, Sampler};
 
 /// An operator event.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,7 +46,7 @@ pub trait Playable {
     fn apply(&mut self, event: Event);
 }
 
-impl<N: Number, const A: usize> Playable for Sampler<'_, N, A> {
+impl<N: Kernel, const A: usize> Playable for Sampler<'_, N, A> {
     type Sample = strak_trajectory::Sample<N::Out, A>;
 
     fn next_sample(&mut self) -> Self::Sample {

@@ -26,7 +26,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strak_curves::{I32F32, ParamCurve, ParamCurveDeriv, Scalar, arc_length};
-use strak_trajectory::{Number, Q40, Sample, Sampler};
+use strak_trajectory::{Kernel, Number, Q40, Sample, Sampler};
 
 use crate::dyn_curve::{DynCurve, build_dyn};
 use crate::job::{Job, JobError, JobNumber, ProfileKind};
@@ -196,7 +196,7 @@ struct Played<const D: usize> {
 
 fn run_typed<N, S, const D: usize>(job: &Job, options: &RunOptions) -> Result<Summary, RunError>
 where
-    N: Number,
+    N: Kernel,
     N::Out: CsvCell,
     S: Scalar,
 {
@@ -309,7 +309,7 @@ fn play<N, S, const D: usize>(
     progress: bool,
 ) -> Result<Played<D>, RunError>
 where
-    N: Number,
+    N: Kernel,
     N::Out: CsvCell,
     S: Scalar,
 {

@@ -12,7 +12,7 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_trajectory::{
-    CompileOptions, Limits, Number, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
+    Along, CompileOptions, Kernel, Limits, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
 };
 
 use strak_sim::pipeline::{PIECES, TABLE, ZONES};
@@ -119,7 +119,7 @@ fn direct_run<N, C, const A: usize>(
     rows: &[Vec<String>],
 ) -> usize
 where
-    N: Number,
+    N: Kernel,
     N::Out: Cell,
     C: ParamCurveDeriv,
     C::Point: Point,
@@ -148,7 +148,8 @@ where
     let options = CompileOptions::new()
         .with_feed_share(feed_share)
         .with_limits(a_feed, limits[2]);
-    let path: Box<Path<N, A, PIECES>> = Box::new(compile(curve, &timing, rate, &options).unwrap());
+    let path: Box<Path<N, A, PIECES>> =
+        Box::new(compile(&Along::new(curve, &timing), rate, &options).unwrap());
     let mut sampler = Sampler::new(&*path);
     let mut k = 0_u64;
     let mut next = 0;

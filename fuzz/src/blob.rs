@@ -12,7 +12,7 @@
 //!   the end point exactly ([`check::play`]);
 //! * the end position agrees with the last piece ([`check::check_end_agrees`]).
 
-use strak_trajectory::{Number, Path, Q40, crc32};
+use strak_trajectory::{Kernel, Path, Q40, crc32};
 
 use crate::check;
 use crate::{Violation, violation};
@@ -57,7 +57,7 @@ fn load_any(bytes: &[u8]) -> Result<(), Violation> {
     }
 }
 
-fn by_axes<N: Number>(bytes: &[u8], axes: u8) -> Result<(), Violation> {
+fn by_axes<N: Kernel>(bytes: &[u8], axes: u8) -> Result<(), Violation> {
     match axes {
         1 => load::<N, 1>(bytes),
         2 => load::<N, 2>(bytes),
@@ -67,7 +67,7 @@ fn by_axes<N: Number>(bytes: &[u8], axes: u8) -> Result<(), Violation> {
     }
 }
 
-fn load<N: Number, const A: usize>(bytes: &[u8]) -> Result<(), Violation> {
+fn load<N: Kernel, const A: usize>(bytes: &[u8]) -> Result<(), Violation> {
     let small = Path::<N, A, SMALL>::from_bytes(bytes);
     let Ok(path) = Path::<N, A, PIECES>::from_bytes(bytes) else {
         return match small {

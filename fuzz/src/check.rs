@@ -3,7 +3,7 @@
 //! samples by finite differences.
 
 use strak_curves::Scalar;
-use strak_trajectory::{Number, Path, Sample, Sampler};
+use strak_trajectory::{Kernel, Number, Path, Sample, Sampler};
 
 use crate::{Violation, violation};
 
@@ -51,7 +51,7 @@ fn finite<T: Scalar, const A: usize>(s: &Sample<T, A>) -> bool {
         .all(|v| v.is_finite())
 }
 
-fn apply<N: Number, const A: usize>(sampler: &mut Sampler<'_, N, A>, event: FeedEvent) {
+fn apply<N: Kernel, const A: usize>(sampler: &mut Sampler<'_, N, A>, event: FeedEvent) {
     match event {
         FeedEvent::Feed(f) => sampler.set_feed(f),
         FeedEvent::Hold => sampler.hold(),
@@ -66,7 +66,7 @@ fn apply<N: Number, const A: usize>(sampler: &mut Sampler<'_, N, A>, event: Feed
 ///
 /// # Errors
 /// The first broken invariant.
-pub fn play<N: Number, const A: usize, const P: usize>(
+pub fn play<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
     events: &[(u64, FeedEvent)],
     max_samples: u64,
@@ -105,7 +105,7 @@ pub fn play<N: Number, const A: usize, const P: usize>(
     Ok(Played { samples, finished })
 }
 
-fn check_end<N: Number, const A: usize, const P: usize>(
+fn check_end<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
     sampler: &mut Sampler<'_, N, A>,
     last: &Sample<N::Out, A>,

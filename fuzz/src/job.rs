@@ -20,7 +20,7 @@ use strak_sim::dyn_curve::{DynCurve, build_dyn};
 use strak_sim::job::{Action, Job, JobNumber, Profile, ProfileKind};
 use strak_sim::pipeline::{compile_options, plan_options, planning_limits};
 use strak_sim::sample::{Number as CurveNumber, SampleOptions, sample_rows};
-use strak_trajectory::{Number, ParameterTiming, Path, PathTiming, Q40, Timing, compile};
+use strak_trajectory::{Along, Kernel, ParameterTiming, Path, PathTiming, Q40, Timing, compile};
 
 use crate::check::{Bounds, FeedEvent, MAX_TICKS};
 use crate::pipeline::check_compiled;
@@ -100,7 +100,7 @@ fn by_number<const D: usize>(job: &Job) -> Result<(), Violation> {
     }
 }
 
-fn plan<N: Number, S: Scalar, const D: usize>(
+fn plan<N: Kernel, S: Scalar, const D: usize>(
     job: &Job,
     curve: &DynCurve<S, D>,
 ) -> Result<(), Violation> {
@@ -131,15 +131,17 @@ fn plan<N: Number, S: Scalar, const D: usize>(
     if !(timing.duration() * job.rate_hz <= MAX_TICKS) {
         return Ok(());
     }
-    let Ok(path) =
-        compile::<N, D, PIECES, _, _>(curve, &*timing, job.rate_hz, &compile_options(job))
-    else {
+    let Ok(path) = compile::<N, D, PIECES, _>(
+        &Along::new(curve, &*timing),
+        job.rate_hz,
+        &compile_options(job),
+    ) else {
         return Ok(());
     };
     play(job, curve, &*timing, &path)
 }
 
-fn play<N: Number, S: Scalar, const D: usize>(
+fn play<N: Kernel, S: Scalar, const D: usize>(
     job: &Job,
     curve: &DynCurve<S, D>,
     timing: &dyn Timing,

@@ -24,8 +24,8 @@ use strak_curves::{
     Scalar, ScalarOf, SplineBoundary,
 };
 use strak_trajectory::{
-    CompileOptions, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape,
-    Q40, Sample, Timing, compile,
+    Along, CompileOptions, Kernel, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions,
+    ProfileShape, Q40, Sample, Timing, compile,
 };
 
 use crate::check::{self, Allowance, Bounds, FeedEvent, MAX_SAMPLES, MAX_TICKS};
@@ -304,7 +304,7 @@ fn limits<const A: usize>(case: &Case<A>) -> Option<(Limits<A>, Bounds<A>)> {
     Some((planned, bounds))
 }
 
-fn pipeline<N: Number, const A: usize>(
+fn pipeline<N: Kernel, const A: usize>(
     curve: &Dyn<'_, [f64; A]>,
     case: &Case<A>,
 ) -> Result<(), Violation> {
@@ -350,7 +350,9 @@ fn pipeline<N: Number, const A: usize>(
     if !(duration * case.rate <= MAX_TICKS) {
         return Ok(());
     }
-    let Ok(path) = compile::<N, A, PIECES, _, _>(curve, &*timing, case.rate, &case.compile) else {
+    let Ok(path) =
+        compile::<N, A, PIECES, _>(&Along::new(curve, &*timing), case.rate, &case.compile)
+    else {
         return Ok(());
     };
     let limited = matches!(
@@ -383,7 +385,7 @@ fn coords<P: Point, const A: usize>(p: P) -> [f64; A] {
 ///
 /// # Errors
 /// The first broken invariant.
-pub fn check_compiled<N: Number, C: ParamCurveDeriv, const A: usize, const P: usize>(
+pub fn check_compiled<N: Kernel, C: ParamCurveDeriv, const A: usize, const P: usize>(
     curve: &C,
     timing: &dyn Timing,
     path: &Path<N, A, P>,

@@ -4,7 +4,7 @@
 //! runs them too.
 
 use strak_curves::Bezier;
-use strak_trajectory::{CompileOptions, Limits, Number, Path, PathTiming, Q40, compile};
+use strak_trajectory::{Along, CompileOptions, Limits, Number, Path, PathTiming, Q40, compile};
 
 /// One seed: its target, a file name and the bytes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -133,7 +133,7 @@ fn blob<N: Number, const A: usize>() -> Option<Vec<u8>> {
     let limits = Limits::<A>::new(40.0, 400.0, 20_000.0).ok()?;
     let timing = PathTiming::<_, 64, 8>::scurve(&curve, &limits).ok()?;
     let options = CompileOptions::new().with_path_limits(&limits);
-    let path: Path<N, A, 16> = compile(&curve, &timing, 1_000.0, &options).ok()?;
+    let path: Path<N, A, 16> = compile(&Along::new(&curve, &timing), 1_000.0, &options).ok()?;
     let mut bytes = vec![0_u8; path.blob_len()];
     path.to_bytes(&mut bytes).ok()?;
     Some(bytes)

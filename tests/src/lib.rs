@@ -174,7 +174,7 @@ pub fn ensure(cond: bool, what: impl FnOnce() -> String) -> TestCaseResult {
 // Trajectory playback against the exact f64 curve
 
 use strak_curves::{ParamCurveDeriv, Scalar};
-use strak_trajectory::{Number, Path, Sample, Sampler, Timing};
+use strak_trajectory::{Kernel, Path, Sample, Sampler, Timing};
 
 /// Runs `f` on a thread with a large stack (paths and the compiler's scratch live on it).
 pub fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
@@ -198,7 +198,7 @@ pub fn exact_position<C, T, N, const A: usize, const P: usize>(
 where
     C: ParamCurveDeriv<Point = [f64; A]>,
     T: Timing,
-    N: Number,
+    N: Kernel,
 {
     let t = if k >= path.ticks() {
         timing.duration()
@@ -233,7 +233,7 @@ pub fn check_playback<C, T, N, const A: usize, const P: usize>(
 where
     C: ParamCurveDeriv<Point = [f64; A]>,
     T: Timing,
-    N: Number,
+    N: Kernel,
 {
     let mut sampler = Sampler::new(path);
     let mut out = Playback::default();

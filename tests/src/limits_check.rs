@@ -56,7 +56,7 @@
 //! mean over that tick as well; the last sample is the path's end, the spline's end.
 
 use strak_curves::Scalar;
-use strak_trajectory::{AxisState, Number, Path, Sampler};
+use strak_trajectory::{AxisState, Kernel, Path, Sampler};
 
 /// Relative allowance for the `f64` arithmetic of the difference quotients.
 pub const F64_ROUNDING: f64 = 1e-9;
@@ -120,7 +120,7 @@ fn pairs(n: f64) -> f64 {
 
 /// The playback error bounds `(e_v, e_a)` of the velocity and acceleration channels of one
 /// axis of one piece of `n` ticks.
-fn channel_errors<N: Number>(s: &AxisState<N>, n: u32) -> (f64, f64) {
+fn channel_errors<N: Kernel>(s: &AxisState<N>, n: u32) -> (f64, f64) {
     let n = f64::from(n);
     let (r, add) = (N::rounding_error, N::addition_error);
     let v2 = s.velocity_delta2.to_f64().abs();
@@ -135,7 +135,7 @@ fn channel_errors<N: Number>(s: &AxisState<N>, n: u32) -> (f64, f64) {
 
 impl Allowance {
     /// The allowances of `path` (see the module docs).
-    pub fn of<N: Number, const A: usize, const P: usize>(path: &Path<N, A, P>) -> Self {
+    pub fn of<N: Kernel, const A: usize, const P: usize>(path: &Path<N, A, P>) -> Self {
         let (mut e_v, mut e_a) = (N::OUT_ERROR, N::OUT_ERROR);
         for piece in path.pieces() {
             for axis in piece.axes() {
@@ -167,7 +167,7 @@ fn to_f64<T: Scalar, const A: usize>(x: &[T; A]) -> [f64; A] {
 
 /// Plays `path` in full with [`Sampler::next`] and measures it (see the module docs).
 /// Panics unless the sampler delivers `ticks + 1` samples with consecutive ticks.
-pub fn measure<N: Number, const A: usize, const P: usize>(path: &Path<N, A, P>) -> Kinematics {
+pub fn measure<N: Kernel, const A: usize, const P: usize>(path: &Path<N, A, P>) -> Kinematics {
     let rate = path.rate();
     let mut k = Kinematics {
         allowance: Allowance::of(path),

@@ -36,7 +36,8 @@
 use strak_curves::{BSpline, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Scalar};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing, compile,
+    Along, CompileOptions, Kernel, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing,
+    compile,
 };
 
 /// 100 kHz: 10⁶ ticks in 10 s.
@@ -77,7 +78,7 @@ fn exact<C, N, const A: usize, const P: usize, const T: usize, const Z: usize>(
 ) -> Exact<A>
 where
     C: ParamCurveDeriv<Point = [f64; A]>,
-    N: Number,
+    N: Kernel,
 {
     let t = if k >= path.ticks() {
         plan.duration()
@@ -106,12 +107,12 @@ fn reference_error(j: f64, x: f64) -> (f64, f64) {
 }
 
 /// The rounding of a value of magnitude `m` in `N`.
-fn rounding<N: Number>(m: f64) -> f64 {
+fn rounding<N: Kernel>(m: f64) -> f64 {
     N::rounding_error(m)
 }
 
 /// The output rounding of a sample value of magnitude `m`.
-fn out_rounding<N: Number>(m: f64) -> f64 {
+fn out_rounding<N: Kernel>(m: f64) -> f64 {
     if N::IS_FIXED {
         N::OUT_ERROR
     } else {
@@ -120,7 +121,7 @@ fn out_rounding<N: Number>(m: f64) -> f64 {
 }
 
 /// Tracks one number format's samples against the exact motion.
-struct Tracker<'a, N: Number, const A: usize, const P: usize> {
+struct Tracker<'a, N: Kernel, const A: usize, const P: usize> {
     path: &'a Path<N, A, P>,
     sampler: Sampler<'a, N, A>,
     piece: usize,
@@ -130,7 +131,7 @@ struct Tracker<'a, N: Number, const A: usize, const P: usize> {
     last: Option<Sample<N::Out, A>>,
 }
 
-impl<'a, N: Number, const A: usize, const P: usize> Tracker<'a, N, A, P> {
+impl<'a, N: Kernel, const A: usize, const P: usize> Tracker<'a, N, A, P> {
     fn new(path: &'a Path<N, A, P>) -> Self {
         Tracker {
             path,
@@ -237,9 +238,9 @@ fn three_formats<C, const A: usize, const T: usize, const Z: usize>(
 where
     C: ParamCurveDeriv<Point = [f64; A]>,
 {
-    let p32: Path<f32, A, PIECES> = compile(curve, plan, RATE, options).expect("f32");
-    let p64: Path<f64, A, PIECES> = compile(curve, plan, RATE, options).expect("f64");
-    let pq: Path<Q40, A, PIECES> = compile(curve, plan, RATE, options).expect("Q40");
+    let p32: Path<f32, A, PIECES> = compile(&Along::new(curve, plan), RATE, options).expect("f32");
+    let p64: Path<f64, A, PIECES> = compile(&Along::new(curve, plan), RATE, options).expect("f64");
+    let pq: Path<Q40, A, PIECES> = compile(&Along::new(curve, plan), RATE, options).expect("Q40");
     assert_eq!(p32.ticks(), p64.ticks());
     assert_eq!(pq.ticks(), p64.ticks());
     let (mut t32, mut t64, mut tq) = (Tracker::new(&p32), Tracker::new(&p64), Tracker::new(&pq));
@@ -314,7 +315,7 @@ fn end_point_of_curves_in_their_own_type() {
         let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
         let plan = PathTiming::<_, 256, 128>::scurve(&c32, &limits).expect("plan");
         let path: Path<f32, 3, 1024> =
-            compile(&c32, &plan, 10_000.0, &CompileOptions::new()).expect("compile");
+            compile(&Along::new(&c32, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
         let last = play_to_end(&path);
         let end = c32.eval(1.0);
         for i in 0..3 {
@@ -331,7 +332,7 @@ fn end_point_of_curves_in_their_own_type() {
                 .expect("fixed");
         let plan = PathTiming::<_, 256, 128>::scurve(&cq, &limits).expect("plan");
         let path: Path<Q40, 3, 1024> =
-            compile(&cq, &plan, 10_000.0, &CompileOptions::new()).expect("compile");
+            compile(&Along::new(&cq, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
         let last = play_to_end(&path);
         assert_eq!(last.position, cq.eval(I32F32::ONE));
         assert_eq!(path.end_position(), cq.eval(I32F32::ONE));
@@ -346,7 +347,7 @@ fn end_point_of_curves_in_their_own_type() {
         .expect("f64");
         let plan = PathTiming::<_, 256, 128>::scurve(&c64, &limits).expect("plan");
         let path: Path<f64, 3, 1024> =
-            compile(&c64, &plan, 10_000.0, &CompileOptions::new()).expect("compile");
+            compile(&Along::new(&c64, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
         let last = play_to_end(&path);
         let end = c64.eval(1.0);
         for i in 0..3 {
@@ -356,7 +357,7 @@ fn end_point_of_curves_in_their_own_type() {
 }
 
 /// Plays a path to its end; returns the last sample (checks the sampler's end semantics).
-fn play_to_end<N: Number, const A: usize, const P: usize>(
+fn play_to_end<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
 ) -> Sample<N::Out, A> {
     let mut s = Sampler::new(path);
@@ -390,7 +391,7 @@ fn q40_format_error_within_the_playback_bound() {
         let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
         let plan = PathTiming::<_, 256, 128>::scurve(&curve, &limits).expect("plan");
         let path: Path<Q40, 3, PIECES> =
-            compile(&curve, &plan, RATE, &CompileOptions::new()).expect("compile");
+            compile(&Along::new(&curve, &plan), RATE, &CompileOptions::new()).expect("compile");
         let n = 256.0_f64;
         let ulp = 2f64.powi(-40);
         let documented = 0.5 * ulp * (1.0 + n + n * n / 2.0 + n * n * n / 6.0);
@@ -422,7 +423,7 @@ fn reference_starts_and_ends_at_rest() {
         let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
         let plan = PathTiming::<_, 256, 128>::scurve(&curve, &limits).expect("plan");
         let path: Path<f64, 3, PIECES> =
-            compile(&curve, &plan, 1_000.0, &CompileOptions::new()).expect("compile");
+            compile(&Along::new(&curve, &plan), 1_000.0, &CompileOptions::new()).expect("compile");
         let start = exact(&curve, &plan, &path, 0);
         let end = exact(&curve, &plan, &path, path.ticks());
         assert_eq!(start.x, [0.0, 0.0, 0.0]);

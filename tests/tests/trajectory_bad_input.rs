@@ -10,9 +10,9 @@ use proptest::test_runner::{Config, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Limits, MotionProfile, Number,
-    ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40, Sampler, SamplerState,
-    Timing, compile, crc32,
+    Along, BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Kernel, Limits,
+    MotionProfile, NumberFormat, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40,
+    Sampler, SamplerState, Timing, compile, crc32,
 };
 
 const NAN: f64 = f64::NAN;
@@ -230,7 +230,7 @@ fn invalid_limit_compile_options() {
         CompileOptions::new().with_feed_share(NAN),
     ];
     for o in bad_options {
-        let r: Result<Path<f64, 2, 8>, _> = compile(&c, &t, 1_000.0, &o);
+        let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &t), 1_000.0, &o);
         assert_eq!(r, Err(Error::InvalidLimit), "{o:?}");
     }
 }
@@ -245,13 +245,13 @@ fn invalid_rate() {
     let t = Linear(0.1);
     let o = CompileOptions::new();
     for rate in [99.999, 100_000.001, 0.0, -1_000.0, NAN, INF, -INF, 1e300] {
-        let r: Result<Path<f64, 2, 64>, _> = compile(&c, &t, rate, &o);
+        let r: Result<Path<f64, 2, 64>, _> = compile(&Along::new(&c, &t), rate, &o);
         assert_eq!(r, Err(Error::InvalidRate), "{rate} Hz");
-        let r: Result<Path<Q40, 2, 64>, _> = compile(&c, &t, rate, &o);
+        let r: Result<Path<Q40, 2, 64>, _> = compile(&Along::new(&c, &t), rate, &o);
         assert_eq!(r, Err(Error::InvalidRate), "{rate} Hz");
     }
     for rate in [100.0, 100_000.0] {
-        let r: Result<Path<f64, 2, 64>, _> = compile(&c, &t, rate, &o);
+        let r: Result<Path<f64, 2, 64>, _> = compile(&Along::new(&c, &t), rate, &o);
         assert!(r.is_ok(), "{rate} Hz is allowed");
     }
 }
@@ -298,7 +298,7 @@ fn empty_path_zero_length_curve() {
     // a standing curve under the parameter law is a valid (still) motion
     let t = ParameterTiming::over(&still, 0.01).expect("law");
     let path: Path<f64, 3, 8> =
-        compile(&still, &t, 1_000.0, &CompileOptions::new()).expect("still");
+        compile(&Along::new(&still, &t), 1_000.0, &CompileOptions::new()).expect("still");
     let mut s = Sampler::new(&path);
     while !s.is_finished() {
         assert_eq!(s.next().position, [5.0, -1.0, 2.0]);
@@ -311,7 +311,7 @@ fn empty_path_zero_duration() {
     assert_eq!(ParameterTiming::over(&c, 0.0), Err(Error::EmptyPath));
     for d in [0.0, -0.0, -1.0, NAN, -INF] {
         let r: Result<Path<f64, 2, 8>, _> =
-            compile(&c, &Linear(d), 1_000.0, &CompileOptions::new());
+            compile(&Along::new(&c, &Linear(d)), 1_000.0, &CompileOptions::new());
         assert_eq!(r, Err(Error::EmptyPath), "duration {d}");
     }
 }
@@ -334,9 +334,11 @@ fn axis_mismatch() {
         Err(Error::AxisMismatch { curve: 2, path: 1 })
     ));
     let t = Linear(0.1);
-    let r: Result<Path<f64, 3, 8>, _> = compile(&c, &t, 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 3, 8>, _> =
+        compile(&Along::new(&c, &t), 1_000.0, &CompileOptions::new());
     assert_eq!(r, Err(Error::AxisMismatch { curve: 2, path: 3 }));
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&line3(), &t, 1_000.0, &CompileOptions::new());
+    let r: Result<Path<Q40, 1, 8>, _> =
+        compile(&Along::new(&line3(), &t), 1_000.0, &CompileOptions::new());
     assert_eq!(r, Err(Error::AxisMismatch { curve: 3, path: 1 }));
 }
 
@@ -348,7 +350,11 @@ fn axis_mismatch() {
 fn capacity_exceeded_pieces() {
     let c = line2();
     // 1000 ticks in pieces of at most 256: 4 pieces
-    let r: Result<Path<f64, 2, 3>, _> = compile(&c, &Linear(1.0), 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 2, 3>, _> = compile(
+        &Along::new(&c, &Linear(1.0)),
+        1_000.0,
+        &CompileOptions::new(),
+    );
     assert_eq!(
         r,
         Err(Error::CapacityExceeded {
@@ -364,8 +370,7 @@ fn capacity_exceeded_pieces() {
     )
     .expect("plan");
     let r: Result<Path<f64, 2, 4>, _> = compile(
-        &circle,
-        &plan,
+        &Along::new(&circle, &plan),
         1_000.0,
         &CompileOptions::new().with_tolerance(1e-9),
     );
@@ -441,29 +446,29 @@ fn out_of_range_fixed_point_coordinates() {
     // beyond ±8 388 608 = 2²³ (Q23.40 cannot hold it at all), both signs, any axis
     for x in [8_388_609.0, 1.0e7, -8_388_609.0, -1.0e9] {
         let far = Bezier::new([[0.0, x], [1.0, x + 1.0]]).expect("curve");
-        let r: Result<Path<Q40, 2, 8>, _> = compile(&far, &t, 1_000.0, &o);
+        let r: Result<Path<Q40, 2, 8>, _> = compile(&Along::new(&far, &t), 1_000.0, &o);
         assert_eq!(r, Err(Error::OutOfRange), "{x}");
         // floats take them
-        let r: Result<Path<f32, 2, 8>, _> = compile(&far, &t, 1_000.0, &o);
+        let r: Result<Path<f32, 2, 8>, _> = compile(&Along::new(&far, &t), 1_000.0, &o);
         assert!(r.is_ok(), "{x} in f32");
     }
     // beyond the checked range 2²² = 4 194 304 (half the representable, so that sums cannot
     // overflow) is rejected as well
     let half = Bezier::new([[5.0e6], [5.0e6 + 1.0]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&half, &t, 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&half, &t), 1_000.0, &o);
     assert_eq!(r, Err(Error::OutOfRange));
     // inside: fine
     let inside = Bezier::new([[4.0e6], [4.0e6 + 1.0]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&inside, &t, 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&inside, &t), 1_000.0, &o);
     assert!(r.is_ok());
     // a fixed-point curve beyond the range (I32F32 holds it, Q40 does not)
     let q = |x: f64| I32F32::from_num(x);
     let fixed = Bezier::new([[q(9.0e6)], [q(9.0e6 + 10.0)]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&fixed, &t, 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&fixed, &t), 1_000.0, &o);
     assert_eq!(r, Err(Error::OutOfRange));
     // a velocity beyond the range: 10⁷ units in 10 ms
     let fast = Bezier::new([[-2.0e6], [2.0e6]]).expect("curve");
-    let r: Result<Path<Q40, 1, 8>, _> = compile(&fast, &Linear(0.4), 1_000.0, &o);
+    let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&fast, &Linear(0.4)), 1_000.0, &o);
     assert_eq!(r, Err(Error::OutOfRange));
 }
 
@@ -471,11 +476,17 @@ fn out_of_range_fixed_point_coordinates() {
 fn out_of_range_f32() {
     // beyond half of f32::MAX
     let huge = Bezier::new([[0.0], [3.0e38]]).expect("curve");
-    let r: Result<Path<f32, 1, 8>, _> =
-        compile(&huge, &Linear(1.0), 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f32, 1, 8>, _> = compile(
+        &Along::new(&huge, &Linear(1.0)),
+        1_000.0,
+        &CompileOptions::new(),
+    );
     assert_eq!(r, Err(Error::OutOfRange));
-    let r: Result<Path<f64, 1, 8>, _> =
-        compile(&huge, &Linear(1.0), 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 1, 8>, _> = compile(
+        &Along::new(&huge, &Linear(1.0)),
+        1_000.0,
+        &CompileOptions::new(),
+    );
     assert!(r.is_ok());
 }
 
@@ -489,18 +500,18 @@ fn too_long() {
     let o = CompileOptions::new();
     // 10⁵ s at 100 kHz: 10¹⁰ ticks > u32::MAX
     let t = ParameterTiming::over(&c, 1.0e5).expect("law");
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &t, 100_000.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &t), 100_000.0, &o);
     assert_eq!(r, Err(Error::TooLong));
     // just above: u32::MAX + 1 ticks at 100 Hz
     let t = Linear((f64::from(u32::MAX) + 1.0) / 100.0);
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &t, 100.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &t), 100.0, &o);
     assert_eq!(r, Err(Error::TooLong));
     // an infinite duration
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &Linear(INF), 1_000.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &Linear(INF)), 1_000.0, &o);
     assert_eq!(r, Err(Error::TooLong));
     // a slow constant speed: 50 units at 10⁻⁵ units/s, 5·10⁶ s
     let slow = PathTiming::<_, 16, 1>::constant_speed(&c, 1e-5).expect("plan");
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &slow, 1_000.0, &o);
+    let r: Result<Path<f64, 2, 8>, _> = compile(&Along::new(&c, &slow), 1_000.0, &o);
     assert_eq!(r, Err(Error::TooLong));
 }
 
@@ -533,7 +544,8 @@ fn curve_errors() {
         Err(Error::Curve(strak_curves::Error::InvalidArgument))
     ));
     // a time law with non-finite values
-    let r: Result<Path<f64, 2, 8>, _> = compile(&c, &Broken, 1_000.0, &CompileOptions::new());
+    let r: Result<Path<f64, 2, 8>, _> =
+        compile(&Along::new(&c, &Broken), 1_000.0, &CompileOptions::new());
     assert_eq!(r, Err(Error::Curve(strak_curves::Error::NonFinite)));
     // a curve that stands still over a whole table interval (degree 1, a repeated point)
     let pause = strak_curves::BSpline::<[f64; 2], 4, 8>::clamped_uniform(
@@ -554,7 +566,7 @@ fn curve_errors() {
 // ---------------------------------------------------------------------------------------------
 
 /// A small compiled path of `A` axes (a few pieces).
-fn small_path<N: Number, const A: usize>() -> Path<N, A, 16> {
+fn small_path<N: Kernel, const A: usize>() -> Path<N, A, 16> {
     let a: [f64; A] = core::array::from_fn(|i| i as f64);
     let b: [f64; A] = core::array::from_fn(|i| 10.0 - 3.0 * i as f64);
     let c: [f64; A] = core::array::from_fn(|i| (i as f64).sqrt() - 1.0);
@@ -562,10 +574,10 @@ fn small_path<N: Number, const A: usize>() -> Path<N, A, 16> {
     let options = CompileOptions::new()
         .with_max_piece_ticks(64)
         .with_tolerance(1e-6);
-    compile(&curve, &Linear(0.15), 1_000.0, &options).expect("small path")
+    compile(&Along::new(&curve, &Linear(0.15)), 1_000.0, &options).expect("small path")
 }
 
-fn blob<N: Number, const A: usize>(path: &Path<N, A, 16>) -> Vec<u8> {
+fn blob<N: Kernel, const A: usize>(path: &Path<N, A, 16>) -> Vec<u8> {
     let mut buf = vec![0_u8; path.blob_len()];
     let n = path.to_bytes(&mut buf).expect("to_bytes");
     assert_eq!(n, buf.len());
@@ -579,7 +591,7 @@ fn fix_crc(bytes: &mut [u8]) {
     bytes[n..].copy_from_slice(&crc.to_le_bytes());
 }
 
-fn round_trip<N: Number, const A: usize>() {
+fn round_trip<N: Kernel, const A: usize>() {
     let path = small_path::<N, A>();
     let bytes = blob(&path);
     assert_eq!(&bytes[..4], &BLOB_MAGIC);
@@ -607,7 +619,7 @@ fn blob_round_trip_is_bit_exact() {
     round_trip::<Q40, 6>();
 }
 
-fn flipped_bytes<N: Number>() {
+fn flipped_bytes<N: Kernel>() {
     let path = small_path::<N, 2>();
     let good = blob(&path);
     for i in 0..good.len() {
@@ -776,10 +788,13 @@ fn format_mismatch() {
     let f32_blob = blob(&small_path::<f32, 2>());
     let f64_blob = blob(&small_path::<f64, 2>());
     let q40_blob = blob(&small_path::<Q40, 2>());
-    let mismatch = |expected: BlobFormat, number: u8, axes: usize| {
+    let mismatch = |expected: BlobFormat, id: u8, axes: usize| {
         Some(Error::FormatMismatch {
             expected,
-            found: BlobFormat { number, axes },
+            found: BlobFormat {
+                number: NumberFormat::from_id(id).unwrap(),
+                axes,
+            },
         })
     };
     let of = BlobFormat::of::<f32>;
@@ -822,10 +837,10 @@ fn format_mismatch() {
     bad[6] = 9;
     fix_crc(&mut bad);
     let err = Path::<f32, 2, 16>::from_bytes(&bad).err();
-    assert_eq!(err, mismatch(of(2), 9, 2));
+    assert_eq!(err, Some(Error::UnknownNumberFormat { id: 9 }));
     assert_eq!(
         err.unwrap().to_string(),
-        "serialized path is for number format 9 with 2 axes, expected f32 with 2 axes"
+        "serialized path has number format id 9, which no format has (1 f32, 2 f64, 3 Q40)"
     );
 }
 
@@ -844,6 +859,7 @@ fn errors_display() {
         Error::TooLong,
         Error::CorruptBlob,
         Error::UnsupportedVersion { found: 7 },
+        Error::UnknownNumberFormat { id: 0 },
         Error::FormatMismatch {
             expected: BlobFormat::of::<f32>(3),
             found: BlobFormat::of::<Q40>(3),
@@ -899,7 +915,7 @@ fn wild_rate() -> impl Strategy<Value = f64> {
 
 /// Plays a path to its end at feed 1 (exactly `ticks + 1` samples), and once more with an
 /// override, a hold and a resume, and once with an abort; nothing may panic, every run ends.
-fn play_everything<N: Number, const A: usize, const P: usize>(
+fn play_everything<N: Kernel, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
 ) -> TestCaseResult {
     let ticks = u64::from(path.ticks());
@@ -1001,15 +1017,15 @@ where
     T: Timing,
 {
     count(&ATTEMPTS, 3);
-    if let Ok(path) = compile::<f32, A, 512, _, _>(curve, timing, rate, o) {
+    if let Ok(path) = compile::<f32, A, 512, _>(&Along::new(curve, timing), rate, o) {
         count(&COMPILED, 1);
         play_everything(&path)?;
     }
-    if let Ok(path) = compile::<f64, A, 512, _, _>(curve, timing, rate, o) {
+    if let Ok(path) = compile::<f64, A, 512, _>(&Along::new(curve, timing), rate, o) {
         count(&COMPILED, 1);
         play_everything(&path)?;
     }
-    if let Ok(path) = compile::<Q40, A, 512, _, _>(curve, timing, rate, o) {
+    if let Ok(path) = compile::<Q40, A, 512, _>(&Along::new(curve, timing), rate, o) {
         count(&COMPILED, 1);
         play_everything(&path)?;
     }

@@ -30,7 +30,7 @@ use proptest::test_runner::{Config, TestRunner};
 use strak_curves::Bezier;
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
+    Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Timing, compile,
 };
 
@@ -129,7 +129,7 @@ fn check_ticks<T: Timing>(curve: &Bezier<[f64; 3], 4>, timing: &T, rate: f64) ->
     // long pieces: only the tick count matters here (65 s at 100 kHz)
     let options = CompileOptions::new().with_max_piece_ticks(1 << 20);
     let path: Path<f64, 3, 4096> =
-        compile(curve, &Unlimited(timing), rate, &options).expect("compile");
+        compile(&Along::new(curve, &Unlimited(timing)), rate, &options).expect("compile");
     let d = timing.duration();
     let compiled = f64::from(path.ticks()) / rate;
     assert_eq!(path.plan_duration(), d);

@@ -14,7 +14,7 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_tests::{big_stack, check_playback};
-use strak_trajectory::{CompileOptions, Limits, Path, PathTiming, Sampler, Timing, compile};
+use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler, Timing, compile};
 
 /// Control rate (Hz).
 const RATE: f64 = 10_000.0;
@@ -62,8 +62,10 @@ where
     let scurve = PathTiming::<_, 256, 128>::scurve(curve, &limits()).expect("plan");
     let plan = PositionsOnly(&scurve);
     let options = CompileOptions::new().with_tolerance(1e-6);
-    let p64: Path<f64, 3, PIECES> = compile(curve, &plan, RATE, &options).expect("compile f64");
-    let p32: Path<f32, 3, PIECES> = compile(curve, &plan, RATE, &options).expect("compile f32");
+    let p64: Path<f64, 3, PIECES> =
+        compile(&Along::new(curve, &plan), RATE, &options).expect("compile f64");
+    let p32: Path<f32, 3, PIECES> =
+        compile(&Along::new(curve, &plan), RATE, &options).expect("compile f32");
     assert_eq!(p32.ticks(), p64.ticks(), "{name}: same tick count");
     let r64 = check_playback(name, curve, &plan, &p64);
     let r32 = check_playback(name, curve, &plan, &p32);
@@ -184,7 +186,8 @@ fn bezier_chain() {
         let corner_s = plan.table().length_at(1.0);
         assert!((zones[stop].end() - corner_s).abs() < 1e-9 * corner_s);
         let options = CompileOptions::new().with_tolerance(1e-6);
-        let path: Path<f64, 3, PIECES> = compile(&corner, &plan, RATE, &options).expect("compile");
+        let path: Path<f64, 3, PIECES> =
+            compile(&Along::new(&corner, &plan), RATE, &options).expect("compile");
         let mut sampler = Sampler::new(&path);
         let (mut prev, mut a_max) = (sampler.next().velocity, 0.0_f64);
         while !sampler.is_finished() {

@@ -35,8 +35,8 @@ use proptest::test_runner::{Config, TestRunner};
 use strak_curves::{BSpline, ParamCurve, Scalar};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, SamplerState, Timing,
-    compile,
+    Along, CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sample, Sampler, SamplerState,
+    Timing, compile,
 };
 
 const RATE: f64 = 1_000.0;
@@ -82,9 +82,9 @@ fn plan(curve: &Curve) -> Plan<'_> {
     PathTiming::scurve(curve, &planned()).expect("plan")
 }
 
-fn compile_path<N: Number>(curve: &Curve, plan: &Plan<'_>) -> Path<N, 3, PIECES> {
+fn compile_path<N: Kernel>(curve: &Curve, plan: &Plan<'_>) -> Path<N, 3, PIECES> {
     let options = CompileOptions::new().with_path_limits(&machine());
-    compile(curve, plan, RATE, &options).expect("compile")
+    compile(&Along::new(curve, plan), RATE, &options).expect("compile")
 }
 
 fn norm(x: &[f64; 3]) -> f64 {
@@ -101,7 +101,7 @@ fn f64s<T: Scalar>(x: [T; 3]) -> [f64; 3] {
 
 /// How far a difference quotient of the velocity may be off the continuous-time
 /// acceleration while the feed ramps: one tick of the ramp's jerk.
-fn ramp_slack<N: Number, const P: usize>(path: &Path<N, 3, P>) -> f64 {
+fn ramp_slack<N: Kernel, const P: usize>(path: &Path<N, 3, P>) -> f64 {
     path.jerk_limit() * path.period()
 }
 
@@ -127,7 +127,7 @@ struct Seen {
 
 /// Plays `path` to the end (or `max_ticks`), calling `control(k, sampler)` before each
 /// sample; checks every sample; returns what it saw and the last sample.
-fn run<N: Number>(
+fn run<N: Kernel>(
     curve: &Curve,
     plan: &Plan<'_>,
     path: &Path<N, 3, PIECES>,
@@ -198,7 +198,7 @@ fn run<N: Number>(
 }
 
 /// The checks every feed run must pass.
-fn assert_seen<N: Number>(name: &str, seen: &Seen, path: &Path<N, 3, PIECES>) {
+fn assert_seen<N: Kernel>(name: &str, seen: &Seen, path: &Path<N, 3, PIECES>) {
     println!(
         "{name} {:>3}: {} ticks; |Δx|/T {:.4} (axis {:.4}) of v; |Δv|/T {:.4} (tangential {:.4}, \
          centripetal {:.4}, axis {:.4}) of a; |Δa|/T {:.4} of j; off the path {:.2e} (bound {:.2e})",
@@ -247,7 +247,7 @@ fn assert_seen<N: Number>(name: &str, seen: &Seen, path: &Path<N, 3, PIECES>) {
 // Override at fixed ticks
 // ---------------------------------------------------------------------------------------------
 
-fn override_steps<N: Number>() {
+fn override_steps<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
@@ -276,7 +276,7 @@ fn override_at_fixed_ticks() {
 
 /// At feed 0.1, once the ramp has settled, the speed is a tenth of the full-feed speed at
 /// the same place on the path.
-fn override_scales_the_speed<N: Number>() {
+fn override_scales_the_speed<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
@@ -308,7 +308,7 @@ fn override_scales_the_speed_in_every_format() {
 // Override changing every tick (proptest)
 // ---------------------------------------------------------------------------------------------
 
-fn random_feeds<N: Number>(feeds: &[f32], events: &[(u16, u8)]) -> Result<(), TestCaseError> {
+fn random_feeds<N: Kernel>(feeds: &[f32], events: &[(u16, u8)]) -> Result<(), TestCaseError> {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
@@ -369,7 +369,7 @@ fn override_every_tick_random() {
 // Hold, resume, abort, finished
 // ---------------------------------------------------------------------------------------------
 
-fn hold_and_resume<N: Number>() {
+fn hold_and_resume<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
@@ -421,7 +421,7 @@ fn hold_stands_still_and_resume_reaches_the_exact_end() {
     big_stack(hold_and_resume::<Q40>);
 }
 
-fn abort_stops<N: Number>() {
+fn abort_stops<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
@@ -488,7 +488,7 @@ fn abort_stops_within_the_limits_and_stays_put() {
 /// `is_finished` becomes true exactly when the end sample (tick `ticks()`) has been returned;
 /// afterwards every call repeats the end point at rest, and hold, resume and abort change
 /// nothing.
-fn finished_semantics<N: Number>() {
+fn finished_semantics<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
@@ -527,7 +527,7 @@ fn finished_exactly_after_the_end_sample() {
 }
 
 /// A hold never finishes by itself, and zero feed from the start stands still at the start.
-fn zero_feed_from_the_start<N: Number>() {
+fn zero_feed_from_the_start<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);

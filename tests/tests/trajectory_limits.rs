@@ -70,7 +70,7 @@ use strak_curves::{
 };
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
+    Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Sampler, Timing, compile,
 };
 
@@ -493,7 +493,8 @@ where
     if let Some(tol) = tolerance {
         options = options.with_relative_tolerance(tol);
     }
-    let path: Path<f64, A, PIECES> = compile(curve, timing, RATE, &options).expect("compile");
+    let path: Path<f64, A, PIECES> =
+        compile(&Along::new(curve, timing), RATE, &options).expect("compile");
     assert_eq!(path.acceleration_limit(), m.full.acceleration());
     assert_eq!(path.jerk_limit(), m.full.jerk());
     let dv = velocity_allowance(&path);
@@ -729,7 +730,8 @@ fn tangential_deviation<const N: usize>() -> f64 {
         let options = CompileOptions::new()
             .with_relative_tolerance(1e-6)
             .with_path_limits(&m.full);
-        let path: Path<f64, 2, PIECES> = compile(&curve, &plan, RATE, &options).expect("compile");
+        let path: Path<f64, 2, PIECES> =
+            compile(&Along::new(&curve, &plan), RATE, &options).expect("compile");
         let run = play(&path);
         let sigma = path.time_scale();
         let mut worst = 0.0_f64;
@@ -850,7 +852,8 @@ fn scurve_slows_only_where_it_must() {
         assert!(plan.duration() < 0.6 * global.duration());
 
         let options = CompileOptions::new().with_path_limits(&m.full);
-        let path: Path<f64, 2, PIECES> = compile(&curve, &plan, RATE, &options).expect("compile");
+        let path: Path<f64, 2, PIECES> =
+            compile(&Along::new(&curve, &plan), RATE, &options).expect("compile");
         let run = play(&path);
         let (mut straight_peak, mut corner_min) = (0.0_f64, f64::INFINITY);
         for k in 0..run.x.len() - 1 {
@@ -880,7 +883,8 @@ fn compiled_peaks_and_positions_match_the_samples() {
         let curve = pick_and_place();
         let plan = scurve_plan(&curve, &m);
         let options = CompileOptions::new().with_path_limits(&m.full);
-        let path: Path<f64, 3, PIECES> = compile(&curve, &plan, RATE, &options).expect("compile");
+        let path: Path<f64, 3, PIECES> =
+            compile(&Along::new(&curve, &plan), RATE, &options).expect("compile");
         let run = play(&path);
         let peak_v = run.v.iter().map(norm).fold(0.0, f64::max);
         let peak_a = run.a.iter().map(norm).fold(0.0, f64::max);

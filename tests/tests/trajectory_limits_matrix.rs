@@ -33,7 +33,7 @@ use strak_curves::{
 use strak_tests::big_stack;
 use strak_tests::limits_check::measure;
 use strak_trajectory::{
-    CompileOptions, Error, Limits, Number, Path, PathTiming, PlanOptions, ProfileShape, Q40,
+    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
     Quantity, compile,
 };
 
@@ -89,7 +89,7 @@ struct Run {
 }
 
 /// Plans `shape` on `curve` at `rate`, compiles into `N`, plays, measures and checks.
-fn run<N: Number, C, const D: usize>(name: &str, curve: &C, shape: ProfileShape, rate: f64) -> Run
+fn run<N: Kernel, C, const D: usize>(name: &str, curve: &C, shape: ProfileShape, rate: f64) -> Run
 where
     C: ParamCurveDeriv,
     C::Point: Point,
@@ -107,8 +107,7 @@ where
         Err(e) => return failed(what, format!("plan: {e:?}")),
     };
     let compiled: Result<Path<N, D, PIECES>, Error> = compile(
-        curve,
-        &plan,
+        &Along::new(curve, &plan),
         rate,
         &CompileOptions::new().with_path_limits(&limits),
     );
@@ -201,7 +200,7 @@ impl Report {
 /// expression of the curve's scalar type `$s` and of the number `$arg` (given as `$value`).
 macro_rules! every_format {
     ($report:expr, $name:expr, $dim:literal, $value:expr, |$s:ident, $arg:ident| $build:expr) => {{
-        fn all<$s: Scalar, N: Number>(report: &mut Report, name: &str, $arg: f64) {
+        fn all<$s: Scalar, N: Kernel>(report: &mut Report, name: &str, $arg: f64) {
             let curve = $build;
             for shape in [ProfileShape::SCurve, ProfileShape::Trapezoid] {
                 for rate in RATES {
@@ -235,7 +234,8 @@ fn line_with_short_jerk_phases() {
         let limits = Limits::<3>::new(v, a, j).expect("limits");
         let plan = PathTiming::<_, TABLE, ZONES>::scurve(&line, &limits).expect("plan");
         let options = CompileOptions::new().with_path_limits(&limits);
-        let path: Path<f64, 3, PIECES> = compile(&line, &plan, 1_000.0, &options).expect("compile");
+        let path: Path<f64, 3, PIECES> =
+            compile(&Along::new(&line, &plan), 1_000.0, &options).expect("compile");
         let k = measure(&path);
         println!(
             "line: {:?}, time scale {}",
@@ -270,7 +270,7 @@ fn polyline_in_f32_and_fixed_point() {
             heading += if i % 2 == 1 { 90.0_f64 } else { -30.0 }.to_radians();
         }
         let mut report = Report::default();
-        fn one<S: Scalar, N: Number>(report: &mut Report, p: &[[f64; 2]]) {
+        fn one<S: Scalar, N: Kernel>(report: &mut Report, p: &[[f64; 2]]) {
             let pts = points::<S, 2>(p);
             let c = BSpline::<[S; 2], 32, 40>::clamped_uniform(1, &pts, S::ZERO, S::ONE)
                 .expect("polyline");
@@ -300,7 +300,7 @@ fn jerk_phases_shorter_than_a_tick() {
         for rate in RATES {
             let options = CompileOptions::new().with_path_limits(&limits);
             let path: Path<f64, 2, PIECES> =
-                compile(&line, &plan, rate, &options).expect("compile");
+                compile(&Along::new(&line, &plan), rate, &options).expect("compile");
             let k = measure(&path);
             println!(
                 "{rate} Hz: {:?}, time scale {}",

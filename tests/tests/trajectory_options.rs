@@ -35,7 +35,7 @@
 use strak_curves::{BSpline, Bezier, ParamCurveDeriv, Scalar};
 use strak_tests::big_stack;
 use strak_trajectory::{
-    CompileOptions, Error, Limits, Number, Path, PathTiming, PlanOptions, Sampler, Timing,
+    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Sampler, Timing,
 };
 
 /// Relative `f64` rounding of the difference quotients.
@@ -64,7 +64,7 @@ struct Ratios {
 
 /// Plays `path` to the end, calling `control(k, sampler)` before sample `k`; measures the
 /// samples against `machine`. Returns the ratios and the number of samples.
-fn play<N: Number, const A: usize>(
+fn play<N: Kernel, const A: usize>(
     path: &Path<N, A, PIECES>,
     machine: &Limits<A>,
     mut control: impl FnMut(u64, &mut Sampler<'_, N, A>),
@@ -104,13 +104,13 @@ fn play<N: Number, const A: usize>(
 
 /// How much the compiled velocity may exceed the plan's (units/s): `3.2·tol/h` on the
 /// longest pieces (see the module docs).
-fn velocity_allowance<N: Number, const A: usize>(path: &Path<N, A, PIECES>) -> f64 {
+fn velocity_allowance<N: Kernel, const A: usize>(path: &Path<N, A, PIECES>) -> f64 {
     let longest = path.pieces().iter().map(|p| p.ticks()).max().unwrap_or(1);
     3.2 * path.tolerance() / (f64::from(longest) * path.period())
 }
 
 /// Asserts the ratios of a run at feed 1 against the machine's limits.
-fn assert_within<N: Number, const A: usize>(
+fn assert_within<N: Kernel, const A: usize>(
     name: &str,
     r: &Ratios,
     path: &Path<N, A, PIECES>,
@@ -218,7 +218,7 @@ fn a_join_at_speed_is_caught() {
         let m = machine2();
         let c = polyline(30.0_f64.to_radians());
         let path: Path<f64, 2, PIECES> =
-            strak_trajectory::compile(&c, &Through, 1_000.0, &CompileOptions::new())
+            strak_trajectory::compile(&Along::new(&c, &Through), 1_000.0, &CompileOptions::new())
                 .expect("compile");
         let (r, _) = play(&path, &m, |_, _| {});
         println!("30° at 150 mm/s: |a| {:.1} × the limit", r.acceleration);
@@ -327,7 +327,7 @@ fn readme_move() -> BSpline<[f64; 3], 8, 16> {
 
 /// Feed changes at every 10th tick of the motion, one per run: an override to ½, and a hold
 /// with a resume 300 ticks later. Returns the worst ratios over all runs.
-fn feed_changes<N: Number, const A: usize>(
+fn feed_changes<N: Kernel, const A: usize>(
     name: &str,
     path: &Path<N, A, PIECES>,
     m: &Limits<A>,
@@ -357,7 +357,7 @@ fn feed_changes<N: Number, const A: usize>(
 
 /// Planned and compiled the library's way ([`PathTiming::plan`], [`PathTiming::compile`]),
 /// feed override, hold and resume keep every limit, in every number format.
-fn reserve_keeps_the_limits<N: Number>() {
+fn reserve_keeps_the_limits<N: Kernel>() {
     let m3 = Limits::<3>::new(200.0, 2_000.0, 50_000.0)
         .and_then(|l| l.with_axis_acceleration([1_500.0, f64::INFINITY, 1_000.0]))
         .expect("limits");
@@ -400,7 +400,7 @@ fn a_plan_without_the_reserve_is_caught() {
         let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
         let options = CompileOptions::new().with_path_limits(&m3);
         let path: Path<f64, 3, PIECES> =
-            strak_trajectory::compile(&line, &plan, plan.rate(), &options).expect("compile");
+            strak_trajectory::compile(&plan, plan.rate(), &options).expect("compile");
         let r = feed_changes("line planned at the full limits", &path, &m3);
         assert!(r.acceleration > 1.01 || r.jerk > 1.01, "{r:?}");
     });

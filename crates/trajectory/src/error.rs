@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-use crate::number::Number;
+use crate::num::{Number, NumberFormat};
 
 /// Why a path could not be planned, compiled or loaded.
 ///
@@ -60,6 +60,11 @@ pub enum Error {
         /// The version found.
         found: u16,
     },
+    /// A serialized path records a number format id that no [`NumberFormat`] has.
+    UnknownNumberFormat {
+        /// The id found (the formats have 1, 2 and 3: [`NumberFormat::id`]).
+        id: u8,
+    },
     /// A serialized path was made for another number format or axis count.
     FormatMismatch {
         /// The format the reader asked for.
@@ -79,16 +84,16 @@ pub enum Error {
 /// The number format and axis count of a serialized path.
 ///
 /// ```
-/// use strak_trajectory::{BlobFormat, Q40};
+/// use strak_trajectory::{BlobFormat, NumberFormat, Q40};
 /// let f = BlobFormat::of::<Q40>(3);
-/// assert_eq!((f.number, f.axes), (3, 3));
+/// assert_eq!((f.number, f.axes), (NumberFormat::Q40, 3));
 /// assert_eq!(f.to_string(), "Q40 with 3 axes");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BlobFormat {
-    /// The number format id ([`Number::FORMAT_ID`]: 1 `f32`, 2 `f64`, 3 `Q40`).
-    pub number: u8,
+    /// The number format.
+    pub number: NumberFormat,
     /// The number of axes.
     pub axes: usize,
 }
@@ -97,7 +102,7 @@ impl BlobFormat {
     /// The format of paths in `N` with `axes` axes.
     pub fn of<N: Number>(axes: usize) -> Self {
         BlobFormat {
-            number: N::FORMAT_ID,
+            number: N::FORMAT,
             axes,
         }
     }
@@ -105,13 +110,7 @@ impl BlobFormat {
 
 impl fmt::Display for BlobFormat {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let name = match self.number {
-            1 => "f32",
-            2 => "f64",
-            3 => "Q40",
-            _ => return write!(f, "number format {} with {} axes", self.number, self.axes),
-        };
-        write!(f, "{name} with {} axes", self.axes)
+        write!(f, "{} with {} axes", self.number, self.axes)
     }
 }
 
@@ -175,6 +174,11 @@ impl fmt::Display for Error {
             Error::UnsupportedVersion { found } => {
                 write!(f, "serialized path has unsupported format version {found}")
             }
+            Error::UnknownNumberFormat { id } => write!(
+                f,
+                "serialized path has number format id {id}, which no format has (1 f32, 2 f64, \
+                 3 Q40)"
+            ),
             Error::FormatMismatch { expected, found } => {
                 write!(f, "serialized path is for {found}, expected {expected}")
             }

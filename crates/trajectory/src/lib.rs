@@ -1,25 +1,23 @@
 #![no_std]
 #![doc = include_str!("../README.md")]
-// Unsafe code only in the Cortex-M tick kernels (`sampler/kernel/vfp.rs`, inline assembly).
+// Unsafe code only in the Cortex-M tick kernels (`play/kernel/vfp.rs`, inline assembly).
 #![deny(unsafe_code)]
 
+// The layers, in the order data flows through them: each names only the layers before it
+// (checked by `tests/layering.rs`).
 mod compile;
 mod error;
-mod limits;
-mod number;
+mod num;
 mod path;
-mod profile;
-mod sampler;
-mod timing;
+mod plan;
+mod play;
 
 pub use compile::{CompileOptions, Tolerance, compile};
 pub use error::{BlobFormat, Error, Quantity};
-pub use limits::Limits;
-pub use number::{Number, Q40};
+pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use path::{
     AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, Path, PathBlob, PathHeader, PathView, Piece,
     Sample, crc32,
 };
-pub use profile::*;
-pub use sampler::{Sampler, SamplerState};
-pub use timing::{MotionLimits, Timing};
+pub use plan::*;
+pub use play::{Kernel, Sampler, SamplerState};

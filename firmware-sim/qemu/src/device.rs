@@ -51,7 +51,7 @@ where
         .with_axis_velocity(job.axis_velocity)?
         .with_axis_acceleration(job.axis_acceleration)?;
     let timing = PathTiming::<_, TABLE, ZONES>::plan(&curve, &limits, &job.plan)?;
-    compile(&curve, &timing, job.rate_hz, &job.compile)
+    compile(&timing, job.rate_hz, &job.compile)
 }
 
 /// The first index where `a` and `b` differ (a length difference counts at the shorter

@@ -18,7 +18,7 @@ use strak_qemu::device::{compile_job, first_difference};
 use strak_qemu::jobs::{BLOB_JOBS, BlobJob, DEVICE_JOBS, DeviceJob, Format};
 use strak_qemu::play::{OutBits, play_and_log};
 use strak_qemu::{PIECES, counter::Counter, exit_failure, exit_success};
-use strak_trajectory::{Number, PathBlob, Q40};
+use strak_trajectory::{Kernel, PathBlob, Q40};
 
 /// The largest blob the device compiles (`PIECES` pieces of 3 axes in `f64`-sized values, and
 /// the header).
@@ -70,7 +70,7 @@ fn play_blob(job: &BlobJob) {
 // Not inlined: each job's path and plan live in this call's frame only while it runs, instead
 // of every instantiation's frame adding up in `main`'s (measured: 2.2 MiB in `main` otherwise).
 #[inline(never)]
-fn blob<N: Number, const A: usize>(job: &BlobJob)
+fn blob<N: Kernel, const A: usize>(job: &BlobJob)
 where
     N::Out: OutBits,
 {
@@ -94,7 +94,7 @@ where
 #[inline(never)]
 fn device<N, S>(job: &DeviceJob<3>, format: Format, host_blob: &[u8])
 where
-    N: Number,
+    N: Kernel,
     N::Out: OutBits,
     S: Scalar,
     [S; 3]: Point<Scalar = S>,

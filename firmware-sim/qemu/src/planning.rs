@@ -104,5 +104,5 @@ pub fn compile_plan<N: Number, S: Scalar>(plan: &Plan<'_, S>) -> Result<Path<N, 
 where
     [S; 3]: Point<Scalar = S>,
 {
-    compile(plan.curve(), plan, RATE_HZ, &CompileOptions::new())
+    compile(plan, RATE_HZ, &CompileOptions::new())
 }

@@ -2,7 +2,7 @@
 //! every sample.
 
 use strak_curves::I32F32;
-use strak_trajectory::{Error, Number, PathBlob, PathView, Sample, Sampler};
+use strak_trajectory::{Error, Kernel, PathBlob, PathView, Sample, Sampler};
 
 use crate::jobs::{Event, Format, TimedEvent};
 use crate::mix;
@@ -30,7 +30,7 @@ impl OutBits for I32F32 {
 /// when the sampler is finished, or after `10·(ticks + 1) + last event tick + 1` samples
 /// (a hold without resume).
 #[derive(Debug)]
-pub struct Player<'a, N: Number, const A: usize> {
+pub struct Player<'a, N: Kernel, const A: usize> {
     sampler: Sampler<'a, N, A>,
     events: &'a [TimedEvent],
     next_event: usize,
@@ -38,7 +38,7 @@ pub struct Player<'a, N: Number, const A: usize> {
     guard: u64,
 }
 
-impl<'a, N: Number, const A: usize> Player<'a, N, A> {
+impl<'a, N: Kernel, const A: usize> Player<'a, N, A> {
     /// A player at tick 0 of `path` (a `&Path` or a view of a blob in flash).
     pub fn new(path: impl Into<PathView<'a, N, A>>, events: &'a [TimedEvent]) -> Self {
         let path = path.into();
@@ -88,7 +88,7 @@ pub fn play_and_log<'a, N, const A: usize>(
     events: &'a [TimedEvent],
 ) -> u32
 where
-    N: Number,
+    N: Kernel,
     N::Out: OutBits,
 {
     defmt::println!(
@@ -151,7 +151,7 @@ pub fn play_blob<N, const A: usize>(
     events: &'static [TimedEvent],
 ) -> Result<Played, Error>
 where
-    N: Number,
+    N: Kernel,
     N::Out: OutBits,
 {
     let path = PathBlob::<N, A>::from_bytes(blob)?;

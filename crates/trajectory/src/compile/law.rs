@@ -5,7 +5,7 @@ use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use super::spline_fit::SplineFit;
 use crate::error::Error;
-use crate::timing::{MotionLimits, Timing};
+use crate::plan::{MotionLimits, Timing};
 
 /// Breaks of the time law closer than this many ticks to their neighbours (or the ends) get
 /// no knot: a jerk step up to half a tick off a knot disturbs the jerk of a piece of `h`

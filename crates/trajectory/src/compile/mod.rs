@@ -3,6 +3,7 @@
 mod law;
 mod options;
 mod peaks;
+mod planned;
 mod spline_fit;
 #[cfg(test)]
 pub(crate) mod testing;
@@ -13,9 +14,9 @@ use heapless::Vec;
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use crate::error::{Error, Quantity};
-use crate::number::Number;
+use crate::num::Number;
 use crate::path::{AxisState, Path, PathEnd, PathMeta, Piece, RATE_RANGE};
-use crate::timing::Timing;
+use crate::plan::{Timing, Trajectory};
 use law::TickLaw;
 use peaks::Peaks;
 use spline_fit::SplineFit;
@@ -35,8 +36,11 @@ const SLOWDOWN_ATTEMPTS: usize = 6;
 /// steps fall elsewhere between the ticks).
 const SLOWDOWN_MARGIN: f64 = 1e-3;
 
-/// Compiles the motion along `curve` with the time law `timing` into a path of at most `P`
-/// pieces with `A` axes, played at `rate_hz`, in the number format `N`.
+/// Compiles a [`Trajectory`] (a curve and the time law along it: a planned
+/// [`PathTiming`](crate::PathTiming), or any law paired with its curve by
+/// [`Along`](crate::Along)) into a path of at most `P` pieces with `A` axes, played at
+/// `rate_hz`, in the number format `N`. A planned motion compiles itself at the rate it was
+/// planned for with [`PathTiming::compile`](crate::PathTiming::compile).
 ///
 /// 1. **Ticks.** At the rate `f` (100 Hz ..= 100 kHz) the motion takes
 ///    `N = ⌈duration · f⌉` ticks; the time law is stretched by `duration / (N/f) ≤ 1` so that
@@ -112,7 +116,7 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// * [`Error::Curve`]: the time law or the curve produced a non-finite value.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Sampler, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Sampler, Timing};
 /// use strak_curves::Bezier;
 ///
 /// /// Rest to rest in 0.2 s: u = 3τ² − 2τ³.
@@ -126,24 +130,23 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// }
 /// let curve = Bezier::new([[0.0_f64, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 5.0]])?;
 /// let options = CompileOptions::new().with_tolerance(1e-6);
-/// let path: Path<f32, 3, 64> = compile(&curve, &Smooth, 10_000.0, &options)?;
+/// let path: Path<f32, 3, 64> = compile(&Along::new(&curve, &Smooth), 10_000.0, &options)?;
 /// assert_eq!(path.ticks(), 2_000);
 /// assert_eq!(path.end_position(), [10.0, 10.0, 5.0]);
 /// assert!(path.pieces().len() >= 8); // at most 256 ticks per piece
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn compile<N, const A: usize, const P: usize, C, T>(
-    curve: &C,
-    timing: &T,
+pub fn compile<N, const A: usize, const P: usize, M>(
+    trajectory: &M,
     rate_hz: f64,
     options: &CompileOptions,
 ) -> Result<Path<N, A, P>, Error>
 where
     N: Number,
-    C: ParamCurveDeriv + ?Sized,
-    T: Timing + ?Sized,
+    M: Trajectory + ?Sized,
 {
-    check_inputs::<A, C, T>(timing, rate_hz, options)?;
+    let (curve, timing) = (trajectory.curve(), trajectory.law());
+    check_inputs::<A, M::Curve, M::Law>(timing, rate_hz, options)?;
     let period = 1.0 / rate_hz;
     let limits = timing.limits();
     let mut fit = SplineFit::<A, P>::empty();
@@ -406,7 +409,8 @@ mod tests {
     extern crate std;
     use super::testing::{Linear, Quintic, Smoothstep, TestTiming, Trapezoid, exact, helix};
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
+    use crate::plan::Along;
     use strak_curves::{Bezier, I32F32, ParamCurve};
 
     fn line() -> Bezier<[f64; 2], 2> {
@@ -415,21 +419,30 @@ mod tests {
 
     #[test]
     fn axis_mismatch() {
-        let r: Result<Path<f64, 3, 8>, _> =
-            compile(&line(), &Linear(1.0), 1000.0, &CompileOptions::new());
+        let r: Result<Path<f64, 3, 8>, _> = compile(
+            &Along::new(&line(), &Linear(1.0)),
+            1000.0,
+            &CompileOptions::new(),
+        );
         assert_eq!(r, Err(Error::AxisMismatch { curve: 2, path: 3 }));
     }
 
     #[test]
     fn invalid_rate() {
         for rate in [99.9, 100_001.0, f64::NAN, f64::INFINITY, -1000.0] {
-            let r: Result<Path<f64, 2, 8>, _> =
-                compile(&line(), &Linear(1.0), rate, &CompileOptions::new());
+            let r: Result<Path<f64, 2, 8>, _> = compile(
+                &Along::new(&line(), &Linear(1.0)),
+                rate,
+                &CompileOptions::new(),
+            );
             assert_eq!(r, Err(Error::InvalidRate), "{rate}");
         }
         for rate in [100.0, 100_000.0] {
-            let r: Result<Path<f64, 2, 1024>, _> =
-                compile(&line(), &Linear(1.0), rate, &CompileOptions::new());
+            let r: Result<Path<f64, 2, 1024>, _> = compile(
+                &Along::new(&line(), &Linear(1.0)),
+                rate,
+                &CompileOptions::new(),
+            );
             assert!(r.is_ok());
         }
     }
@@ -437,8 +450,11 @@ mod tests {
     #[test]
     fn empty_path() {
         for d in [0.0, -1.0, f64::NAN] {
-            let r: Result<Path<f64, 2, 8>, _> =
-                compile(&line(), &Linear(d), 1000.0, &CompileOptions::new());
+            let r: Result<Path<f64, 2, 8>, _> = compile(
+                &Along::new(&line(), &Linear(d)),
+                1000.0,
+                &CompileOptions::new(),
+            );
             assert_eq!(r, Err(Error::EmptyPath), "{d}");
         }
     }
@@ -446,12 +462,14 @@ mod tests {
     #[test]
     fn too_long() {
         // 10⁵ s at 100 kHz = 10¹⁰ ticks > u32::MAX
-        let r: Result<Path<f64, 2, 8>, _> =
-            compile(&line(), &Linear(1.0e5), 100_000.0, &CompileOptions::new());
+        let r: Result<Path<f64, 2, 8>, _> = compile(
+            &Along::new(&line(), &Linear(1.0e5)),
+            100_000.0,
+            &CompileOptions::new(),
+        );
         assert_eq!(r, Err(Error::TooLong));
         let r: Result<Path<f64, 2, 8>, _> = compile(
-            &line(),
-            &Linear(f64::INFINITY),
+            &Along::new(&line(), &Linear(f64::INFINITY)),
             1000.0,
             &CompileOptions::new(),
         );
@@ -461,8 +479,11 @@ mod tests {
     #[test]
     fn capacity_exceeded() {
         // 1000 ticks in pieces of at most 256: 4 pieces needed
-        let r: Result<Path<f64, 2, 3>, _> =
-            compile(&line(), &Linear(1.0), 1000.0, &CompileOptions::new());
+        let r: Result<Path<f64, 2, 3>, _> = compile(
+            &Along::new(&line(), &Linear(1.0)),
+            1000.0,
+            &CompileOptions::new(),
+        );
         assert_eq!(
             r,
             Err(Error::CapacityExceeded {
@@ -472,8 +493,7 @@ mod tests {
         );
         // refinement needs more than the grid
         let r: Result<Path<f64, 3, 8>, _> = compile(
-            &helix(1.0, 3.0, 1.0),
-            &Smoothstep::new(0.2),
+            &Along::new(&helix(1.0, 3.0, 1.0), &Smoothstep::new(0.2)),
             1000.0,
             &CompileOptions::new().with_tolerance(1e-9),
         );
@@ -488,25 +508,24 @@ mod tests {
         // 10⁷ units exceed Q40's checked range ±2²²; f32 and f64 take them.
         let far = Bezier::new([[0.0_f64], [1.0e7]]).unwrap();
         let o = CompileOptions::new();
-        let r: Result<Path<Q40, 1, 8>, _> = compile(&far, &Linear(1.0), 1000.0, &o);
+        let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&far, &Linear(1.0)), 1000.0, &o);
         assert_eq!(r, Err(Error::OutOfRange));
-        let r: Result<Path<f32, 1, 8>, _> = compile(&far, &Linear(1.0), 1000.0, &o);
+        let r: Result<Path<f32, 1, 8>, _> = compile(&Along::new(&far, &Linear(1.0)), 1000.0, &o);
         assert!(r.is_ok());
         // within range: 4·10⁶ units
         let near = Bezier::new([[0.0_f64], [4.0e6]]).unwrap();
-        let r: Result<Path<Q40, 1, 8>, _> = compile(&near, &Linear(1.0), 1000.0, &o);
+        let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&near, &Linear(1.0)), 1000.0, &o);
         assert!(r.is_ok());
         // a large velocity at a large position: the sums of the range check exceed 2²²
         let fast = Bezier::new([[4.0e6_f64], [4.19e6]]).unwrap();
-        let r: Result<Path<Q40, 1, 8>, _> = compile(&fast, &Linear(0.01), 1000.0, &o);
+        let r: Result<Path<Q40, 1, 8>, _> = compile(&Along::new(&fast, &Linear(0.01)), 1000.0, &o);
         assert_eq!(r, Err(Error::OutOfRange));
     }
 
     #[test]
     fn invalid_options() {
         let r: Result<Path<f64, 2, 8>, _> = compile(
-            &line(),
-            &Linear(1.0),
+            &Along::new(&line(), &Linear(1.0)),
             1000.0,
             &CompileOptions::new().with_tolerance(-1.0),
         );
@@ -525,8 +544,11 @@ mod tests {
 
     #[test]
     fn non_finite_time_law() {
-        let r: Result<Path<f64, 2, 8>, _> =
-            compile(&line(), &Broken, 1000.0, &CompileOptions::new());
+        let r: Result<Path<f64, 2, 8>, _> = compile(
+            &Along::new(&line(), &Broken),
+            1000.0,
+            &CompileOptions::new(),
+        );
         assert_eq!(r, Err(Error::Curve(strak_curves::Error::NonFinite)));
     }
 
@@ -534,18 +556,19 @@ mod tests {
     fn ticks_and_time_stretch() {
         let o = CompileOptions::new();
         // 0.3 s at 1 kHz is 300 ticks although 0.3·1000 = 300.00000000000006
-        let p: Path<f64, 2, 8> = compile(&line(), &Linear(0.3), 1000.0, &o).unwrap();
+        let p: Path<f64, 2, 8> = compile(&Along::new(&line(), &Linear(0.3)), 1000.0, &o).unwrap();
         assert_eq!(p.ticks(), 300);
         assert!((p.time_scale() - 1.0).abs() < 1e-12);
         // 0.3004 s: 301 ticks, stretched by 0.3004/0.301
-        let p: Path<f64, 2, 8> = compile(&line(), &Linear(0.3004), 1000.0, &o).unwrap();
+        let p: Path<f64, 2, 8> =
+            compile(&Along::new(&line(), &Linear(0.3004)), 1000.0, &o).unwrap();
         assert_eq!(p.ticks(), 301);
         assert!((p.time_scale() - 0.3004 / 0.301).abs() < 1e-15);
         // velocities decrease by the stretch: 5 units in 0.301 s
         let v = p.eval(100.0).velocity;
         assert!((v[0] - 3.0 / 0.301).abs() < 1e-9 && (v[1] - 4.0 / 0.301).abs() < 1e-9);
         // a very short law still has one tick
-        let p: Path<f64, 2, 8> = compile(&line(), &Linear(1e-6), 1000.0, &o).unwrap();
+        let p: Path<f64, 2, 8> = compile(&Along::new(&line(), &Linear(1e-6)), 1000.0, &o).unwrap();
         assert_eq!(p.ticks(), 1);
         assert_eq!(p.eval(1.0).position, [3.0, 4.0]);
     }
@@ -555,14 +578,22 @@ mod tests {
         // a fixed-point curve: its end point as it computes it, bit for bit
         let p = |x: f64| [I32F32::from_num(x)];
         let c = Bezier::new([p(0.1), p(-0.7), p(1.3), p(2.0 / 3.0)]).unwrap();
-        let path: Path<Q40, 1, 64> =
-            compile(&c, &Smoothstep::new(0.5), 1000.0, &CompileOptions::new()).unwrap();
+        let path: Path<Q40, 1, 64> = compile(
+            &Along::new(&c, &Smoothstep::new(0.5)),
+            1000.0,
+            &CompileOptions::new(),
+        )
+        .unwrap();
         assert_eq!(path.end_position(), c.eval(I32F32::ONE));
         assert_eq!(path.end_velocity(), [I32F32::ZERO]);
         // f32 from an f64 curve: rounded once
         let c = Bezier::new([[0.0_f64], [0.1]]).unwrap();
-        let path: Path<f32, 1, 8> =
-            compile(&c, &Smoothstep::new(0.5), 1000.0, &CompileOptions::new()).unwrap();
+        let path: Path<f32, 1, 8> = compile(
+            &Along::new(&c, &Smoothstep::new(0.5)),
+            1000.0,
+            &CompileOptions::new(),
+        )
+        .unwrap();
         assert_eq!(path.end_position(), [0.1_f32]);
     }
 
@@ -588,8 +619,7 @@ mod tests {
     fn check_every_tick_on<T: TestTiming>(timing: &T, rate: f64, tol: f64) -> Errors {
         let curve = helix(2.0, 2.0, 1.0);
         let path: Path<f64, 3, 4096> = compile(
-            &curve,
-            timing,
+            &Along::new(&curve, timing),
             rate,
             &CompileOptions::new().with_tolerance(tol),
         )
@@ -668,8 +698,12 @@ mod tests {
     #[test]
     fn relative_tolerance_uses_the_extent() {
         let curve = helix(2.0, 2.0, 1.0);
-        let path: Path<f64, 3, 256> =
-            compile(&curve, &Quintic(0.5), 10_000.0, &CompileOptions::new()).unwrap();
+        let path: Path<f64, 3, 256> = compile(
+            &Along::new(&curve, &Quintic(0.5)),
+            10_000.0,
+            &CompileOptions::new(),
+        )
+        .unwrap();
         // extent: x and y span ≈ 4 units (at the knots: slightly less)
         assert!(path.tolerance() > 3.9e-4 && path.tolerance() <= 4e-4);
     }
@@ -683,8 +717,7 @@ mod tests {
         let curve = helix(2.0, 2.0, 1.0);
         let timing = Quintic(0.5);
         let path: Path<f64, 3, 4096> = compile(
-            &curve,
-            &timing,
+            &Along::new(&curve, &timing),
             10_000.0,
             &CompileOptions::new().with_tolerance(1e-7),
         )
@@ -708,8 +741,7 @@ mod tests {
         assert!((path.acceleration_limit() - path.peak_acceleration() / 0.75).abs() < 1e-9);
         assert!((path.jerk_limit() - path.peak_jerk() / 0.75).abs() < 1e-6);
         let with: Path<f64, 3, 4096> = compile(
-            &curve,
-            &timing,
+            &Along::new(&curve, &timing),
             10_000.0,
             &CompileOptions::new()
                 .with_tolerance(1e-7)
@@ -754,7 +786,7 @@ mod tests {
             breaks,
             limits,
         };
-        let path: Path<f64, 2, 4096> = compile(&line, &law, rate, &o).unwrap();
+        let path: Path<f64, 2, 4096> = compile(&Along::new(&line, &law), rate, &o).unwrap();
         // the plan keeps the feed reserve: it uses 1 − share of the jerk limit
         let planned = (1.0 - crate::PlanOptions::DEFAULT_FEED_SHARE) * lim.jerk();
         (path.peak_jerk() / planned, path.time_scale())
@@ -822,18 +854,18 @@ mod tests {
             let mut breaks = 0;
             plan.breaks(&mut |_| breaks += 1);
             assert_eq!(breaks, 6);
-            let kept: Path<f64, 2, 4096> = compile(&line, &plan, 1_000.0, &o).unwrap();
+            let kept: Path<f64, 2, 4096> = compile(&plan, 1_000.0, &o).unwrap();
             assert_eq!(one_tick(&kept), breaks, "{:?}", kept.pieces().len());
             let law = Forward {
                 law: &plan,
                 breaks: true,
                 limits: false,
             };
-            let free: Path<f64, 2, 4096> = compile(&line, &law, 1_000.0, &o).unwrap();
+            let free: Path<f64, 2, 4096> = compile(&Along::new(&line, &law), 1_000.0, &o).unwrap();
             assert_eq!(one_tick(&free), 0);
             let line32 = Bezier::new([[0.0_f32, 0.0], [52.255, 52.255]]).unwrap();
             let plan32 = crate::PathTiming::<_, 64, 4>::plan(&line32, &lim, &fine).unwrap();
-            let coarse: Path<f64, 2, 4096> = compile(&line32, &plan32, 1_000.0, &o).unwrap();
+            let coarse: Path<f64, 2, 4096> = compile(&plan32, 1_000.0, &o).unwrap();
             assert_eq!(one_tick(&coarse), 0);
         });
     }
@@ -846,7 +878,7 @@ mod tests {
             let plan = crate::PathTiming::<_, 64, 4>::scurve(&line, &lim).unwrap();
             // at 1 kHz the fit overshoots the law (see above): no slow-down allowed
             let strict = CompileOptions::new().with_max_slowdown(1.0);
-            let r: Result<Path<f64, 2, 4096>, _> = compile(&line, &plan, 1_000.0, &strict);
+            let r: Result<Path<f64, 2, 4096>, _> = compile(&plan, 1_000.0, &strict);
             assert!(matches!(r, Err(Error::LimitExceeded { .. })), "{r:?}");
             // a law so long that its ticks overflow to ∞ (∞ ticks, not one): the planner
             // refuses such a plan itself, so a law of its own
@@ -863,7 +895,7 @@ mod tests {
             let planned = crate::PathTiming::<_, 64, 4>::scurve(&line, &crawl);
             assert_eq!(planned.err(), Some(Error::TooLong));
             let r: Result<Path<f64, 2, 8>, _> =
-                compile(&line, &Crawl, 1_000.0, &CompileOptions::new());
+                compile(&Along::new(&line, &Crawl), 1_000.0, &CompileOptions::new());
             assert_eq!(r.err(), Some(Error::TooLong));
         });
     }
@@ -871,8 +903,7 @@ mod tests {
     #[test]
     fn piece_lengths_respect_the_maximum() {
         let path: Path<f64, 2, 64> = compile(
-            &line(),
-            &Linear(1.0),
+            &Along::new(&line(), &Linear(1.0)),
             1000.0,
             &CompileOptions::new().with_max_piece_ticks(100),
         )

@@ -1,7 +1,7 @@
 //! The settings of [`compile`](crate::compile): tolerance, piece length, limits of feed changes.
 
 use crate::error::Error;
-use crate::limits::Limits;
+use crate::plan::Limits;
 
 /// How far the compiled positions may be from the exact `x(t) = c(u(t))` at every tick.
 ///

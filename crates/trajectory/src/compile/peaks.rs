@@ -2,7 +2,7 @@
 //! time law's limits.
 
 use crate::error::{Error, Quantity};
-use crate::timing::MotionLimits;
+use crate::plan::MotionLimits;
 
 /// Bisection steps for a critical point of the speed (each halves the bracket; 64 exhaust
 /// the `f64` resolution of any bracket inside a piece).

@@ -3,9 +3,9 @@
 
 use strak_curves::{ParamCurve, ParamCurveDeriv};
 
-use crate::number::Number;
+use crate::num::Number;
 use crate::path::Path;
-use crate::timing::Timing;
+use crate::plan::Timing;
 
 /// A time law with its second derivative (for exact accelerations).
 pub(crate) trait TestTiming: Timing {

@@ -9,7 +9,7 @@ use super::owned::Path;
 use super::state::{AxisState, Piece};
 use super::view::{PathView, decode_states, piece_record_len};
 use crate::error::{BlobFormat, Error};
-use crate::number::Number;
+use crate::num::{Number, NumberFormat};
 
 /// The magic bytes at the start of a serialized path.
 pub const BLOB_MAGIC: [u8; 4] = *b"STRK";
@@ -121,7 +121,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// |--------|-----------------|-----------------------------------------------------------|
     /// | 0      | 4               | magic `"STRK"`                                            |
     /// | 4      | 2               | format version (`u16`) = 1                                |
-    /// | 6      | 1               | number format id ([`Number::FORMAT_ID`]: 1 f32, 2 f64, 3 Q40) |
+    /// | 6      | 1               | number format id ([`NumberFormat::id`]: 1 f32, 2 f64, 3 Q40) |
     /// | 7      | 1               | axes `A`                                                  |
     /// | 8      | 4               | piece count `m` (`u32`)                                   |
     /// | 12     | 4               | tick count (`u32`)                                        |
@@ -132,7 +132,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     ///
     /// Reading checks, in this order: length of the fixed header and magic
     /// ([`Error::CorruptBlob`]), version ([`Error::UnsupportedVersion`]), CRC
-    /// ([`Error::CorruptBlob`]), number format and axes ([`Error::FormatMismatch`]), exact
+    /// ([`Error::CorruptBlob`]), number format ([`Error::UnknownNumberFormat`] for an id no
+    /// format has) and axes ([`Error::FormatMismatch`]), exact
     /// length ([`Error::CorruptBlob`]), piece count against the capacity
     /// ([`Error::CapacityExceeded`], [`Path::from_bytes`] only); then the pieces and the end are
     /// validated like a freshly compiled path: the range of every value playback forms
@@ -146,7 +147,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// (`capacity` and `required` in bytes); [`Error::FormatMismatch`] for more than 255 axes.
     ///
     /// ```
-    /// use strak_trajectory::{compile, CompileOptions, Path, Timing};
+    /// use strak_trajectory::{compile, Along, CompileOptions, Path, Timing};
     /// use strak_curves::Bezier;
     /// struct Ramp;
     /// impl Timing for Ramp {
@@ -154,7 +155,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
     /// }
     /// let curve = Bezier::new([[0.0_f64, 1.0], [2.0, 3.0], [4.0, 1.0]])?;
-    /// let path: Path<f32, 2, 8> = compile(&curve, &Ramp, 1_000.0, &CompileOptions::new())?;
+    /// let trajectory = Along::new(&curve, &Ramp);
+    /// let path: Path<f32, 2, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
     /// let mut buf = [0_u8; 1024];
     /// let len = path.to_bytes(&mut buf)?;
     /// assert_eq!(&buf[..4], b"STRK");
@@ -226,8 +228,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     ///
     /// # Errors
     /// [`Error::CorruptBlob`] (truncated, bad magic, bad CRC, inconsistent content),
-    /// [`Error::UnsupportedVersion`], [`Error::FormatMismatch`] (other number format or axis
-    /// count), [`Error::CapacityExceeded`] (more pieces than `P`), [`Error::OutOfRange`] or
+    /// [`Error::UnsupportedVersion`], [`Error::UnknownNumberFormat`] (a format id no format
+    /// has), [`Error::FormatMismatch`] (other number format or axis count), [`Error::CapacityExceeded`] (more pieces than `P`), [`Error::OutOfRange`] or
     /// [`Error::InvalidRate`] / [`Error::InvalidLimit`] (content a compiler would not have
     /// produced).
     ///
@@ -307,12 +309,13 @@ impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
         if crc32(body) != u32::from_le_bytes(stored) {
             return Err(Error::CorruptBlob);
         }
-        let [format, axes] = r.take();
-        if format != N::FORMAT_ID || usize::from(axes) != A {
+        let [id, axes] = r.take();
+        let number = NumberFormat::from_id(id).ok_or(Error::UnknownNumberFormat { id })?;
+        if number != N::FORMAT || usize::from(axes) != A {
             return Err(Error::FormatMismatch {
                 expected: BlobFormat::of::<N>(A),
                 found: BlobFormat {
-                    number: format,
+                    number,
                     axes: usize::from(axes),
                 },
             });
@@ -399,7 +402,9 @@ impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
 /// `include_bytes!`:
 ///
 /// ```
-/// use strak_trajectory::{compile, AlignedBlob, CompileOptions, Path, PathBlob, Sampler, Timing};
+/// use strak_trajectory::{
+///     compile, AlignedBlob, Along, CompileOptions, Path, PathBlob, Sampler, Timing,
+/// };
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -409,7 +414,8 @@ impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
 /// // On the host: compile and serialize (in firmware the bytes come from
 /// // `static BLOB: &AlignedBlob<[u8]> = &AlignedBlob(*include_bytes!("path.bin"));`).
 /// let curve = Bezier::new([[0.0_f64, 1.0], [2.0, 3.0], [4.0, 1.0]])?;
-/// let path: Path<f32, 2, 8> = compile(&curve, &Ramp, 1_000.0, &CompileOptions::new())?;
+/// let trajectory = Along::new(&curve, &Ramp);
+/// let path: Path<f32, 2, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
 /// let mut bytes = AlignedBlob([0_u8; 1024]);
 /// let len = path.to_bytes(&mut bytes.0)?;
 ///
@@ -490,7 +496,8 @@ mod tests {
     use super::*;
     use crate::compile::testing::{Smoothstep, helix};
     use crate::compile::{CompileOptions, compile};
-    use crate::number::Q40;
+    use crate::num::Q40;
+    use crate::plan::Along;
     use std::string::ToString;
     use std::vec;
     use strak_curves::I32F32;
@@ -498,8 +505,7 @@ mod tests {
     fn sample_path<N: Number>() -> Path<N, 3, 64> {
         let curve = helix(2.0, 1.5, 3.0);
         compile(
-            &curve,
-            &Smoothstep::new(0.3),
+            &Along::new(&curve, &Smoothstep::new(0.3)),
             5_000.0,
             &CompileOptions::new().with_tolerance(1e-4),
         )
@@ -642,6 +648,15 @@ mod tests {
                 found: q40
             })
         );
+        for id in [0_u8, 4, 255] {
+            let mut u = b.clone();
+            u[6] = id;
+            reseal(&mut u);
+            assert_eq!(
+                Path::<Q40, 3, 64>::from_bytes(&u),
+                Err(Error::UnknownNumberFormat { id })
+            );
+        }
         let path = sample_path::<Q40>();
         let m = path.pieces().len();
         assert_eq!(
@@ -672,7 +687,9 @@ mod tests {
 
     /// Plays `view` to the end, with a feed change, a hold and a resume on the way (so the
     /// interpolation mode's piece loads run too), collecting every sample.
-    fn play<N: Number>(view: PathView<'_, N, 3>) -> std::vec::Vec<(crate::Sample<N::Out, 3>, f64)> {
+    fn play<N: crate::Kernel>(
+        view: PathView<'_, N, 3>,
+    ) -> std::vec::Vec<(crate::Sample<N::Out, 3>, f64)> {
         let mut sampler = crate::Sampler::new(view);
         let mut out = std::vec::Vec::new();
         for k in 0..5 * u64::from(view.ticks()) {
@@ -692,7 +709,7 @@ mod tests {
         out
     }
 
-    fn blob_plays_as_the_path<N: Number>() {
+    fn blob_plays_as_the_path<N: crate::Kernel>() {
         let path = sample_path::<N>();
         // room for the blob at every offset 0..8 from an 8-byte aligned start
         let len = path.blob_len();

@@ -6,7 +6,7 @@ use strak_curves::Scalar;
 use super::sample::Sample;
 use super::state::{AxisState, Newton};
 use crate::error::Error;
-use crate::number::Number;
+use crate::num::Number;
 
 /// Where a path ends: the exact end point (as the curve computes it, converted once) and
 /// the end velocity and acceleration, in the sample type.
@@ -198,7 +198,7 @@ fn positive(x: f64) -> bool {
 /// these accessors are the same on all three.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Timing};
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -206,7 +206,8 @@ fn positive(x: f64) -> bool {
 ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
 /// }
 /// let line = Bezier::new([[0.0_f64], [2.0]])?;
-/// let path: Path<f64, 1, 4> = compile(&line, &Ramp, 1_000.0, &CompileOptions::new())?;
+/// let trajectory = Along::new(&line, &Ramp);
+/// let path: Path<f64, 1, 4> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
 /// let header = &*path; // the `PathHeader` of the path
 /// assert_eq!((header.ticks(), header.rate()), (100, 1_000.0));
 /// assert_eq!(path.end_position(), [2.0]);
@@ -554,7 +555,7 @@ impl<N: Number> Validator<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
     #[test]
     fn q40_error_bound_formula() {
         // n = 256, dyadic values (exact in Q40): ½ulp·(1 + n + C(n,2) + C(n,3)) + output rounding

@@ -9,7 +9,7 @@ use super::sample::Sample;
 use super::state::Piece;
 use super::view::PathView;
 use crate::error::Error;
-use crate::number::Number;
+use crate::num::Number;
 
 /// A compiled path with `A` axes and room for `P` pieces, played back in the number format
 /// `N` (see [`Number`]): what [`compile`](crate::compile) produces, [`Sampler`](crate::Sampler)
@@ -34,7 +34,7 @@ use crate::number::Number;
 /// [`Number::LIMIT`]; [`Error::OutOfRange`] otherwise.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Q40, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Q40, Timing};
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -42,7 +42,8 @@ use crate::number::Number;
 ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.5) * 2.0, 2.0) }
 /// }
 /// let curve = Bezier::new([[0.0_f64, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])?;
-/// let path: Path<Q40, 2, 16> = compile(&curve, &Ramp, 1_000.0, &CompileOptions::default())?;
+/// let trajectory = Along::new(&curve, &Ramp);
+/// let path: Path<Q40, 2, 16> = compile(&trajectory, 1_000.0, &CompileOptions::default())?;
 /// assert_eq!(path.ticks(), 500);
 /// assert_eq!(path.end_position()[0].to_num::<f64>(), 4.0);
 /// let mid = path.eval(250.0); // the compiled polynomial, in f64

@@ -1,6 +1,6 @@
 //! The forward-difference state of an axis, and a piece of a path.
 
-use crate::number::Number;
+use crate::num::Number;
 
 /// The forward-difference state of one axis at one tick. Position differences are per tick,
 /// velocity in units/s, acceleration in units/s².
@@ -196,7 +196,7 @@ impl<N: Number> AxisState<N> {
 /// start state of each axis.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Timing};
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -204,7 +204,8 @@ impl<N: Number> AxisState<N> {
 ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
 /// }
 /// let line = Bezier::new([[0.0_f64], [2.0]])?;
-/// let path: Path<f64, 1, 4> = compile(&line, &Ramp, 1_000.0, &CompileOptions::default())?;
+/// let trajectory = Along::new(&line, &Ramp);
+/// let path: Path<f64, 1, 4> = compile(&trajectory, 1_000.0, &CompileOptions::default())?;
 /// let piece = &path.pieces()[0];
 /// assert_eq!((piece.start(), piece.ticks()), (0, 100)); // one piece, 100 ticks
 /// assert_eq!(piece.axes()[0].position, 0.0);
@@ -239,7 +240,7 @@ impl<N: Number, const A: usize> Piece<N, A> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
 
     fn cubic_state(a: f64, b: f64, c: f64, d: f64, t: f64) -> AxisState<f64> {
         AxisState {

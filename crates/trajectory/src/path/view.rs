@@ -7,7 +7,7 @@ use core::ops::Deref;
 use super::header::PathHeader;
 use super::sample::Sample;
 use super::state::{AxisState, Newton, Piece};
-use crate::number::Number;
+use crate::num::Number;
 
 /// A piece's state for a piece switch: decoded states, or a blob record's value bytes.
 #[derive(Clone, Copy, Debug)]
@@ -33,7 +33,7 @@ pub(crate) const fn piece_record_len<N: Number>(axes: usize) -> usize {
 /// It dereferences to the [`PathHeader`] (ticks, rate, end, bounds).
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, PathBlob, PathView, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, PathBlob, PathView, Timing};
 /// use strak_curves::Bezier;
 /// struct Ramp;
 /// impl Timing for Ramp {
@@ -41,7 +41,8 @@ pub(crate) const fn piece_record_len<N: Number>(axes: usize) -> usize {
 ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.1) * 10.0, 10.0) }
 /// }
 /// let curve = Bezier::new([[0.0_f64, 1.0], [2.0, 3.0], [4.0, 1.0]])?;
-/// let path: Path<f32, 2, 8> = compile(&curve, &Ramp, 1_000.0, &CompileOptions::new())?;
+/// let trajectory = Along::new(&curve, &Ramp);
+/// let path: Path<f32, 2, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
 /// let mut bytes = [0_u8; 1024];
 /// let len = path.to_bytes(&mut bytes)?;
 /// let blob = PathBlob::<f32, 2>::from_bytes(&bytes[..len])?;

@@ -30,7 +30,7 @@ use strak_curves::basis::MonomialCurve;
 use strak_curves::{BSpline, ParamCurve, Point, Scalar};
 use strak_qemu::counter::{Calibration, Counter};
 use strak_qemu::{exit_failure, exit_success};
-use strak_trajectory::{CompileOptions, Number, Path, Sample, Sampler, Timing, compile};
+use strak_trajectory::{Along, CompileOptions, Kernel, Path, Sample, Sampler, Timing, compile};
 
 /// Control rate of the measured paths.
 const RATE_HZ: f64 = 10_000.0;
@@ -78,13 +78,13 @@ where
 
 /// One tick: one `next()` call, as a tick handler makes it.
 #[inline(never)]
-fn tick<N: Number, const A: usize>(s: &mut Sampler<'_, N, A>) -> Sample<N::Out, A> {
+fn tick<N: Kernel, const A: usize>(s: &mut Sampler<'_, N, A>) -> Sample<N::Out, A> {
     s.next()
 }
 
 /// One tick, positions only.
 #[inline(never)]
-fn tick_position<N: Number, const A: usize>(s: &mut Sampler<'_, N, A>) -> [N::Out; A] {
+fn tick_position<N: Kernel, const A: usize>(s: &mut Sampler<'_, N, A>) -> [N::Out; A] {
     s.next_position()
 }
 
@@ -117,7 +117,7 @@ fn report(name: &str, counts: &mut [u32]) {
 
 /// Plays the `A`-axis path in `N` to its end, counting every call of `f`.
 #[inline(never)]
-fn playback<N: Number, const A: usize, R>(
+fn playback<N: Kernel, const A: usize, R>(
     name: &str,
     counter: &Counter,
     cal: &Calibration,
@@ -127,14 +127,17 @@ fn playback<N: Number, const A: usize, R>(
         defmt::error!("{=str}: the B-spline does not build", name);
         exit_failure()
     };
-    let path: Path<N, A, PIECES> =
-        match compile(&curve, &Quintic(DURATION), RATE_HZ, &CompileOptions::new()) {
-            Ok(p) => p,
-            Err(e) => {
-                defmt::error!("{=str}: compiling failed: {}", name, e);
-                exit_failure()
-            }
-        };
+    let path: Path<N, A, PIECES> = match compile(
+        &Along::new(&curve, &Quintic(DURATION)),
+        RATE_HZ,
+        &CompileOptions::new(),
+    ) {
+        Ok(p) => p,
+        Err(e) => {
+            defmt::error!("{=str}: compiling failed: {}", name, e);
+            exit_failure()
+        }
+    };
     if path.pieces().len() < 4 {
         defmt::error!("{=str}: only {=usize} pieces", name, path.pieces().len());
         exit_failure()

@@ -38,7 +38,7 @@ use strak_qemu::planning::{self, Curve};
 use strak_qemu::play::{OutBits, Played, play_blob};
 use strak_qemu::stack;
 use strak_qemu::{FLASH_JOB, PIECES, exit_failure, exit_success};
-use strak_trajectory::{Number, Path, PathBlob, PathTiming, Q40, Sampler};
+use strak_trajectory::{Kernel, Number, Path, PathBlob, PathTiming, Q40, Sampler};
 
 /// Counts of the report lines.
 #[derive(Default)]
@@ -113,7 +113,7 @@ fn sizes() {
 /// Validates and plays the bundled blob of [`FLASH_JOB`] in `N` from flash, logging its stack
 /// and its stream's hash.
 #[inline(never)]
-fn blob<N: Number>(name: &str, format: Format, lines: &mut Lines)
+fn blob<N: Kernel>(name: &str, format: Format, lines: &mut Lines)
 where
     N::Out: OutBits,
 {

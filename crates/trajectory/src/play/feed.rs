@@ -18,7 +18,7 @@
 //! the resolution of a float `φ` near 1; in `f32` slow ramps are quantized by it).
 //! Constant work: 4 multiplications by an integer per tick.
 
-use crate::number::Number;
+use crate::num::Number;
 use crate::path::FeedRampLimits;
 
 /// The state of the feed factor ramp.
@@ -101,7 +101,7 @@ impl<N: Number> FeedRamp<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::number::Q40;
+    use crate::num::Q40;
 
     /// The limits as the path stores them: ω_max a whole multiple of α.
     fn limits<N: Number>(omega_max: f64, alpha: f64) -> FeedRampLimits<N> {

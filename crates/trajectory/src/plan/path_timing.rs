@@ -2,45 +2,20 @@
 
 use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, ScalarOf};
 
-use super::greater;
+use super::limits::Limits;
 use super::motion::{MotionProfile, Phase};
 use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion;
-use crate::compile::{CompileOptions, compile};
+use super::timing::{MotionLimits, Timing};
+use super::trajectory::Trajectory;
+use super::{greater, norm64, to_param};
 use crate::error::Error;
-use crate::limits::Limits;
-use crate::number::Number;
-use crate::path::Path;
-use crate::timing::{MotionLimits, Timing};
 
 /// Chords summed for the length estimate that scales the arc-length accuracy.
 const ESTIMATE_CHORDS: usize = 64;
 
 /// Arc-length accuracy relative to the length estimate.
 const RELATIVE_ACCURACY: f64 = 1e-10;
-
-/// The `f64` parameter `u` as the curve's scalar: clamped to the domain, rounded to nearest
-/// (the domain start when it cannot be represented).
-pub(super) fn to_param<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
-    let (lo, hi) = curve.domain();
-    if !greater(u, lo.to_f64()) {
-        return lo;
-    }
-    if u >= hi.to_f64() {
-        return hi;
-    }
-    ScalarOf::<C>::from_f64(u).unwrap_or(lo).clamp_to(lo, hi)
-}
-
-/// `|p|` in `f64`.
-pub(super) fn norm64<P: Point>(p: &P) -> f64 {
-    let mut acc = 0.0;
-    for i in 0..P::DIM {
-        let x = p.coord(i).to_f64();
-        acc += x * x;
-    }
-    libm::sqrt(acc)
-}
 
 /// A one-dimensional stand-in for a curve whose first derivative is the curve's speed
 /// `|c'(u)|`, in `f64`: the arc-length table of it is the curve's arc-length table, computed
@@ -190,10 +165,13 @@ pub struct PathTiming<'a, C, const N: usize, const Z: usize> {
 
 /// What a plan reserved for feed changes: the limits of a feed ramp and the share.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct FeedReserve {
-    acceleration: f64,
-    jerk: f64,
-    share: f64,
+pub(crate) struct FeedReserve {
+    /// The limit of a feed ramp's acceleration.
+    pub(crate) acceleration: f64,
+    /// The limit of a feed ramp's jerk.
+    pub(crate) jerk: f64,
+    /// The share of the limits the plan left free.
+    pub(crate) share: f64,
 }
 
 /// Cloning shares the curve reference (the curve need not be `Clone`).
@@ -405,58 +383,9 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         self.rate
     }
 
-    /// `options` completed with what the plan reserved for feed changes: for a motion from
-    /// [`plan`](Self::plan) or [`scurve`](Self::scurve), the machine's limits of a feed ramp
-    /// (`min(a, aᵢ)` and `j` of its [`Limits`]) and the feed share of its [`PlanOptions`], so
-    /// that feed override, hold and resume ramp within the share the plan left free (see
-    /// [`CompileOptions`]). The laws without [`Limits`] return `options` unchanged.
-    ///
-    /// ```
-    /// use strak_curves::Bezier;
-    /// use strak_trajectory::{CompileOptions, Limits, PathTiming};
-    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
-    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?
-    ///     .with_axis_acceleration([800.0, f64::INFINITY])?;
-    /// let timing = PathTiming::<_, 16, 4>::scurve(&line, &limits)?;
-    /// let o = timing.compile_options(&CompileOptions::new().with_tolerance(1e-3));
-    /// assert_eq!(o.limits(), Some((800.0, 20_000.0)));
-    /// assert_eq!(o.feed_share(), 0.25);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn compile_options(&self, options: &CompileOptions) -> CompileOptions {
-        match self.feed {
-            Some(f) => options
-                .with_limits(f.acceleration, f.jerk)
-                .with_feed_share(f.share),
-            None => *options,
-        }
-    }
-
-    /// Compiles the motion into a path at the plan's [`rate`](Self::rate), with `options`
-    /// completed by [`compile_options`](Self::compile_options): the one call that keeps the
-    /// feed reserve of the plan and the rate it was planned for. See
-    /// [`compile`](crate::compile()).
-    ///
-    /// # Errors
-    /// As [`compile`](crate::compile()).
-    ///
-    /// ```
-    /// use strak_curves::Bezier;
-    /// use strak_trajectory::{CompileOptions, Limits, Path, PathTiming, PlanOptions};
-    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
-    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?;
-    /// let plan = PlanOptions::new().with_rate(2_000.0);
-    /// let timing = PathTiming::<_, 16, 4>::plan(&line, &limits, &plan)?;
-    /// let path: Path<f32, 2, 64> = timing.compile(&CompileOptions::new())?;
-    /// assert_eq!(path.rate(), 2_000.0);
-    /// assert_eq!(path.feed_share(), 0.25);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn compile<Num: Number, const A: usize, const P: usize>(
-        &self,
-        options: &CompileOptions,
-    ) -> Result<Path<Num, A, P>, Error> {
-        compile(self.curve, self, self.rate, &self.compile_options(options))
+    /// What the plan reserved for feed changes (none for the laws without [`Limits`]).
+    pub(crate) fn feed_reserve(&self) -> Option<FeedReserve> {
+        self.feed
     }
 
     /// The curve.
@@ -531,6 +460,20 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
             }
             prev = Some(phase);
         }
+    }
+}
+
+/// A planned law holds its curve: it is the whole trajectory.
+impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Trajectory for PathTiming<'_, C, N, Z> {
+    type Curve = C;
+    type Law = Self;
+
+    fn curve(&self) -> &C {
+        self.curve
+    }
+
+    fn law(&self) -> &Self {
+        self
     }
 }
 

@@ -244,7 +244,7 @@ impl<const Z: usize> MotionProfile<Z> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::profile::testcurves::textbook_scurve_duration as textbook_duration;
+    use crate::plan::testcurves::textbook_scurve_duration as textbook_duration;
 
     fn check_regime(l: f64, v: f64, a: f64, j: f64, v_reached: bool, a_reached: bool) {
         let m = MotionProfile::<1>::scurve(l, v, a, j).unwrap();

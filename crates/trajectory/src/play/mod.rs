@@ -6,10 +6,10 @@ pub(crate) mod kernel;
 
 use strak_curves::Scalar;
 
-use crate::number::Number;
 use crate::path::view::Source;
 use crate::path::{AxisState, Newton, PathView, Sample};
 use feed::FeedRamp;
+pub use kernel::Kernel;
 
 /// What the sampler is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -83,7 +83,7 @@ pub enum SamplerState {
 /// worst-case budget of an interrupt.
 ///
 /// ```
-/// use strak_trajectory::{compile, CompileOptions, Path, Q40, Sampler, Timing};
+/// use strak_trajectory::{compile, Along, CompileOptions, Path, Q40, Sampler, Timing};
 /// use strak_curves::Bezier;
 ///
 /// /// Rest to rest in 50 ms: u = 3τ² − 2τ³.
@@ -98,7 +98,8 @@ pub enum SamplerState {
 ///
 /// // At start-up (or on the host, then serialized): compile the move.
 /// let curve = Bezier::new([[0.0_f64, 0.0], [5.0, 0.0], [5.0, 5.0]])?;
-/// let path: Path<Q40, 2, 32> = compile(&curve, &Smooth, 20_000.0, &CompileOptions::new())?;
+/// let trajectory = Along::new(&curve, &Smooth);
+/// let path: Path<Q40, 2, 32> = compile(&trajectory, 20_000.0, &CompileOptions::new())?;
 ///
 /// // The timer interrupt: one call per tick, constant time, no allocation, no panic.
 /// let mut sampler = Sampler::new(&path);
@@ -114,7 +115,7 @@ pub enum SamplerState {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Sampler<'a, N: Number, const A: usize> {
+pub struct Sampler<'a, N: Kernel, const A: usize> {
     path: PathView<'a, N, A>,
     /// Current piece and tick within it; the state is at `local + shift` of that piece.
     piece: usize,
@@ -152,7 +153,7 @@ pub struct Sampler<'a, N: Number, const A: usize> {
     synced: u32,
 }
 
-impl<'a, N: Number, const A: usize> Sampler<'a, N, A> {
+impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// A sampler at tick 0 of `path` (a `&Path`, a [`PathView`], or a `&PathBlob`), at full
     /// feed.
     pub fn new(path: impl Into<PathView<'a, N, A>>) -> Self {
@@ -439,7 +440,7 @@ impl<'a, N: Number, const A: usize> Sampler<'a, N, A> {
     /// [`next`](Self::next).
     ///
     /// ```
-    /// use strak_trajectory::{compile, CompileOptions, Path, Sampler, Timing};
+    /// use strak_trajectory::{compile, Along, CompileOptions, Path, Sampler, Timing};
     /// use strak_curves::Bezier;
     ///
     /// struct Linear;
@@ -448,7 +449,8 @@ impl<'a, N: Number, const A: usize> Sampler<'a, N, A> {
     ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.01) / 0.01, 100.0) }
     /// }
     /// let line = Bezier::new([[0.0_f64], [2.0]])?;
-    /// let path: Path<f32, 1, 8> = compile(&line, &Linear, 1_000.0, &CompileOptions::new())?;
+    /// let trajectory = Along::new(&line, &Linear);
+    /// let path: Path<f32, 1, 8> = compile(&trajectory, 1_000.0, &CompileOptions::new())?;
     /// let (mut a, mut b) = (Sampler::new(&path), Sampler::new(&path));
     /// while !a.is_finished() {
     ///     assert_eq!(a.next_position(), b.next().position);
@@ -611,8 +613,9 @@ mod tests {
     use super::*;
     use crate::compile::testing::{Quintic, Smoothstep, Wave, big_stack, exact, helix};
     use crate::compile::{CompileOptions, compile};
-    use crate::number::Q40;
+    use crate::num::Q40;
     use crate::path::Path;
+    use crate::plan::Along;
     use strak_curves::ParamCurveDeriv;
 
     fn f<T: Scalar, const A: usize>(x: [T; A]) -> [f64; A] {
@@ -621,7 +624,7 @@ mod tests {
 
     /// 10⁶ ticks (10 s at 100 kHz) of a 1-axis wave under a rest-to-rest law: every sample
     /// against the exact composition.
-    fn million_ticks<N: Number>() {
+    fn million_ticks<N: Kernel>() {
         let curve = Wave {
             offset: 0.0,
             amp: 10.0,
@@ -630,8 +633,7 @@ mod tests {
         let timing = Smoothstep::new(10.0);
         let tol = 1e-6;
         let path: Path<N, 1, 16384> = compile(
-            &curve,
-            &timing,
+            &Along::new(&curve, &timing),
             100_000.0,
             &CompileOptions::new().with_tolerance(tol),
         )
@@ -695,10 +697,9 @@ mod tests {
         big_stack(million_ticks::<Q40>);
     }
 
-    fn helix_path<N: Number>() -> Path<N, 3, 512> {
+    fn helix_path<N: Kernel>() -> Path<N, 3, 512> {
         compile(
-            &helix(2.0, 2.0, 1.0),
-            &Quintic(0.5),
+            &Along::new(&helix(2.0, 2.0, 1.0), &Quintic(0.5)),
             10_000.0,
             &CompileOptions::new().with_tolerance(1e-6),
         )
@@ -707,7 +708,7 @@ mod tests {
 
     /// `next_position` against `next().position`, bit for bit, over a whole path with a feed
     /// override, a hold and a resume, alternating the two calls on a third sampler.
-    fn position_only<N: Number>() {
+    fn position_only<N: Kernel>() {
         let path = helix_path::<N>();
         let mut full = Sampler::new(&path);
         let mut pos = Sampler::new(&path);
@@ -746,7 +747,7 @@ mod tests {
     /// After position-only ticks the velocity and acceleration chains catch up: mixing
     /// `next_position` and `next` gives `next`'s velocities and accelerations, bit for bit in
     /// `Q40` (integer closed form), within a few roundings in floats.
-    fn catch_up_after_positions<N: Number>(rel: f64) {
+    fn catch_up_after_positions<N: Kernel>(rel: f64) {
         let path = helix_path::<N>();
         let mut full = Sampler::new(&path);
         let mut mixed = Sampler::new(&path);
@@ -792,7 +793,7 @@ mod tests {
         big_stack(position_only::<Q40>);
     }
 
-    fn exact_loads<N: Number>() {
+    fn exact_loads<N: Kernel>() {
         let path = helix_path::<N>();
         assert!(path.pieces().len() > 20);
         let mut sampler = Sampler::new(&path);
@@ -817,7 +818,7 @@ mod tests {
         big_stack(exact_loads::<Q40>);
     }
 
-    fn end_is_exact<N: Number>() {
+    fn end_is_exact<N: Kernel>() {
         let curve = helix(2.0, 2.0, 1.0);
         let path = helix_path::<N>();
         let want = curve.deriv(1.0, 0).map(|x| N::out_from_f64(x).unwrap());
@@ -854,7 +855,7 @@ mod tests {
     /// checks that every sample lies on the compiled path, never jumps and stays within the
     /// acceleration limit. Returns the number of samples and the samples' tick count at the
     /// first standstill (feed 0), if any.
-    fn run_checked<N: Number>(
+    fn run_checked<N: Kernel>(
         path: &Path<N, 3, 512>,
         mut control: impl FnMut(u64, &mut Sampler<'_, N, 3>),
     ) -> (u64, Sampler<'_, N, 3>) {
@@ -913,7 +914,7 @@ mod tests {
         (count, sampler)
     }
 
-    fn override_run<N: Number>() {
+    fn override_run<N: Kernel>() {
         let path = helix_path::<N>();
         let (count, sampler) = run_checked(&path, |k, s| match k {
             500 => s.set_feed(0.5),
@@ -941,7 +942,7 @@ mod tests {
         big_stack(override_run::<Q40>);
     }
 
-    fn back_to_full_feed<N: Number>() {
+    fn back_to_full_feed<N: Kernel>() {
         let path = helix_path::<N>();
         let mut sampler = Sampler::new(&path);
         for _ in 0..300 {
@@ -984,7 +985,7 @@ mod tests {
         big_stack(back_to_full_feed::<Q40>);
     }
 
-    fn hold_and_resume<N: Number>() {
+    fn hold_and_resume<N: Kernel>() {
         let path = helix_path::<N>();
         let mut held_at = None;
         let mut standing = 0;
@@ -1018,7 +1019,7 @@ mod tests {
         big_stack(hold_and_resume::<Q40>);
     }
 
-    fn held_samples_do_not_move<N: Number>() {
+    fn held_samples_do_not_move<N: Kernel>() {
         let path = helix_path::<N>();
         let mut sampler = Sampler::new(&path);
         for _ in 0..1000 {
@@ -1050,7 +1051,7 @@ mod tests {
         big_stack(held_samples_do_not_move::<Q40>);
     }
 
-    fn abort_stops<N: Number>() {
+    fn abort_stops<N: Kernel>() {
         let path = helix_path::<N>();
         let (count, mut sampler) = run_checked(&path, |k, s| {
             if k == 1200 {
@@ -1127,12 +1128,11 @@ mod tests {
 
     /// A line at constant speed (no planned acceleration): a feed change may use the whole
     /// acceleration and jerk limits, and reaches them without exceeding them.
-    fn ramp_uses_and_respects_the_limits<N: Number>() {
+    fn ramp_uses_and_respects_the_limits<N: Kernel>() {
         let line = strak_curves::Bezier::new([[0.0_f64, 0.0], [30.0, 40.0]]).unwrap();
         let (a_max, j_max) = (1000.0, 1.0e5);
         let path: Path<N, 2, 64> = compile(
-            &line,
-            &crate::compile::testing::Linear(0.5),
+            &Along::new(&line, &crate::compile::testing::Linear(0.5)),
             10_000.0,
             &CompileOptions::new().with_limits(a_max, j_max),
         )

@@ -14,16 +14,42 @@
 #![allow(unsafe_code)]
 
 use core::arch::asm;
-use core::mem::{MaybeUninit, size_of};
+use core::mem::{MaybeUninit, align_of, offset_of, size_of};
 
 use strak_curves::I32F32;
 
 use super::{UNROLLED, portable};
-use crate::number::Q40;
+use crate::num::{Number, Q40};
+use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
 
 /// Bytes from an axis's state to its velocity (after `p`, `Δ¹`, `Δ²`, `Δ³`).
 const POSITION_CHAIN: usize = 4 * size_of::<Q40>();
+
+// The layout the assembly below hard-codes, checked at compile time: an axis is 18 words,
+// the position chain (`p`, `Δ¹`, `Δ²`, `Δ³`) in the first 32 bytes (one `ldm` of eight
+// registers), the velocity chain in the next 24 (`ldm` of six from `POSITION_CHAIN`), the
+// acceleration and its difference 8 and 16 bytes after the velocity's second difference
+// (`ldrd … #8`, `#16`), 72 bytes per axis in all (the `#24` step, the piece switch's 8 + 10
+// words); `I32F32` positions are stored 8 bytes apart; a blob's piece record holds after
+// its 4-byte tick count the same 72 bytes per axis, little-endian.
+const _: () = {
+    type S = AxisState<Q40>;
+    assert!(size_of::<Q40>() == 8 && size_of::<S>() == 72 && align_of::<S>() <= 8);
+    assert!(offset_of!(S, position) == 0);
+    assert!(offset_of!(S, delta1) == 8);
+    assert!(offset_of!(S, delta2) == 16);
+    assert!(offset_of!(S, delta3) == 24);
+    assert!(offset_of!(S, velocity) == POSITION_CHAIN && POSITION_CHAIN == 32);
+    assert!(offset_of!(S, velocity_delta1) == 40);
+    assert!(offset_of!(S, velocity_delta2) == 48);
+    assert!(offset_of!(S, acceleration) == 56);
+    assert!(offset_of!(S, acceleration_delta) == 64);
+    assert!(9 * <Q40 as Number>::BYTES == size_of::<S>());
+    assert!(piece_record_len::<Q40>(3) == 4 + 3 * size_of::<S>());
+    assert!(cfg!(target_endian = "little"));
+    assert!(size_of::<I32F32>() == 8);
+};
 
 /// `I32F32` from its two words (`lo`, `hi`).
 #[inline(always)]

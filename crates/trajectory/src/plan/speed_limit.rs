@@ -45,18 +45,17 @@
 //!
 //! The zone's jerk is further limited to `a_z·f/16` at the control rate `f`, so that a jerk
 //! phase to `a_z` lasts at least 16 ticks ([`PlanOptions::MIN_JERK_TICKS`]). Zones also end
-//! at the joins and cusps where the speed is capped (`profile/joins.rs`).
+//! at the joins and cusps where the speed is capped (`plan/joins.rs`).
 
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
 
-use super::greater;
 use super::joins::{JoinRule, locate_reversal, reverses};
+use super::limits::Limits;
 use super::motion::ProfileZone;
 use super::options::{PlanOptions, ProfileShape};
-use super::path_timing::to_param;
+use super::{greater, to_param};
 use crate::error::Error;
-use crate::limits::Limits;
 
 /// The limits sampled at one parameter (or the worst over an interval).
 #[derive(Clone, Copy, Debug)]
@@ -123,6 +122,23 @@ fn local<C, const A: usize>(
 where
     C: ParamCurveDeriv,
 {
+    let Some(mut out) = loads::<C, A>(curve, u, limits.velocity())? else {
+        return Ok(None);
+    };
+    out.v = speed_limit(&out, limits, jerk, share);
+    Ok(Some(out))
+}
+
+/// The loads of the path at the parameter `u` (curvature `κ`, the turning term `|x_sss|`,
+/// per axis `|T_i|` and `|κN_i|`, the unit tangent), with the speed limit `v_max`; `None`
+/// where `c'(u) = 0`. The Frenet–Serret formulas in the curve's parameter: with
+/// `σ = |c'|`, `T = c'/σ`, `κN = (c'' − σ'T)/σ²` and the third derivative by arc length
+/// `x_sss = (c''' − σ''T − 3σσ'κN)/σ³` (do Carmo, *Differential Geometry of Curves and
+/// Surfaces*, §1-5).
+fn loads<C, const A: usize>(curve: &C, u: f64, v_max: f64) -> Result<Option<Local<A>>, Error>
+where
+    C: ParamCurveDeriv,
+{
     let us = to_param(curve, u);
     let (d1, d2, d3) = (curve.deriv(us, 1), curve.deriv(us, 2), curve.deriv(us, 3));
     let dim = <C::Point as Point>::DIM;
@@ -151,7 +167,7 @@ where
     let sigma = libm::sqrt(s11);
     let sigma1 = s12 / sigma;
     let sigma2 = (s22 + s13 - sigma1 * sigma1) / sigma;
-    let mut out = Local::<A>::neutral(limits.velocity());
+    let mut out = Local::<A>::neutral(v_max);
     let (mut kappa2, mut turn2) = (0.0, 0.0);
     for i in 0..dim {
         let (x1, x2, x3) = coords(i);
@@ -187,6 +203,14 @@ where
     if out.turn <= noise * (2.0 * n3 / (s11 * sigma) + 8.0 * s22 / (s11 * s11)) {
         out.turn = 0.0;
     }
+    Ok(Some(out))
+}
+
+/// The speed limit of the loads `out`: the path velocity limit, the centripetal
+/// acceleration `v²κ` and the turning jerk `v³|x_sss|` within the share `share` of the
+/// acceleration and jerk limits, and per axis the velocity `v·|T_i|` and the centripetal
+/// acceleration `v²|κN_i|` within the axis limits.
+fn speed_limit<const A: usize>(out: &Local<A>, limits: &Limits<A>, jerk: f64, share: f64) -> f64 {
     let mut v = limits.velocity();
     if out.kappa > 0.0 {
         v = v.min(libm::sqrt(share * limits.acceleration() / out.kappa));
@@ -203,8 +227,7 @@ where
             v = v.min(libm::sqrt(share * ai / n));
         }
     }
-    out.v = v;
-    Ok(Some(out))
+    v
 }
 
 /// A zone being collected.
@@ -466,7 +489,7 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usiz
 /// interval at its ends and midpoint, taking the worst), groups consecutive intervals into
 /// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
 /// smallest, and ends a zone at every join and cusp whose speed cap binds (see
-/// [`PlanOptions`] and `profile/joins.rs`). Returns the zones (arc lengths from `table`,
+/// [`PlanOptions`] and `plan/joins.rs`). Returns the zones (arc lengths from `table`,
 /// limits and exit caps set, no phases).
 ///
 /// # Errors

@@ -16,10 +16,37 @@
 #![allow(unsafe_code)]
 
 use core::arch::asm;
-use core::mem::{MaybeUninit, offset_of, size_of};
+use core::mem::{MaybeUninit, align_of, offset_of, size_of};
 
 use super::{UNROLLED, portable};
+use crate::num::Number;
+use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
+
+// The layout the assembly below hard-codes, checked at compile time: `vldmia`/`vstmia` of
+// `s0`–`s8` move the nine `f32` of an axis in the order of `AxisState`'s fields (36 bytes,
+// `s0` = position … `s8` = acceleration difference), the position-only kernel moves the
+// first four, the state pointer steps by 36 bytes per axis, and a blob's piece record holds
+// after its 4-byte tick count the same 36 bytes per axis, little-endian.
+const _: () = {
+    type S = AxisState<f32>;
+    assert!(size_of::<S>() == 36 && align_of::<S>() == 4);
+    assert!(offset_of!(S, position) == 0);
+    assert!(offset_of!(S, delta1) == 4);
+    assert!(offset_of!(S, delta2) == 8);
+    assert!(offset_of!(S, delta3) == 12);
+    assert!(offset_of!(S, velocity) == 16);
+    assert!(offset_of!(S, velocity_delta1) == 20);
+    assert!(offset_of!(S, velocity_delta2) == 24);
+    assert!(offset_of!(S, acceleration) == 28);
+    assert!(offset_of!(S, acceleration_delta) == 32);
+    assert!(9 * <f32 as Number>::BYTES == size_of::<S>());
+    assert!(piece_record_len::<f32>(3) == 4 + 3 * size_of::<S>());
+    assert!(cfg!(target_endian = "little"));
+    // The sample's arrays hold `f32` (4 bytes apart: `at`).
+    assert!(size_of::<[f32; UNROLLED]>() == UNROLLED * 4);
+    assert!(offset_of!(Sample<f32, 3>, position) % 4 == 0);
+};
 
 /// Byte offset of axis `K`'s value in one of the sample's arrays starting at `array`.
 const fn at<const K: usize>(array: usize) -> usize {

@@ -2,8 +2,8 @@
 
 use strak_curves::{ParamCurve, Scalar};
 
+use super::timing::Timing;
 use crate::error::Error;
-use crate::timing::Timing;
 
 /// The curve parameter at a constant rate: `u(t) = u_start + rate·t` over
 /// `t ∈ [0, duration]`, `du/dt = rate`, with `rate = (u_end − u_start)/duration`.

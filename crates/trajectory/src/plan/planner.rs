@@ -5,12 +5,12 @@
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv};
 
+use super::limits::Limits;
 use super::motion::{MotionProfile, ProfileZone};
 use super::options::PlanOptions;
 use super::scurve::{fill_zone, reach};
 use super::speed_limit::zones;
 use crate::error::Error;
-use crate::limits::Limits;
 
 /// The forward/backward pass over the zone boundaries: sets `v_start`, `v_end` of every
 /// zone so that each zone can go from one to the other within its length and limits, and
@@ -73,10 +73,10 @@ mod tests {
     use std::vec::Vec as StdVec;
 
     use super::*;
-    use crate::profile::options::{MAX_SAMPLES, ProfileShape};
-    use crate::profile::path_timing::to_param;
-    use crate::profile::scurve::change_distance;
-    use crate::profile::testcurves::{LineArcLine, textbook_scurve_duration};
+    use crate::plan::options::{MAX_SAMPLES, ProfileShape};
+    use crate::plan::scurve::change_distance;
+    use crate::plan::testcurves::{LineArcLine, textbook_scurve_duration};
+    use crate::plan::to_param;
     use crate::{PathTiming, Timing};
     use strak_curves::{Bezier, Nurbs, ParamCurve, Point, Scalar};
 

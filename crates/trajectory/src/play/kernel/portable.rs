@@ -2,7 +2,7 @@
 
 use strak_curves::Scalar;
 
-use crate::number::Number;
+use crate::num::Number;
 use crate::path::view::decode_states;
 use crate::path::{AxisState, Sample};
 

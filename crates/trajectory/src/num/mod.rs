@@ -6,8 +6,9 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use strak_curves::{I32F32, Scalar};
 
-use crate::path::{AxisState, Sample};
-use crate::sampler::kernel::portable;
+mod format;
+
+pub use format::{NumberFormat, ParseNumberFormatError};
 
 mod sealed {
     pub trait Sealed {}
@@ -173,14 +174,18 @@ pub trait Number:
 {
     /// The type samples are delivered in: `f32`, `f64` or [`I32F32`].
     type Out: Scalar;
-    /// The format id written into serialized paths (1 = `f32`, 2 = `f64`, 3 = `Q40`).
-    const FORMAT_ID: u8;
-    /// A short name: `"f32"`, `"f64"`, `"Q40"`.
-    const NAME: &'static str;
+    /// The format as a value ([`NumberFormat::F32`], [`NumberFormat::F64`],
+    /// [`NumberFormat::Q40`]).
+    const FORMAT: NumberFormat;
+    /// The format id written into serialized paths ([`NumberFormat::id`]: 1 = `f32`,
+    /// 2 = `f64`, 3 = `Q40`).
+    const FORMAT_ID: u8 = Self::FORMAT.id();
+    /// A short name ([`NumberFormat::name`]): `"f32"`, `"f64"`, `"Q40"`.
+    const NAME: &'static str = Self::FORMAT.name();
     /// `true` for [`Q40`].
     const IS_FIXED: bool;
-    /// Bytes per value in a serialized path.
-    const BYTES: usize;
+    /// Bytes per value in a serialized path ([`NumberFormat::bytes`]).
+    const BYTES: usize = Self::FORMAT.bytes();
     /// 0.
     const ZERO: Self;
     /// 1.
@@ -256,49 +261,6 @@ pub trait Number:
     /// (exact: `from_out(v).to_out() == v` for every `v` in range; the path checks it).
     #[doc(hidden)]
     fn from_out(v: Self::Out) -> Self;
-
-    /// Crate-internal (the trait is sealed): the sampler's tick kernel, the sample of
-    /// `state` at `tick`, then one forward-differencing step of every axis. Portable Rust
-    /// unless the format has a faster kernel on the target (`sampler::kernel`).
-    #[doc(hidden)]
-    #[inline(always)]
-    fn tick_sample<const A: usize>(
-        state: &mut [AxisState<Self>; A],
-        tick: u64,
-    ) -> Sample<Self::Out, A> {
-        portable::tick_sample(state, tick)
-    }
-
-    /// Crate-internal: [`Number::tick_sample`]'s positions and step.
-    #[doc(hidden)]
-    #[inline(always)]
-    fn tick_position<const A: usize>(state: &mut [AxisState<Self>; A]) -> [Self::Out; A] {
-        portable::tick_position(state)
-    }
-
-    /// Crate-internal: the sample of `state` at `tick`, then `state = *next` (a piece
-    /// switch).
-    #[doc(hidden)]
-    #[inline(always)]
-    fn switch_sample<const A: usize>(
-        state: &mut [AxisState<Self>; A],
-        next: &[AxisState<Self>; A],
-        tick: u64,
-    ) -> Sample<Self::Out, A> {
-        portable::switch_sample(state, next, tick)
-    }
-
-    /// Crate-internal: the sample of `state` at `tick`, then `state` read from the `9·A`
-    /// little-endian values of a blob's piece record (a piece switch from a blob).
-    #[doc(hidden)]
-    #[inline(always)]
-    fn switch_sample_bytes<const A: usize>(
-        state: &mut [AxisState<Self>; A],
-        next: &[u8],
-        tick: u64,
-    ) -> Sample<Self::Out, A> {
-        portable::switch_sample_bytes(state, next, tick)
-    }
 }
 
 fn write_bytes(src: &[u8], out: &mut [u8]) {
@@ -317,38 +279,8 @@ fn read_bytes<const B: usize>(bytes: &[u8]) -> [u8; B] {
 
 impl Number for f32 {
     type Out = f32;
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn tick_sample<const A: usize>(state: &mut [AxisState<f32>; A], tick: u64) -> Sample<f32, A> {
-        crate::sampler::kernel::vfp::tick_sample(state, tick)
-    }
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn tick_position<const A: usize>(state: &mut [AxisState<f32>; A]) -> [f32; A] {
-        crate::sampler::kernel::vfp::tick_position(state)
-    }
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn switch_sample<const A: usize>(
-        state: &mut [AxisState<f32>; A],
-        next: &[AxisState<f32>; A],
-        tick: u64,
-    ) -> Sample<f32, A> {
-        crate::sampler::kernel::vfp::switch_sample(state, next, tick)
-    }
-    #[cfg(strak_vfp)]
-    #[inline(always)]
-    fn switch_sample_bytes<const A: usize>(
-        state: &mut [AxisState<f32>; A],
-        next: &[u8],
-        tick: u64,
-    ) -> Sample<f32, A> {
-        crate::sampler::kernel::vfp::switch_sample_bytes(state, next, tick)
-    }
-    const FORMAT_ID: u8 = 1;
-    const NAME: &'static str = "f32";
+    const FORMAT: NumberFormat = NumberFormat::F32;
     const IS_FIXED: bool = false;
-    const BYTES: usize = 4;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
@@ -406,10 +338,8 @@ impl Number for f32 {
 
 impl Number for f64 {
     type Out = f64;
-    const FORMAT_ID: u8 = 2;
-    const NAME: &'static str = "f64";
+    const FORMAT: NumberFormat = NumberFormat::F64;
     const IS_FIXED: bool = false;
-    const BYTES: usize = 8;
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const HALF: Self = 0.5;
@@ -466,41 +396,8 @@ impl Number for f64 {
 
 impl Number for Q40 {
     type Out = I32F32;
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn tick_sample<const A: usize>(
-        state: &mut [AxisState<Q40>; A],
-        tick: u64,
-    ) -> Sample<I32F32, A> {
-        crate::sampler::kernel::thumb2::tick_sample(state, tick)
-    }
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn tick_position<const A: usize>(state: &mut [AxisState<Q40>; A]) -> [I32F32; A] {
-        crate::sampler::kernel::thumb2::tick_position(state)
-    }
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn switch_sample<const A: usize>(
-        state: &mut [AxisState<Q40>; A],
-        next: &[AxisState<Q40>; A],
-        tick: u64,
-    ) -> Sample<I32F32, A> {
-        crate::sampler::kernel::thumb2::switch_sample(state, next, tick)
-    }
-    #[cfg(strak_thumb2)]
-    #[inline(always)]
-    fn switch_sample_bytes<const A: usize>(
-        state: &mut [AxisState<Q40>; A],
-        next: &[u8],
-        tick: u64,
-    ) -> Sample<I32F32, A> {
-        crate::sampler::kernel::thumb2::switch_sample_bytes(state, next, tick)
-    }
-    const FORMAT_ID: u8 = 3;
-    const NAME: &'static str = "Q40";
+    const FORMAT: NumberFormat = NumberFormat::Q40;
     const IS_FIXED: bool = true;
-    const BYTES: usize = 8;
     const ZERO: Self = Q40(0);
     const ONE: Self = Q40(1 << 40);
     const HALF: Self = Q40(1 << 39);

@@ -19,10 +19,9 @@
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
-use super::greater;
+use super::limits::Limits;
 use super::options::PlanOptions;
-use super::path_timing::to_param;
-use crate::limits::Limits;
+use super::{greater, to_param};
 
 /// Bisection steps to locate a cusp (the loop ends earlier when the interval no longer
 /// shrinks in the curve's scalar).

@@ -48,7 +48,7 @@ pub enum ProfileShape {
 ///    zone gets its own path acceleration and jerk limit: what the turning terms at the
 ///    zone's speed limit leave of `a_max`, `a_i` and `j_max`, so that the acceleration and
 ///    jerk **in space** stay within the limits (the formulas are in the source of
-///    `profile/speed_limit.rs`). The jerk limit is at most `a_z·f/16` (`f` the control
+///    `plan/speed_limit.rs`). The jerk limit is at most `a_z·f/16` (`f` the control
 ///    rate, 16 = [`MIN_JERK_TICKS`](Self::MIN_JERK_TICKS)): a jerk phase to the zone's
 ///    acceleration lasts at least 16 ticks, so that the compiled spline, whose pieces start
 ///    on ticks, can follow it.

@@ -1,0 +1,66 @@
+//! Compiling a planned motion: [`PathTiming`] completes the compile options with its feed
+//! reserve and compiles itself at the rate it was planned for.
+
+use strak_curves::ParamCurveDeriv;
+
+use super::{CompileOptions, compile};
+use crate::error::Error;
+use crate::num::Number;
+use crate::path::Path;
+use crate::plan::PathTiming;
+
+impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z> {
+    /// `options` completed with what the plan reserved for feed changes: for a motion from
+    /// [`plan`](PathTiming::plan) or [`scurve`](Self::scurve), the machine's limits of a feed ramp
+    /// (`min(a, aᵢ)` and `j` of its [`Limits`](crate::Limits)) and the feed share of its [`PlanOptions`](crate::PlanOptions), so
+    /// that feed override, hold and resume ramp within the share the plan left free (see
+    /// [`CompileOptions`]). The laws without [`Limits`](crate::Limits) return `options` unchanged.
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{CompileOptions, Limits, PathTiming};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
+    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?
+    ///     .with_axis_acceleration([800.0, f64::INFINITY])?;
+    /// let timing = PathTiming::<_, 16, 4>::scurve(&line, &limits)?;
+    /// let o = timing.compile_options(&CompileOptions::new().with_tolerance(1e-3));
+    /// assert_eq!(o.limits(), Some((800.0, 20_000.0)));
+    /// assert_eq!(o.feed_share(), 0.25);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn compile_options(&self, options: &CompileOptions) -> CompileOptions {
+        match self.feed_reserve() {
+            Some(f) => options
+                .with_limits(f.acceleration, f.jerk)
+                .with_feed_share(f.share),
+            None => *options,
+        }
+    }
+
+    /// Compiles the motion into a path at the plan's [`rate`](Self::rate), with `options`
+    /// completed by [`compile_options`](Self::compile_options): the one call that keeps the
+    /// feed reserve of the plan and the rate it was planned for. See
+    /// [`compile`](crate::compile()).
+    ///
+    /// # Errors
+    /// As [`compile`](crate::compile()).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{CompileOptions, Limits, Path, PathTiming, PlanOptions};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
+    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?;
+    /// let plan = PlanOptions::new().with_rate(2_000.0);
+    /// let timing = PathTiming::<_, 16, 4>::plan(&line, &limits, &plan)?;
+    /// let path: Path<f32, 2, 64> = timing.compile(&CompileOptions::new())?;
+    /// assert_eq!(path.rate(), 2_000.0);
+    /// assert_eq!(path.feed_share(), 0.25);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn compile<Num: Number, const A: usize, const P: usize>(
+        &self,
+        options: &CompileOptions,
+    ) -> Result<Path<Num, A, P>, Error> {
+        compile(self, self.rate(), &self.compile_options(options))
+    }
+}

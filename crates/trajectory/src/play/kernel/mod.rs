@@ -1,0 +1,174 @@
+//! The forward-differencing tick: the only code [`Sampler::next`](crate::Sampler::next) runs
+//! on an ordinary tick, written once in portable Rust ([`portable`]) and, where a target's
+//! compiler output is measurably slower than the instruction set allows, once more in
+//! hand-scheduled assembly with the very same additions in the very same order (so the same
+//! bits; the QEMU bit-identity check of `cargo xtask qemu` compares every sample with the
+//! host's).
+//!
+//! Why assembly on Cortex-M: a tick reads the nine state values of every axis and writes six
+//! back. The compiler moves them one register at a time (`vldr`/`vstr`, 27 loads and 18
+//! stores for 3 axes before a single addition); Armv7-M moves a whole axis in one
+//! `vldm`/`vstm`.
+//! Which kernel a format uses is chosen by its implementation of [`Kernel`].
+
+#[cfg(strak_thumb2)]
+use strak_curves::I32F32;
+
+use crate::num::{Number, Q40};
+use crate::path::{AxisState, Sample};
+
+/// Axes the assembly kernels handle unrolled (more axes use the portable kernel).
+#[cfg(strak_thumb2)]
+const UNROLLED: usize = 8;
+
+/// Calls `$f::<A, K>(args)` for `K = 0 .. A` (A ≤ [`UNROLLED`]), unrolled: the conditions are
+/// constants, so the kernels have no loop and their offsets are immediates.
+#[cfg(strak_thumb2)]
+macro_rules! each_axis {
+    ($A:ident, $f:ident, $($arg:expr),*) => {
+        if $A > 0 { $f::<$A, 0>($($arg),*); }
+        if $A > 1 { $f::<$A, 1>($($arg),*); }
+        if $A > 2 { $f::<$A, 2>($($arg),*); }
+        if $A > 3 { $f::<$A, 3>($($arg),*); }
+        if $A > 4 { $f::<$A, 4>($($arg),*); }
+        if $A > 5 { $f::<$A, 5>($($arg),*); }
+        if $A > 6 { $f::<$A, 6>($($arg),*); }
+        if $A > 7 { $f::<$A, 7>($($arg),*); }
+    };
+}
+
+pub(crate) mod portable;
+#[cfg(strak_thumb2)]
+pub(crate) mod thumb2;
+#[cfg(strak_vfp)]
+pub(crate) mod vfp;
+
+/// The tick kernels of a number format: what [`Sampler`](crate::Sampler) runs on a tick,
+/// portable Rust unless the format has a faster kernel on the target (hand-scheduled
+/// Thumb-2 for [`Q40`] on Armv7-M and Armv8-M Mainline, VFP for `f32` where the hard-float
+/// ABI has a single-precision FPU), with the same additions in the same order, so the same
+/// bits on every target.
+///
+/// The trait is **sealed**: it is implemented for `f32`, `f64` and [`Q40`], the formats
+/// of [`Number`] (itself sealed), and cannot be implemented outside this crate. Code that
+/// is generic over the number format and plays paths bounds it by `Kernel` (which implies
+/// [`Number`]); its methods are the sampler's internals.
+///
+/// ```
+/// use strak_trajectory::{Kernel, PathView, Q40, Sampler};
+///
+/// fn first_position<N: Kernel>(path: PathView<'_, N, 2>) -> [N::Out; 2] {
+///     Sampler::new(path).next_position()
+/// }
+/// # let _ = first_position::<Q40>;
+/// ```
+pub trait Kernel: Number {
+    /// Crate-internal: the sample of `state` at `tick`, then one forward-differencing step
+    /// of every axis.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn tick_sample<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        tick: u64,
+    ) -> Sample<Self::Out, A> {
+        portable::tick_sample(state, tick)
+    }
+
+    /// Crate-internal: [`Kernel::tick_sample`]'s positions and step.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn tick_position<const A: usize>(state: &mut [AxisState<Self>; A]) -> [Self::Out; A] {
+        portable::tick_position(state)
+    }
+
+    /// Crate-internal: the sample of `state` at `tick`, then `state = *next` (a piece
+    /// switch).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_sample<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[AxisState<Self>; A],
+        tick: u64,
+    ) -> Sample<Self::Out, A> {
+        portable::switch_sample(state, next, tick)
+    }
+
+    /// Crate-internal: the sample of `state` at `tick`, then `state` read from the `9·A`
+    /// little-endian values of a blob's piece record (a piece switch from a blob).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_sample_bytes<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[u8],
+        tick: u64,
+    ) -> Sample<Self::Out, A> {
+        portable::switch_sample_bytes(state, next, tick)
+    }
+}
+
+impl Kernel for f64 {}
+
+impl Kernel for f32 {
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn tick_sample<const A: usize>(state: &mut [AxisState<f32>; A], tick: u64) -> Sample<f32, A> {
+        vfp::tick_sample(state, tick)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn tick_position<const A: usize>(state: &mut [AxisState<f32>; A]) -> [f32; A] {
+        vfp::tick_position(state)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_sample<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[AxisState<f32>; A],
+        tick: u64,
+    ) -> Sample<f32, A> {
+        vfp::switch_sample(state, next, tick)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_sample_bytes<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[u8],
+        tick: u64,
+    ) -> Sample<f32, A> {
+        vfp::switch_sample_bytes(state, next, tick)
+    }
+}
+
+impl Kernel for Q40 {
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn tick_sample<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        tick: u64,
+    ) -> Sample<I32F32, A> {
+        thumb2::tick_sample(state, tick)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn tick_position<const A: usize>(state: &mut [AxisState<Q40>; A]) -> [I32F32; A] {
+        thumb2::tick_position(state)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_sample<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[AxisState<Q40>; A],
+        tick: u64,
+    ) -> Sample<I32F32, A> {
+        thumb2::switch_sample(state, next, tick)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_sample_bytes<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[u8],
+        tick: u64,
+    ) -> Sample<I32F32, A> {
+        thumb2::switch_sample_bytes(state, next, tick)
+    }
+}
