@@ -230,7 +230,9 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
     next: &[u8],
     tick: u64,
 ) -> Sample<f32, A> {
-    if A > UNROLLED || next.len() < A * size_of::<AxisState<f32>>() || next.as_ptr().addr() % 4 != 0
+    if A > UNROLLED
+        || next.len() < A * size_of::<AxisState<f32>>()
+        || !next.as_ptr().addr().is_multiple_of(4)
     {
         return portable::switch_sample_bytes(state, next, tick);
     }
