@@ -2,22 +2,16 @@
 //! plays: for a job whose own number format is the playback format, every sample's bits equal
 //! the values of `samples.csv`.
 
+mod common;
+
 use std::fs;
 
+use common::bundled_job as job;
 use strak_curves::I32F32;
 use strak_sim::export::{Playback, export};
 use strak_sim::job::Job;
 use strak_sim::run::{RunOptions, run_job};
 use strak_trajectory::{Path, Q40, Sampler};
-
-fn job(name: &str) -> Job {
-    let text = fs::read_to_string(format!(
-        "{}/examples/jobs/{name}.toml",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
-    Job::parse(&text).unwrap()
-}
 
 /// The bits of every value of `samples.csv` (tick and time dropped).
 fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
@@ -82,7 +76,7 @@ fn events_are_applied_and_the_blob_plays_back() {
     // a recipe for on-device compiling exists for the plain B-spline, not for the circle
     assert!(e.recipe.is_some());
     assert!(
-        export(&self::job("circle-f32"), Playback::F32)
+        export(&job("circle-f32"), Playback::F32)
             .unwrap()
             .recipe
             .is_none()

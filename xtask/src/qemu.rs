@@ -144,31 +144,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
         t.elapsed().as_secs_f64()
     );
 
-    let blobs = blob_dir.to_string_lossy().into_owned();
-    let envs = [("STRAK_BLOBS", blobs.as_str())];
-    fw_step(&fw_dir, "firmware format", &["fmt", "--", "--check"], &envs)?;
-    for fw in &FIRMWARES {
-        fw_step(
-            &fw_dir,
-            &format!("firmware clippy ({})", fw.target),
-            &[
-                "clippy",
-                "--release",
-                "--target",
-                fw.target,
-                "--",
-                "-D",
-                "warnings",
-            ],
-            &envs,
-        )?;
-        fw_step(
-            &fw_dir,
-            &format!("firmware build ({})", fw.target),
-            &["build", "--release", "--target", fw.target, "--bins"],
-            &envs,
-        )?;
-    }
+    build_firmware(&fw_dir, &blob_dir)?;
 
     let mut compared = 0_usize;
     for fw in &FIRMWARES {
@@ -197,6 +173,37 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
         "\nxtask qemu: {compared} firmware samples equal the host's bit for bit; done in {:.0} s",
         started.elapsed().as_secs_f64()
     );
+    Ok(())
+}
+
+/// Checks the formatting and clippy of the firmware workspace `fw_dir` and builds its
+/// binaries for every target, with the blobs and `jobs.rs` of `blob_dir`.
+fn build_firmware(fw_dir: &Path, blob_dir: &Path) -> Result<(), String> {
+    let blobs = blob_dir.to_string_lossy().into_owned();
+    let envs = [("STRAK_BLOBS", blobs.as_str())];
+    fw_step(fw_dir, "firmware format", &["fmt", "--", "--check"], &envs)?;
+    for fw in &FIRMWARES {
+        fw_step(
+            fw_dir,
+            &format!("firmware clippy ({})", fw.target),
+            &[
+                "clippy",
+                "--release",
+                "--target",
+                fw.target,
+                "--",
+                "-D",
+                "warnings",
+            ],
+            &envs,
+        )?;
+        fw_step(
+            fw_dir,
+            &format!("firmware build ({})", fw.target),
+            &["build", "--release", "--target", fw.target, "--bins"],
+            &envs,
+        )?;
+    }
     Ok(())
 }
 

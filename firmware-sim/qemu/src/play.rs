@@ -159,7 +159,7 @@ where
     let path = PathBlob::<N, A>::from_bytes(blob)?;
     let mut player = Player::new(&path, events);
     let mut played = Played {
-        pieces: path.piece_count(),
+        pieces: path.view().piece_count(),
         samples: 0,
         hash: 0,
     };

@@ -37,7 +37,7 @@ use strak_qemu::jobs::{Format, find_blob};
 use strak_qemu::planning::{self, Curve};
 use strak_qemu::play::{OutBits, Played, play_blob};
 use strak_qemu::stack;
-use strak_qemu::{STACK_JOB, PIECES, exit_failure, exit_success};
+use strak_qemu::{PIECES, STACK_JOB, exit_failure, exit_success};
 use strak_trajectory::{Number, Path, PathBlob, PathTiming, Q40, Sampler};
 
 /// Counts of the report lines.
