@@ -14,7 +14,7 @@ use strak_curves::{
 
 use crate::curve_file::{
     BEZIER_MAX_POINTS, BoundaryName, BsplineFields, CubicSplineFields, CurveFile, FieldError, Kind,
-    MAX_KNOTS, MAX_POINTS, NurbsFields,
+    MAX_POINTS, NurbsFields,
 };
 use crate::number::{FixedScalar, Number};
 use crate::summary::num;

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::builder::{Sampled, build_curve};
+use crate::builder::build_curve;
 use crate::curve_file::{CurveFile, FieldError};
 pub use crate::number::{FixedScalar, Number};
 

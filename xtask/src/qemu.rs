@@ -892,6 +892,9 @@ fn check_stack(
         sizes,
         counts,
     } = run;
+    for line in stack::target_report(&measured) {
+        println!("    target: {line}");
+    }
     let file = fw_dir.join("stack-budgets.txt");
     if bless {
         fs::write(&file, stack::write_budgets(&measured))

@@ -207,6 +207,33 @@ pub(crate) fn stack_json(
     s
 }
 
+/// The stack target: validating and playing a 256-piece 3-axis Q40 blob from flash
+/// (the flash-playback firmware's operation) in at most this many bytes of stack, on every
+/// core.
+pub(crate) const FLASH_PLAY_TARGET: u64 = 2048;
+
+/// The stack target of the flash-playback firmware, one line per target with `met` /
+/// `MISSED` (reported, not enforced: the budgets are the check).
+pub(crate) fn target_report(measured: &[Measured]) -> Vec<String> {
+    measured
+        .iter()
+        .filter(|m| m.name == "flash-play-q40")
+        .map(|m| {
+            format!(
+                "{}: validate and play a 256-piece 3-axis Q40 blob from flash: stack {} ≤ {}: {}",
+                m.target,
+                m.stack,
+                FLASH_PLAY_TARGET,
+                if m.stack <= FLASH_PLAY_TARGET {
+                    "met"
+                } else {
+                    "MISSED"
+                }
+            )
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,6 +310,19 @@ mod tests {
         );
         let e = check(&[m("b", 1)], &b).unwrap_err();
         assert!(e.contains("b (thumbv7m-none-eabi): no budget"), "{e}");
+    }
+
+    #[test]
+    fn the_flash_target_is_reported_met_or_missed() {
+        let lines = target_report(&[m("flash-play-q40", 2048), m("x", 1)]);
+        assert_eq!(lines.len(), 1);
+        assert!(lines[0].ends_with("stack 2048 ≤ 2048: met"), "{}", lines[0]);
+        let lines = target_report(&[m("flash-play-q40", 2536)]);
+        assert!(
+            lines[0].ends_with("stack 2536 ≤ 2048: MISSED"),
+            "{}",
+            lines[0]
+        );
     }
 
     #[test]
