@@ -6,7 +6,7 @@ mod common;
 
 use std::fs;
 
-use common::bundled_job as job;
+use common::bundled_job;
 use strak_curves::I32F32;
 use strak_sim::export::{Playback, export};
 use strak_sim::job::Job;
@@ -32,7 +32,7 @@ fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
 
 #[test]
 fn f32_export_equals_the_run_of_an_f32_job() {
-    let job = job("circle-f32");
+    let job = bundled_job("circle-f32");
     let e = export(&job, Playback::F32).unwrap();
     assert!(e.finished);
     assert_eq!(e.axes, 2);
@@ -44,7 +44,7 @@ fn f32_export_equals_the_run_of_an_f32_job() {
 
 #[test]
 fn fixed_export_equals_the_run_of_a_fixed_job() {
-    let job = job("contour-fixed");
+    let job = bundled_job("contour-fixed");
     let e = export(&job, Playback::Fixed).unwrap();
     assert!(e.finished);
     let run = csv_bits(&job, |s| {
@@ -59,7 +59,7 @@ fn fixed_export_equals_the_run_of_a_fixed_job() {
 
 #[test]
 fn events_are_applied_and_the_blob_plays_back() {
-    let job = job("feed-hold");
+    let job = bundled_job("feed-hold");
     let e = export(&job, Playback::Fixed).unwrap();
     assert_eq!(e.events.len(), 4);
     // the hold stretches the run beyond the path's ticks
@@ -76,7 +76,7 @@ fn events_are_applied_and_the_blob_plays_back() {
     // a recipe for on-device compiling exists for the plain B-spline, not for the circle
     assert!(e.recipe.is_some());
     assert!(
-        export(&job("circle-f32"), Playback::F32)
+        export(&bundled_job("circle-f32"), Playback::F32)
             .unwrap()
             .recipe
             .is_none()

@@ -3,6 +3,8 @@
 
 mod common;
 
+use std::process::Command;
+
 use common::{QUARTER_TURN as GOOD, quarter_turn_with as with, run_text};
 
 /// Runs `strak-sim run` on `text`; asserts a failure with one line naming `field`.

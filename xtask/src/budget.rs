@@ -7,7 +7,7 @@
 //! - `sizes.txt`: `name target text data bss` (bytes, [`crate::size`]).
 //!
 //! A measured value above its budget fails ([`check`]); `--bless` rewrites a budget file from
-//! the measured values with [`MARGIN`] of headroom ([`blessed`], [`write`]).
+//! the measured values with [`MARGIN`] of headroom ([`blessed`], [`write()`]).
 
 use std::fmt::Write as _;
 

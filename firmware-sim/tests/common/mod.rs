@@ -12,7 +12,7 @@ use strak_sim::job::Job;
 /// A 2-axis quarter turn (a quadratic Bézier curve of 10 units a side) at 1 kHz in f64 with
 /// an S-curve, well within its limits: the job the error and exit-code tests break one field
 /// of at a time.
-pub const QUARTER_TURN: &str = r#"rate_hz = 1000
+pub(crate) const QUARTER_TURN: &str = r#"rate_hz = 1000
 number = "f64"
 
 [path]
@@ -29,18 +29,18 @@ kind = "s-curve"
 "#;
 
 /// [`QUARTER_TURN`] with `from` replaced by `to` (`from` must occur in it).
-pub fn quarter_turn_with(from: &str, to: &str) -> String {
+pub(crate) fn quarter_turn_with(from: &str, to: &str) -> String {
     assert!(QUARTER_TURN.contains(from), "{from}");
     QUARTER_TURN.replace(from, to)
 }
 
 /// The folder of the bundled jobs (`examples/jobs`).
-pub fn jobs_dir() -> PathBuf {
+pub(crate) fn jobs_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs")
 }
 
 /// The bundled job files, sorted by name (at least the four bundled ones).
-pub fn bundled_jobs() -> Vec<PathBuf> {
+pub(crate) fn bundled_jobs() -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(jobs_dir())
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -55,31 +55,31 @@ pub fn bundled_jobs() -> Vec<PathBuf> {
 }
 
 /// The bundled job `name` (`examples/jobs/<name>.toml`), parsed.
-pub fn bundled_job(name: &str) -> Job {
+pub(crate) fn bundled_job(name: &str) -> Job {
     let text = std::fs::read_to_string(jobs_dir().join(format!("{name}.toml"))).unwrap();
     Job::parse(&text).unwrap()
 }
 
 /// The name of a job file (its stem).
-pub fn stem(file: &Path) -> String {
+pub(crate) fn stem(file: &Path) -> String {
     file.file_stem().unwrap().to_string_lossy().into_owned()
 }
 
 /// What `strak-sim run` did.
-pub struct Run {
+pub(crate) struct Run {
     /// The exit status and raw output.
-    pub output: Output,
+    pub(crate) output: Output,
     /// Standard output as text.
-    pub stdout: String,
+    pub(crate) stdout: String,
     /// Standard error as text.
-    pub stderr: String,
+    pub(crate) stderr: String,
     /// The output folder (`<dir>/<name>`).
-    pub out: PathBuf,
+    pub(crate) out: PathBuf,
 }
 
 /// Writes `text` to `<dir>/<name>.toml` and runs `strak-sim run` on it with the output in
 /// `<dir>/<name>`.
-pub fn run_text(name: &str, text: &str, dir: &Path) -> Run {
+pub(crate) fn run_text(name: &str, text: &str, dir: &Path) -> Run {
     let job = dir.join(format!("{name}.toml"));
     std::fs::write(&job, text).unwrap();
     let out = dir.join(name);
