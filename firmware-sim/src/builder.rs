@@ -8,14 +8,15 @@
 
 use strak_curves::{
     BSpline, Bezier, BezierChain, CubicSpline, Error, HermiteSpline, LagrangeCurve, NodeSource,
-    Nurbs, ParabolicBlend, Parameterization, PieceDeriv, Scalar, SplineBoundary,
+    Nurbs, ParabolicBlend, ParamCurveDeriv, Parameterization, PieceDeriv, Point, Scalar, ScalarOf,
+    SplineBoundary,
 };
 
 use crate::curve_file::{
     BEZIER_MAX_POINTS, BoundaryName, BsplineFields, CubicSplineFields, CurveFile, FieldError, Kind,
-    MAX_KNOTS, MAX_POINTS, NurbsFields,
+    MAX_POINTS, NurbsFields,
 };
-use crate::sample::{FixedScalar, Number, Sampled};
+use crate::number::{FixedScalar, Number};
 use crate::summary::num;
 
 /// The point capacity of the curves of files with at most this many points and knots.
@@ -26,6 +27,40 @@ pub use strak_curves::BSPLINE_MAX_DEGREE;
 
 /// The largest number of segments of a Bézier chain (points: `n·degree + 1`).
 pub const BEZIER_CHAIN_MAX_SEGMENTS: usize = MAX_POINTS;
+
+/// A built curve, seen through `f64` at the boundary of the simulator.
+pub trait Sampled {
+    /// The parameter domain.
+    fn domain_f64(&self) -> (f64, f64);
+    /// The parameter value this curve's scalar type uses for `u` (rounded to the type).
+    fn param(&self, u: f64) -> f64;
+    /// Appends the coordinates of the derivative of order `k` at `u` (k = 0: the point).
+    fn push_deriv(&self, u: f64, k: usize, row: &mut Vec<f64>);
+}
+
+impl<C> Sampled for C
+where
+    C: ParamCurveDeriv,
+{
+    fn domain_f64(&self) -> (f64, f64) {
+        let (a, b) = self.domain();
+        (a.to_f64(), b.to_f64())
+    }
+
+    fn param(&self, u: f64) -> f64 {
+        to_scalar::<ScalarOf<C>>(u).to_f64()
+    }
+
+    fn push_deriv(&self, u: f64, k: usize, row: &mut Vec<f64>) {
+        let p = self.deriv(to_scalar::<ScalarOf<C>>(u), k);
+        row.extend((0..C::Point::DIM).map(|i| p.coord(i).to_f64()));
+    }
+}
+
+/// `u` in the scalar type; parameters come from the curve's own domain, so they are in range.
+fn to_scalar<S: Scalar>(u: f64) -> S {
+    S::from_f64(u).unwrap_or(S::ZERO)
+}
 
 /// What to do with a built curve, whatever its concrete type: the builder hands each curve
 /// (with points `[S; D]`) to [`CurveVisitor::visit`].
@@ -204,8 +239,75 @@ fn field_of(kind: Kind, has_params: bool, error: Error) -> &'static str {
     }
 }
 
-/// The message of a constructor error `e` in a file of `kind`.
-fn constructor_message<S: Scalar>(kind: Kind, periodic: bool, e: Error, number: Number) -> String {
+/// The storage a curve is built with, by the size class of its file (see the module docs):
+/// `points` entries for the points (the segments of a Bézier chain), `control_points` for
+/// the control points of a B-spline or NURBS, `knots` for its knot vector.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Storage {
+    points: usize,
+    control_points: usize,
+    knots: usize,
+}
+
+impl Storage {
+    /// The storage of the size class of `points` points: a B-spline or NURBS stores [`G`] more
+    /// control points (a closed curve repeats up to `degree` of its points after the last)
+    /// and `3·G + 1` more knots than points.
+    const fn of_class(points: usize) -> Self {
+        Storage {
+            points,
+            control_points: points + G,
+            knots: points + 3 * G + 1,
+        }
+    }
+}
+
+/// The message of `CapacityExceeded { capacity, required }` from the constructor of a
+/// `kind` built with `storage`: which storage ran out, and why it holds `capacity`.
+fn capacity_message(kind: Kind, storage: Storage, capacity: usize, required: usize) -> String {
+    let spline = matches!(kind, Kind::Bspline | Kind::Nurbs);
+    let (what, why) = if spline && capacity == storage.control_points {
+        (
+            "control points",
+            format!(
+                "{} + {G}: the file's size class plus the highest degree, as a closed curve \
+                 repeats up to `degree` points",
+                storage.points
+            ),
+        )
+    } else if spline && capacity == storage.knots {
+        (
+            "knots",
+            format!(
+                "{} + 3·{G} + 1: the file's size class plus the knots the highest degree {G} \
+                 adds, as a closed curve of k points takes k + 2·degree + 1",
+                storage.points
+            ),
+        )
+    } else {
+        let what = if kind == Kind::BezierChain {
+            "segments"
+        } else {
+            "points"
+        };
+        (what, "the file's size class".to_owned())
+    };
+    format!(
+        "the {} needs storage for {required} {what}, strak-sim holds {capacity} ({why}; files \
+         of up to {SMALL_CAPACITY} points and knots are built in the class of \
+         {SMALL_CAPACITY}, larger ones in the class of {MAX_POINTS})",
+        kind.name()
+    )
+}
+
+/// The message of a constructor error `e` in a file of `kind`, built with `storage`.
+fn constructor_message<S: Scalar>(
+    kind: Kind,
+    periodic: bool,
+    e: Error,
+    number: Number,
+    storage: Storage,
+) -> String {
     match e {
         Error::OutOfRange => format!(
             "a value of the curve (or one its evaluation produces) is out of range for --number \
@@ -222,11 +324,9 @@ fn constructor_message<S: Scalar>(kind: Kind, periodic: bool, e: Error, number: 
         Error::InvalidArgument if periodic => {
             "a periodic cubic spline needs the last point to repeat the first".to_owned()
         }
-        Error::CapacityExceeded { capacity, required } => format!(
-            "the {} needs storage for {required} entries, strak-sim holds {capacity} (curves of \
-             up to {MAX_POINTS} points, knot vectors of up to {MAX_KNOTS} knots)",
-            kind.name()
-        ),
+        Error::CapacityExceeded { capacity, required } => {
+            capacity_message(kind, storage, capacity, required)
+        }
         other => other.to_string(),
     }
 }
@@ -234,6 +334,7 @@ fn constructor_message<S: Scalar>(kind: Kind, periodic: bool, e: Error, number: 
 fn constructor_error<S: Scalar>(
     file: &CurveFile,
     number: Number,
+    storage: Storage,
 ) -> impl Fn(Error) -> FieldError + '_ {
     let periodic = matches!(
         file,
@@ -246,7 +347,7 @@ fn constructor_error<S: Scalar>(
         let field = field_of(file.kind(), file.params().is_some(), e);
         FieldError::new(
             field,
-            constructor_message::<S>(file.kind(), periodic, e, number),
+            constructor_message::<S>(file.kind(), periodic, e, number, storage),
         )
     }
 }
@@ -263,7 +364,9 @@ where
     S: Scalar,
     V: CurveVisitor,
 {
-    let err = constructor_error::<S>(file, number);
+    const { assert!(CP == C + G && K == C + 3 * G + 1) };
+    let storage = Storage::of_class(C);
+    let err = constructor_error::<S>(file, number, storage);
     let points: Vec<[S; D]> = vectors("points", file.points(), number)?;
     let params: Option<Vec<S>> = file
         .params()
@@ -437,6 +540,41 @@ fn build_nurbs<S: Scalar, const D: usize, const CP: usize, const K: usize, V: Cu
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_capacity_error_says_which_storage_and_why_it_holds_that_many() {
+        let small = Storage::of_class(SMALL_CAPACITY);
+        let m = capacity_message(Kind::Bspline, small, small.control_points, 265);
+        let holds = SMALL_CAPACITY + BSPLINE_MAX_DEGREE;
+        assert!(
+            m.starts_with(&format!(
+                "the bspline needs storage for 265 control points, strak-sim holds {holds} \
+                 ({SMALL_CAPACITY} + {BSPLINE_MAX_DEGREE}: the file's size class plus the \
+                 highest degree"
+            )),
+            "{m}"
+        );
+        assert!(
+            m.contains(&format!("larger ones in the class of {MAX_POINTS}")),
+            "{m}"
+        );
+        let m = capacity_message(Kind::Nurbs, small, small.knots, 300);
+        assert!(
+            m.contains(&format!("300 knots, strak-sim holds {}", small.knots)),
+            "{m}"
+        );
+        let large = Storage::of_class(MAX_POINTS);
+        let m = capacity_message(Kind::BezierChain, large, MAX_POINTS, MAX_POINTS + 1);
+        assert!(
+            m.contains(&format!(
+                "{} segments, strak-sim holds {MAX_POINTS}",
+                MAX_POINTS + 1
+            )),
+            "{m}"
+        );
+        let m = capacity_message(Kind::Lagrange, small, SMALL_CAPACITY, 300);
+        assert!(m.contains("300 points"), "{m}");
+    }
 
     struct Domain;
 

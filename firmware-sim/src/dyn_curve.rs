@@ -10,7 +10,7 @@ use strak_curves::{ParamCurve, ParamCurveDeriv, PieceDeriv, Scalar};
 
 use crate::builder::{CurveVisitor, visit_curve};
 use crate::curve_file::{CurveFile, FieldError};
-use crate::sample::Number;
+use crate::number::Number;
 
 /// Any curve of strak-curves with points `[S; D]`, boxed.
 pub struct DynCurve<S: Scalar, const D: usize>(Box<dyn PieceDeriv<Point = [S; D]>>);

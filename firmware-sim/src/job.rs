@@ -47,8 +47,8 @@ use std::fmt;
 use serde::{Deserialize, Deserializer, de::Error as _};
 
 use crate::curve_file::CurveFile;
+use crate::number::Number as CurveNumber;
 use crate::player::{Event, TimedEvent};
-use crate::sample::Number as CurveNumber;
 use crate::toml_error::{Tagged, locate};
 
 /// The lowest and highest control rates in Hz.

@@ -10,6 +10,7 @@ pub mod dyn_curve;
 pub mod export;
 pub mod job;
 pub mod measure;
+pub mod number;
 pub mod pipeline;
 pub mod player;
 pub mod plot;

@@ -17,8 +17,9 @@ use clap::{Parser, Subcommand};
 use strak_sim::curve_file::CurveFile;
 use strak_sim::export::{Playback, export};
 use strak_sim::job::Job;
+use strak_sim::number::Number;
 use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, run_job};
-use strak_sim::sample::{Number, SampleOptions, sample_to_csv};
+use strak_sim::sample::{SampleOptions, sample_to_csv};
 
 /// Host simulator for strak: sample curves, run jobs through the firmware's sampler.
 #[derive(Debug, Parser)]

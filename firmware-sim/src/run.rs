@@ -31,10 +31,10 @@ use strak_trajectory::{Kernel, Number, Q40, Sample, Sampler};
 use crate::dyn_curve::{DynCurve, build_dyn};
 use crate::job::{Job, JobError, JobNumber, ProfileKind};
 use crate::measure::{Measure, Observed, distance, norm, to_f64};
+use crate::number::Number as CurveNumber;
 use crate::pipeline::{Compiled, PIECES, Prepared, axis_array, curve_error, is_planned};
 use crate::player::{EventPlayer, Stop};
 use crate::plot::{self, PlotLimits, Recorder};
-use crate::sample::Number as CurveNumber;
 use crate::summary::{
     Accuracy, AlongPath, CheckRule, Checked, Differences, EndPoint, FiniteDifferences, Maxima,
     PlannedLimits, ReferenceDistance, Summary, WallTime,

@@ -1,22 +1,13 @@
 //! `strak-sim sample`: evaluate a curve at evenly spaced parameters and write CSV.
+//!
+//! The curve comes from [`build_curve`] (curve file → [`builder`](crate::builder) → here):
+//! this module uses the builder, never the other way round.
 
 use std::fmt::Write as _;
 
-use strak_curves::{I32F32, ParamCurveDeriv, Point, Scalar, ScalarOf};
-
 use crate::builder::build_curve;
 use crate::curve_file::{CurveFile, FieldError};
-
-/// The number format a curve is built and evaluated in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Number {
-    /// IEEE 754 double precision.
-    F64,
-    /// IEEE 754 single precision.
-    F32,
-    /// Fixed-point `I32F32` (Q31.32: range ±2³¹, resolution 2⁻³²).
-    Fixed,
-}
+pub use crate::number::{FixedScalar, Number};
 
 /// What to sample.
 #[derive(Clone, Copy, Debug)]
@@ -27,40 +18,6 @@ pub struct SampleOptions {
     pub derivatives: usize,
     /// Number format.
     pub number: Number,
-}
-
-/// A built curve, seen through `f64` at the boundary of the simulator.
-pub trait Sampled {
-    /// The parameter domain.
-    fn domain_f64(&self) -> (f64, f64);
-    /// The parameter value this curve's scalar type uses for `u` (rounded to the type).
-    fn param(&self, u: f64) -> f64;
-    /// Appends the coordinates of the derivative of order `k` at `u` (k = 0: the point).
-    fn push_deriv(&self, u: f64, k: usize, row: &mut Vec<f64>);
-}
-
-impl<C> Sampled for C
-where
-    C: ParamCurveDeriv,
-{
-    fn domain_f64(&self) -> (f64, f64) {
-        let (a, b) = self.domain();
-        (a.to_f64(), b.to_f64())
-    }
-
-    fn param(&self, u: f64) -> f64 {
-        to_scalar::<ScalarOf<C>>(u).to_f64()
-    }
-
-    fn push_deriv(&self, u: f64, k: usize, row: &mut Vec<f64>) {
-        let p = self.deriv(to_scalar::<ScalarOf<C>>(u), k);
-        row.extend((0..C::Point::DIM).map(|i| p.coord(i).to_f64()));
-    }
-}
-
-/// `u` in the scalar type; parameters come from the curve's own domain, so they are in range.
-fn to_scalar<S: Scalar>(u: f64) -> S {
-    S::from_f64(u).unwrap_or(S::ZERO)
 }
 
 /// The evenly spaced parameters over `[a, b]`, first and last exactly `a` and `b`.
@@ -136,9 +93,6 @@ pub fn sample_to_csv(file: &CurveFile, options: &SampleOptions) -> Result<String
         .map_err(|e| FieldError::new("out", e.to_string()))?;
     String::from_utf8(bytes).map_err(|e| FieldError::new("out", e.to_string()))
 }
-
-/// The fixed-point type behind `--number fixed`.
-pub type FixedScalar = I32F32;
 
 #[cfg(test)]
 mod tests {

@@ -2,22 +2,16 @@
 //! plays: for a job whose own number format is the playback format, every sample's bits equal
 //! the values of `samples.csv`.
 
+mod common;
+
 use std::fs;
 
+use common::bundled_job;
 use strak_curves::I32F32;
 use strak_sim::export::{Playback, export};
 use strak_sim::job::Job;
 use strak_sim::run::{RunOptions, run_job};
 use strak_trajectory::{Path, Q40, Sampler};
-
-fn job(name: &str) -> Job {
-    let text = fs::read_to_string(format!(
-        "{}/examples/jobs/{name}.toml",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
-    Job::parse(&text).unwrap()
-}
 
 /// The bits of every value of `samples.csv` (tick and time dropped).
 fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
@@ -38,7 +32,7 @@ fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
 
 #[test]
 fn f32_export_equals_the_run_of_an_f32_job() {
-    let job = job("circle-f32");
+    let job = bundled_job("circle-f32");
     let e = export(&job, Playback::F32).unwrap();
     assert!(e.finished);
     assert_eq!(e.axes, 2);
@@ -50,7 +44,7 @@ fn f32_export_equals_the_run_of_an_f32_job() {
 
 #[test]
 fn fixed_export_equals_the_run_of_a_fixed_job() {
-    let job = job("contour-fixed");
+    let job = bundled_job("contour-fixed");
     let e = export(&job, Playback::Fixed).unwrap();
     assert!(e.finished);
     let run = csv_bits(&job, |s| {
@@ -65,7 +59,7 @@ fn fixed_export_equals_the_run_of_a_fixed_job() {
 
 #[test]
 fn events_are_applied_and_the_blob_plays_back() {
-    let job = job("feed-hold");
+    let job = bundled_job("feed-hold");
     let e = export(&job, Playback::Fixed).unwrap();
     assert_eq!(e.events.len(), 4);
     // the hold stretches the run beyond the path's ticks
@@ -82,7 +76,7 @@ fn events_are_applied_and_the_blob_plays_back() {
     // a recipe for on-device compiling exists for the plain B-spline, not for the circle
     assert!(e.recipe.is_some());
     assert!(
-        export(&self::job("circle-f32"), Playback::F32)
+        export(&bundled_job("circle-f32"), Playback::F32)
             .unwrap()
             .recipe
             .is_none()

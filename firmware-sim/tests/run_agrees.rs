@@ -4,8 +4,12 @@
 //! bit for bit (the CSV holds the shortest text that reads back to the same bits). Also: the
 //! last sample is the path's end point exactly, and every output file exists and is not empty.
 
-use std::path::{Path as FsPath, PathBuf};
+mod common;
+
+use std::path::Path as FsPath;
 use std::process::Command;
+
+use common::jobs_dir;
 
 use strak_curves::{
     BSpline, CubicSpline, I32F32, Nurbs, ParamCurveDeriv, Parameterization, Point, Scalar,
@@ -16,10 +20,6 @@ use strak_trajectory::{
 };
 
 use strak_sim::pipeline::{PIECES, TABLE, ZONES};
-
-fn jobs_dir() -> PathBuf {
-    FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs")
-}
 
 /// Runs the binary; `job` `None` runs the bundled example. Returns the output folder.
 fn run_binary(job: Option<&str>, out: &FsPath) -> String {

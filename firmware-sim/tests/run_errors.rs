@@ -1,38 +1,16 @@
 //! Bad jobs: each error case gives exactly one error line on standard error naming the field,
 //! and a non-zero exit — never a panic.
 
+mod common;
+
 use std::process::Command;
 
-/// A good job to break: a 2-axis quarter turn.
-const GOOD: &str = r#"rate_hz = 1000
-number = "f64"
-
-[path]
-kind = "bezier"
-points = [[0, 0], [10, 0], [10, 10]]
-
-[limits]
-velocity = 100
-acceleration = 1000
-jerk = 10000
-
-[profile]
-kind = "s-curve"
-"#;
+use common::{QUARTER_TURN as GOOD, quarter_turn_with as with, run_text};
 
 /// Runs `strak-sim run` on `text`; asserts a failure with one line naming `field`.
 fn fails_naming(text: &str, field: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
-    let job = dir.path().join("bad.toml");
-    std::fs::write(&job, text).unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
-        .arg("run")
-        .arg(&job)
-        .arg("--out")
-        .arg(dir.path().join("out"))
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    let common::Run { output, stderr, .. } = run_text("bad", text, dir.path());
     assert!(!output.status.success(), "succeeded on a bad job:\n{text}");
     assert_eq!(
         output.status.code(),
@@ -55,30 +33,11 @@ fn fails_naming(text: &str, field: &str) -> String {
     stderr
 }
 
-fn with(from: &str, to: &str) -> String {
-    assert!(GOOD.contains(from), "{from}");
-    GOOD.replace(from, to)
-}
-
 #[test]
 fn the_good_job_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let job = dir.path().join("good.toml");
-    std::fs::write(&job, GOOD).unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
-        .args([
-            "run".as_ref(),
-            job.as_os_str(),
-            "--out".as_ref(),
-            dir.path().as_os_str(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let r = run_text("good", GOOD, dir.path());
+    assert!(r.output.status.success(), "{}", r.stderr);
 }
 
 #[test]

@@ -3,25 +3,12 @@
 //! accuracy bound in its samples; 0 when everything holds, and 0 for the laws not planned
 //! under the limits (parameter, constant speed), whose summary reports the excess.
 
+mod common;
+
 use std::path::Path as FsPath;
-use std::process::{Command, Output};
+use std::process::Output;
 
-/// A 2-axis quarter turn that holds its limits.
-const GOOD: &str = r#"rate_hz = 1000
-number = "f64"
-
-[path]
-kind = "bezier"
-points = [[0, 0], [10, 0], [10, 10]]
-
-[limits]
-velocity = 100
-acceleration = 1000
-jerk = 10000
-
-[profile]
-kind = "s-curve"
-"#;
+use common::{QUARTER_TURN as GOOD, bundled_jobs, run_text, stem};
 
 /// A straight line (73.65 units) at 1 kHz in f64 with an S-curve whose jerk phases last a few
 /// ticks: the compiled spline overshoots the planned velocity, |v| 21.72 against 21.23.
@@ -49,24 +36,22 @@ struct Run {
     summary: serde_json::Value,
 }
 
+/// `strak-sim run` on `text` (see [`common::run_text`]), with its `summary.json` (`null`
+/// when it wrote none).
 fn run(name: &str, text: &str, dir: &FsPath) -> Run {
-    let job = dir.join(format!("{name}.toml"));
-    std::fs::write(&job, text).unwrap();
-    let out = dir.join(name);
-    let output = Command::new(env!("CARGO_BIN_EXE_strak-sim"))
-        .arg("run")
-        .arg(&job)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let common::Run {
+        output,
+        stdout,
+        stderr,
+        out,
+    } = run_text(name, text, dir);
     let summary = std::fs::read_to_string(out.join("summary.json"))
         .map(|t| serde_json::from_str(&t).unwrap())
         .unwrap_or(serde_json::Value::Null);
     Run {
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
         output,
+        stdout,
+        stderr,
         summary,
     }
 }
@@ -186,12 +171,10 @@ fn a_trapezoid_is_not_failed_for_its_jerk() {
 /// summary (the bundled jobs as they are must pass).
 #[test]
 fn bundled_jobs_in_every_format() {
-    let jobs = FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs");
     let dir = tempfile::tempdir().unwrap();
     let mut failed = Vec::new();
-    for entry in std::fs::read_dir(jobs).unwrap() {
-        let file = entry.unwrap().path();
-        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+    for file in bundled_jobs() {
+        let name = stem(&file);
         let text = std::fs::read_to_string(&file).unwrap();
         let own = run(&name, &text, dir.path());
         assert_eq!(own.output.status.code(), Some(0), "{name}: {}", own.stderr);

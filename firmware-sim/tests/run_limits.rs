@@ -4,21 +4,11 @@
 //! of the acceleration samples, and the velocity and acceleration samples themselves — along
 //! the path (Euclidean norms) and per axis. The summary agrees.
 
-use std::path::{Path as FsPath, PathBuf};
+mod common;
 
+use common::{bundled_jobs, stem};
 use strak_sim::job::{Job, JobNumber};
 use strak_sim::run::{RunOptions, run_job};
-
-fn jobs() -> Vec<PathBuf> {
-    let dir = FsPath::new(env!("CARGO_MANIFEST_DIR")).join("examples/jobs");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    files.sort();
-    files
-}
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
@@ -58,13 +48,8 @@ impl Check<'_> {
 
 #[test]
 fn bundled_jobs_respect_every_limit() {
-    let files = jobs();
-    assert!(
-        files.len() >= 4,
-        "expected the bundled jobs, found {files:?}"
-    );
-    for file in files {
-        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+    for file in bundled_jobs() {
+        let name = stem(&file);
         let job = Job::parse(&std::fs::read_to_string(&file).unwrap()).unwrap();
         check_job(&name, &job);
     }

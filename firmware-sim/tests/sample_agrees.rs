@@ -14,7 +14,8 @@ use std::process::Command;
 
 use strak_ref as r;
 use strak_sim::curve_file::{BoundaryName, CurveFile};
-use strak_sim::sample::{Number, SampleOptions, header, sample_rows};
+use strak_sim::number::Number;
+use strak_sim::sample::{SampleOptions, header, sample_rows};
 
 const DERIVATIVES: usize = 2;
 const COUNT: usize = 257;

@@ -257,6 +257,31 @@ fn write_seeds(dir: &Path, target: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// The arguments libFuzzer gets for a run of `o` writing its failing inputs into
+/// `artifacts`.
+fn libfuzzer_args(o: &FuzzOptions, artifacts: &Path) -> Vec<String> {
+    let mut args: Vec<String> = vec![
+        format!("-max_total_time={}", o.seconds),
+        format!("-timeout={TIMEOUT_S}"),
+        format!("-max_len={MAX_LEN}"),
+        "-rss_limit_mb=4096".to_owned(),
+        "-print_final_stats=1".to_owned(),
+        format!("-artifact_prefix={}/", artifacts.display()),
+    ];
+    if o.keep_going {
+        args.extend(
+            [
+                "-fork=1",
+                "-ignore_crashes=1",
+                "-ignore_timeouts=1",
+                "-ignore_ooms=1",
+            ]
+            .map(str::to_owned),
+        );
+    }
+    args
+}
+
 fn run_target(
     tc: &Toolchain,
     fuzz_dir: &Path,
@@ -277,25 +302,7 @@ fn run_target(
     if !o.ignore.is_empty() {
         println!("    ignoring failures containing: {}", o.ignore.join(" | "));
     }
-    let mut args: Vec<String> = vec![
-        format!("-max_total_time={}", o.seconds),
-        format!("-timeout={TIMEOUT_S}"),
-        format!("-max_len={MAX_LEN}"),
-        "-rss_limit_mb=4096".to_owned(),
-        "-print_final_stats=1".to_owned(),
-        format!("-artifact_prefix={}/", artifacts.display()),
-    ];
-    if o.keep_going {
-        args.extend(
-            [
-                "-fork=1",
-                "-ignore_crashes=1",
-                "-ignore_timeouts=1",
-                "-ignore_ooms=1",
-            ]
-            .map(str::to_owned),
-        );
-    }
+    let args = libfuzzer_args(o, &artifacts);
     let before = count_files(&artifacts);
     let file =
         fs::File::create(&log).map_err(|e| format!("cannot create {}: {e}", log.display()))?;

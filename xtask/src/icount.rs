@@ -8,15 +8,14 @@
 //! The budgets are checked in at `firmware-sim/qemu/icount-budgets.txt` (one line per case
 //! and target: median and max); a measured count above its budget fails `cargo xtask qemu`
 //! (and so `cargo xtask test`). `--bless` rewrites the file from the measured counts with
-//! [`MARGIN`] of headroom. The measured counts are written to `target/qemu/counts.json`.
+//! [`budget::MARGIN`] of headroom. The measured counts are written to `target/qemu/counts.json`.
 
 use std::fmt::Write as _;
 
+use crate::budget;
+
 /// The `-icount` shift the firmware's conversion assumes (`strak_qemu::counter::ICOUNT_SHIFT`).
 pub(crate) const ICOUNT_SHIFT: u32 = 10;
-
-/// Headroom of blessed budgets over the measured counts.
-pub(crate) const MARGIN: f64 = 0.05;
 
 /// One measured case of one target.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -37,66 +36,42 @@ pub(crate) struct Measured {
     pub(crate) worst: u64,
 }
 
-/// The budget of one case on one target.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) struct Budget {
-    pub(crate) name: String,
-    pub(crate) target: String,
-    /// Most instructions the median may take.
-    pub(crate) median: u64,
-    /// Most instructions the worst call may take.
-    pub(crate) max: u64,
+/// The values of a line of `icount-budgets.txt`.
+pub(crate) const FIELDS: [&str; 2] = ["median", "max"];
+
+/// The header of `icount-budgets.txt`.
+const HEADER: &str = "# Instruction budgets per call (instruction counts under QEMU -icount, NOT cycles),\n\
+     # checked by `cargo xtask qemu`: a measured median or max above its budget fails.\n\
+     # `cargo xtask qemu --bless` rewrites this file (measured + 5 %).\n\
+     # name target median max\n";
+
+/// The budget of one case on one target: most instructions of the median and of the worst
+/// call.
+pub(crate) type Budget = budget::Budget<2>;
+
+impl Measured {
+    /// The measured values in the shape of a budget line.
+    fn line(&self) -> Budget {
+        Budget {
+            name: self.name.clone(),
+            target: self.target.clone(),
+            values: [self.median, self.max],
+        }
+    }
 }
 
-/// Parses the budget file: `# comments`, blank lines, and lines `name target median max`.
+/// Parses the budget file (see [`crate::budget::parse`]).
 ///
 /// # Errors
-/// A line with another number of fields, a count that is not an integer, or a duplicate.
+/// The first bad line.
 pub(crate) fn parse_budgets(text: &str) -> Result<Vec<Budget>, String> {
-    let mut out: Vec<Budget> = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let f: Vec<&str> = line.split_whitespace().collect();
-        let [name, target, median, max] = f.as_slice() else {
-            return Err(format!(
-                "line {}: expected `name target median max`, found `{line}`",
-                i + 1
-            ));
-        };
-        let num = |s: &str| {
-            s.parse::<u64>()
-                .map_err(|_| format!("line {}: `{s}` is not a whole number", i + 1))
-        };
-        let b = Budget {
-            name: (*name).to_owned(),
-            target: (*target).to_owned(),
-            median: num(median)?,
-            max: num(max)?,
-        };
-        if out.iter().any(|o| o.name == b.name && o.target == b.target) {
-            return Err(format!("line {}: {} {} twice", i + 1, b.name, b.target));
-        }
-        out.push(b);
-    }
-    Ok(out)
+    budget::parse(text, FIELDS)
 }
 
-/// The budget file for `measured`, each count with [`MARGIN`] of headroom (rounded up).
+/// The budget file for `measured`, each count blessed ([`budget::blessed`]).
 pub(crate) fn write_budgets(measured: &[Measured]) -> String {
-    let mut s = String::from(
-        "# Instruction budgets per call (instruction counts under QEMU -icount, NOT cycles),\n\
-         # checked by `cargo xtask qemu`: a measured median or max above its budget fails.\n\
-         # `cargo xtask qemu --bless` rewrites this file (measured + 5 %).\n\
-         # name target median max\n",
-    );
-    let up = |x: u64| (x as f64 * (1.0 + MARGIN)).ceil() as u64;
-    for m in measured {
-        let _ = writeln!(s, "{} {} {} {}", m.name, m.target, up(m.median), up(m.max));
-    }
-    s
+    let lines: Vec<Budget> = measured.iter().map(Measured::line).collect();
+    budget::write(HEADER, &budget::bless(&lines))
 }
 
 /// Parses the `icount` firmware's decoded output for `target`: checks the calibration line
@@ -160,40 +135,14 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
 /// # Errors
 /// The list of cases without a budget or over it.
 pub(crate) fn check(measured: &[Measured], budgets: &[Budget]) -> Result<(), String> {
-    let mut bad = Vec::new();
-    for m in measured {
-        match budgets
-            .iter()
-            .find(|b| b.name == m.name && b.target == m.target)
-        {
-            None => bad.push(format!(
-                "{} ({}): no budget (add a line, or run `cargo xtask qemu --bless`)",
-                m.name, m.target
-            )),
-            Some(b) => {
-                if m.median > b.median {
-                    bad.push(format!(
-                        "{} ({}): median {} instructions > budget {}",
-                        m.name, m.target, m.median, b.median
-                    ));
-                }
-                if m.max > b.max {
-                    bad.push(format!(
-                        "{} ({}): max {} instructions > budget {}",
-                        m.name, m.target, m.max, b.max
-                    ));
-                }
-            }
-        }
-    }
-    if bad.is_empty() {
-        Ok(())
-    } else {
-        Err(format!(
-            "instruction counts over budget (instruction counts, not cycles):\n  {}",
-            bad.join("\n  ")
-        ))
-    }
+    let lines: Vec<Budget> = measured.iter().map(Measured::line).collect();
+    budget::check(
+        &lines,
+        budgets,
+        FIELDS,
+        "instructions",
+        "instruction counts (not cycles)",
+    )
 }
 
 /// `counts.json`: a list of `{"name", "target", "min", "median", "max", "budget",
@@ -201,9 +150,7 @@ pub(crate) fn check(measured: &[Measured], budgets: &[Budget]) -> Result<(), Str
 pub(crate) fn counts_json(measured: &[Measured], budgets: &[Budget]) -> String {
     let mut s = String::from("[\n");
     for (i, m) in measured.iter().enumerate() {
-        let b = budgets
-            .iter()
-            .find(|b| b.name == m.name && b.target == m.target);
+        let b = budget::find(budgets, &m.name, &m.target);
         let opt = |x: Option<u64>| x.map_or_else(|| "null".to_owned(), |x| x.to_string());
         let _ = writeln!(
             s,
@@ -214,8 +161,8 @@ pub(crate) fn counts_json(measured: &[Measured], budgets: &[Budget]) -> String {
             m.min,
             m.median,
             m.max,
-            opt(b.map(|b| b.median)),
-            opt(b.map(|b| b.max)),
+            opt(b.map(|b| b.values[0])),
+            opt(b.map(|b| b.values[1])),
             m.calls,
             if i + 1 < measured.len() { "," } else { "" }
         );
@@ -308,33 +255,14 @@ mod tests {
     }
 
     #[test]
-    fn budgets_parse_and_round_trip() {
-        let text = "# c\n\nplayback-q40-3axis thumbv7m-none-eabi 120 200\n  a t 1 2  \n";
-        let b = parse_budgets(text).unwrap();
-        assert_eq!(b.len(), 2);
-        assert_eq!(
-            b[0],
-            Budget {
-                name: "playback-q40-3axis".into(),
-                target: "thumbv7m-none-eabi".into(),
-                median: 120,
-                max: 200
-            }
-        );
+    fn budgets_round_trip_with_the_header() {
         let written = write_budgets(&[m("x", 100, 200)]);
+        assert!(written.starts_with("# Instruction budgets"), "{written}");
+        assert!(written.contains("# name target median max\n"), "{written}");
         let back = parse_budgets(&written).unwrap();
-        assert_eq!((back[0].median, back[0].max), (105, 210));
-    }
-
-    #[test]
-    fn bad_budget_lines_are_errors() {
+        assert_eq!(back.len(), 1);
+        assert_eq!((back[0].name.as_str(), back[0].values), ("x", [105, 210]));
         assert!(parse_budgets("a t 1\n").unwrap_err().contains("line 1"));
-        assert!(parse_budgets("a t 1 x\n").unwrap_err().contains("`x`"));
-        assert!(
-            parse_budgets("a t 1 2\na t 3 4\n")
-                .unwrap_err()
-                .contains("twice")
-        );
     }
 
     #[test]
@@ -342,7 +270,14 @@ mod tests {
         let b = parse_budgets("a thumbv7m-none-eabi 100 150\n").unwrap();
         assert!(check(&[m("a", 100, 150)], &b).is_ok());
         let e = check(&[m("a", 101, 150)], &b).unwrap_err();
-        assert!(e.contains("median 101 instructions > budget 100"), "{e}");
+        assert!(
+            e.contains("median 101 instructions > budget 100 instructions"),
+            "{e}"
+        );
+        assert!(
+            e.starts_with("instruction counts (not cycles) over budget"),
+            "{e}"
+        );
         let e = check(&[m("a", 90, 151)], &b).unwrap_err();
         assert!(e.contains("max 151"), "{e}");
         let e = check(&[m("b", 1, 1)], &b).unwrap_err();

@@ -20,6 +20,7 @@
 //! Missing rustup targets, qemu-system-arm and defmt-print are installed; anything that cannot
 //! be installed fails loudly.
 
+mod budget;
 mod compare;
 mod fuzz;
 mod icount;

@@ -5,8 +5,9 @@
 //!    `defmt-print` (cargo install, pinned to [`DEFMT_PRINT_VERSION`]).
 //! 2. Compiles every bundled job (`firmware-sim/examples/jobs/*.toml`) on the host in `f32`
 //!    and fixed-point with `strak_sim::export` (what `strak-sim compile` writes) and plays it
-//!    with its events, keeping every sample's bits; writes the blobs and a `jobs.rs` for the
-//!    firmware into `target/qemu/blobs`.
+//!    with its events, keeping every sample's bits, and the flash-playback firmware's job
+//!    [`FLASH_JOB_FILE`] in fixed-point; writes the blobs and a `jobs.rs` for the firmware
+//!    into `target/qemu/blobs`.
 //! 3. Checks formatting and clippy of the firmware workspace `firmware-sim/qemu`, builds it
 //!    for the Cortex-M4F and the Cortex-M3.
 //! 4. Runs each firmware under QEMU, decodes its defmt output with defmt-print, and compares
@@ -17,9 +18,10 @@
 //!    loading and playing a blob, of planning and of compiling on the device, the sizes of
 //!    their values, the instructions of planning and compiling) and the flash-playback
 //!    firmware `flash-play` on a part with the RAM of a real microcontroller (64 KiB: the
-//!    LM3S6965 on `lm3s6965evb`, an STM32F401CB's on `mps2-an386`); checks that the blobs
-//!    they played give the host's samples (a hash of every sample's bits), and the stack
-//!    against
+//!    LM3S6965 on `lm3s6965evb`, an STM32F401CB's on `mps2-an386`), which plays the path of
+//!    [`FLASH_JOB_FILE`] (3 axes, Q40, [`FLASH_PIECES`] pieces, compiled in step 2 and
+//!    checked for its piece count there and in the firmware); checks that the blobs they
+//!    played give the host's samples (a hash of every sample's bits), and the stack against
 //!    `firmware-sim/qemu/stack-budgets.txt` (`--bless` rewrites it), written to
 //!    `target/qemu/stack.json` (see [`crate::stack`]).
 //! 7. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per
@@ -36,7 +38,7 @@ use std::process::{Child, Command, Stdio};
 use std::thread;
 use std::time::{Duration, Instant};
 
-use strak_sim::export::{Export, Playback, export};
+use strak_sim::export::{DeviceRecipe, Export, Playback, export};
 use strak_sim::job::{Action, Job};
 
 use crate::compare::{self, StreamKey};
@@ -60,6 +62,14 @@ const BINARIES: [&str; 5] = [
     "stack",
     "flash-play",
 ];
+
+/// The job of the flash-playback firmware, compiled in fixed-point into exactly
+/// [`FLASH_PIECES`] pieces of 3 axes (relative to the workspace root).
+const FLASH_JOB_FILE: &str = "firmware-sim/qemu/flash-256.toml";
+
+/// The pieces of the flash-playback firmware's path: the firmware's capacity
+/// (`strak_qemu::PIECES`), which the firmware checks too.
+const FLASH_PIECES: usize = 256;
 
 /// One firmware build and the QEMU machine it runs on.
 #[derive(Clone, Copy, Debug)]
@@ -122,7 +132,11 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     let t = Instant::now();
     let blob_dir = root.join("target").join("qemu").join("blobs");
     let jobs = export_jobs(&root.join("firmware-sim/examples/jobs"), &blob_dir)?;
-    write_if_changed(&blob_dir.join("jobs.rs"), jobs_source(&jobs).as_bytes())?;
+    let flash = flash_job(&root.join(FLASH_JOB_FILE), &blob_dir)?;
+    write_if_changed(
+        &blob_dir.join("jobs.rs"),
+        jobs_source(&jobs, &flash).as_bytes(),
+    )?;
     println!(
         "<== host: {} jobs × formats, {} samples ({:.1} s)",
         jobs.len(),
@@ -130,31 +144,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
         t.elapsed().as_secs_f64()
     );
 
-    let blobs = blob_dir.to_string_lossy().into_owned();
-    let envs = [("STRAK_BLOBS", blobs.as_str())];
-    fw_step(&fw_dir, "firmware format", &["fmt", "--", "--check"], &envs)?;
-    for fw in &FIRMWARES {
-        fw_step(
-            &fw_dir,
-            &format!("firmware clippy ({})", fw.target),
-            &[
-                "clippy",
-                "--release",
-                "--target",
-                fw.target,
-                "--",
-                "-D",
-                "warnings",
-            ],
-            &envs,
-        )?;
-        fw_step(
-            &fw_dir,
-            &format!("firmware build ({})", fw.target),
-            &["build", "--release", "--target", fw.target, "--bins"],
-            &envs,
-        )?;
-    }
+    build_firmware(&fw_dir, &blob_dir)?;
 
     let mut compared = 0_usize;
     for fw in &FIRMWARES {
@@ -176,12 +166,44 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     }
 
     check_sizes(&fw_dir, bless)?;
-    let planning = check_stack(&qemu, &defmt_print, &root, &fw_dir, &jobs, bless)?;
+    let flash = [flash];
+    let planning = check_stack(&qemu, &defmt_print, &root, &fw_dir, [&jobs, &flash], bless)?;
     check_icount(&qemu, &defmt_print, &root, &fw_dir, planning, bless)?;
     println!(
         "\nxtask qemu: {compared} firmware samples equal the host's bit for bit; done in {:.0} s",
         started.elapsed().as_secs_f64()
     );
+    Ok(())
+}
+
+/// Checks the formatting and clippy of the firmware workspace `fw_dir` and builds its
+/// binaries for every target, with the blobs and `jobs.rs` of `blob_dir`.
+fn build_firmware(fw_dir: &Path, blob_dir: &Path) -> Result<(), String> {
+    let blobs = blob_dir.to_string_lossy().into_owned();
+    let envs = [("STRAK_BLOBS", blobs.as_str())];
+    fw_step(fw_dir, "firmware format", &["fmt", "--", "--check"], &envs)?;
+    for fw in &FIRMWARES {
+        fw_step(
+            fw_dir,
+            &format!("firmware clippy ({})", fw.target),
+            &[
+                "clippy",
+                "--release",
+                "--target",
+                fw.target,
+                "--",
+                "-D",
+                "warnings",
+            ],
+            &envs,
+        )?;
+        fw_step(
+            fw_dir,
+            &format!("firmware build ({})", fw.target),
+            &["build", "--release", "--target", fw.target, "--bins"],
+            &envs,
+        )?;
+    }
     Ok(())
 }
 
@@ -200,40 +222,71 @@ fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
         .map_err(|e| format!("cannot create {}: {e}", blob_dir.display()))?;
     let mut out = Vec::new();
     for file in files {
-        let name = file
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let text = fs::read_to_string(&file)
-            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-        let job = Job::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
-        for playback in Playback::ALL {
-            let export = export(&job, playback)
-                .map_err(|e| format!("{} ({}): {e}", file.display(), playback.name()))?;
-            let blob_path = blob_dir.join(format!("{name}-{}.strk", playback.name()));
-            write_if_changed(&blob_path, &export.blob)?;
-            println!(
-                "    {name} {}: {} axes, {} pieces, {} ticks, {} samples, blob {} bytes{}",
-                playback.name(),
-                export.axes,
-                export.pieces,
-                export.ticks,
-                export.samples(),
-                export.blob.len(),
-                if export.recipe.is_some() && export.axes == 3 {
-                    ", also compiled on the device"
-                } else {
-                    ""
-                }
-            );
-            out.push(HostJob {
-                name: name.clone(),
-                export,
-                blob_path,
-            });
-        }
+        out.extend(export_file(&file, blob_dir, &Playback::ALL)?);
     }
     Ok(out)
+}
+
+/// Exports the job file `file` in each of `playbacks`, writing the blobs into `blob_dir`.
+fn export_file(
+    file: &Path,
+    blob_dir: &Path,
+    playbacks: &[Playback],
+) -> Result<Vec<HostJob>, String> {
+    let name = file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let text =
+        fs::read_to_string(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    let job = Job::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    let mut out = Vec::new();
+    for &playback in playbacks {
+        let export = export(&job, playback)
+            .map_err(|e| format!("{} ({}): {e}", file.display(), playback.name()))?;
+        let blob_path = blob_dir.join(format!("{name}-{}.strk", playback.name()));
+        write_if_changed(&blob_path, &export.blob)?;
+        println!(
+            "    {name} {}: {} axes, {} pieces, {} ticks, {} samples, blob {} bytes{}",
+            playback.name(),
+            export.axes,
+            export.pieces,
+            export.ticks,
+            export.samples(),
+            export.blob.len(),
+            if export.recipe.is_some() && export.axes == 3 {
+                ", also compiled on the device"
+            } else {
+                ""
+            }
+        );
+        out.push(HostJob {
+            name: name.clone(),
+            export,
+            blob_path,
+        });
+    }
+    Ok(out)
+}
+
+/// Exports the flash-playback firmware's job ([`FLASH_JOB_FILE`]) in fixed-point and checks
+/// that its path has 3 axes and [`FLASH_PIECES`] pieces.
+fn flash_job(file: &Path, blob_dir: &Path) -> Result<HostJob, String> {
+    let mut jobs = export_file(file, blob_dir, &[Playback::Fixed])?;
+    let job = jobs
+        .pop()
+        .ok_or_else(|| format!("{}: nothing exported", file.display()))?;
+    if job.export.axes != 3 || job.export.pieces != FLASH_PIECES {
+        return Err(format!(
+            "{}: compiles to {} pieces of {} axes; the flash-playback firmware plays a path of \
+             {FLASH_PIECES} pieces of 3 axes (the pieces are duration · rate_hz / \
+             max_piece_ticks: change those)",
+            file.display(),
+            job.export.pieces,
+            job.export.axes
+        ));
+    }
+    Ok(job)
 }
 
 /// Writes `bytes` to `path` unless it holds them already (an unchanged file keeps its time,
@@ -284,72 +337,101 @@ fn device_jobs(jobs: &[HostJob]) -> Vec<(&HostJob, &HostJob)> {
         .collect()
 }
 
-/// The firmware's `jobs.rs`: the blobs (`include_bytes!`), their events, and the device jobs.
-fn jobs_source(jobs: &[HostJob]) -> String {
+/// The firmware's `jobs.rs`: the blobs (`include_bytes!`) and their events, the device
+/// jobs, and the blob of the flash-playback firmware (`flash`).
+fn jobs_source(jobs: &[HostJob], flash: &HostJob) -> String {
     let mut s = String::from(
-        "// @generated by `cargo xtask qemu` from firmware-sim/examples/jobs: do not edit.\n\n\
+        "// @generated by `cargo xtask qemu` from firmware-sim/examples/jobs and \
+         firmware-sim/qemu/flash-256.toml: do not edit.\n\n\
          /// The jobs compiled on the host, as blobs in flash.\npub static BLOB_JOBS: &[BlobJob] = &[\n",
     );
     for j in jobs {
-        let format = match j.export.playback {
-            Playback::F32 => "Format::F32",
-            Playback::Fixed => "Format::Fixed",
-        };
-        s += &format!(
-            "    BlobJob {{ name: {:?}, format: {format}, axes: {}, blob: &strak_trajectory::AlignedBlob(*include_bytes!({:?})).0, events: {} }},\n",
-            j.name,
-            j.export.axes,
-            j.blob_path.to_string_lossy(),
-            events_src(&j.export.events)
-        );
+        s += &format!("    {},\n", blob_job_src(j));
     }
     s += "];\n\n/// The jobs compiled on the device at start-up (3 axes).\npub static DEVICE_JOBS: &[DeviceJob<3>] = &[\n";
     for (f, x) in device_jobs(jobs) {
-        let Some(r) = &f.export.recipe else { continue };
-        let list = |v: &[f64]| v.iter().map(|x| f64_src(*x)).collect::<Vec<_>>().join(", ");
-        let points: Vec<String> = r.points.iter().map(|p| format!("[{}]", list(p))).collect();
-        let c = &r.compile;
-        let mut compile = String::from("strak_trajectory::CompileOptions::new()");
-        match c.tolerance() {
-            strak_trajectory::Tolerance::Absolute(t) => {
-                compile += &format!(".with_tolerance({})", f64_src(t))
-            }
-            strak_trajectory::Tolerance::Relative(t) => {
-                compile += &format!(".with_relative_tolerance({})", f64_src(t));
-            }
+        if let Some(r) = &f.export.recipe {
+            s += &device_job_src(r, f, x);
         }
-        compile += &format!(".with_max_piece_ticks({})", c.max_piece_ticks());
-        if let Some((a, j)) = c.limits() {
-            compile += &format!(".with_limits({}, {})", f64_src(a), f64_src(j));
-        }
-        compile += &format!(".with_feed_share({})", f64_src(c.feed_share()));
-        let p = &r.plan;
-        let plan = format!(
-            "strak_trajectory::PlanOptions::new().with_shape(strak_trajectory::ProfileShape::{:?}).with_samples({}).with_zone_tolerance({}).with_centripetal_share({}).with_corner_angle({}).with_feed_share({}).with_rate({})",
-            p.shape(),
-            p.samples(),
-            f64_src(p.zone_tolerance()),
-            f64_src(p.centripetal_share()),
-            f64_src(p.corner_angle()),
-            f64_src(p.feed_share()),
-            f64_src(p.rate()),
-        );
-        s += &format!(
-            "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        plan: {plan},\n        compile: {compile},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
-            f.name,
-            f64_src(r.rate_hz),
-            r.degree,
-            points.join(", "),
-            list(&r.limits),
-            list(&r.axis_velocity),
-            list(&r.axis_acceleration),
-            events_src(&f.export.events),
-            f.blob_path.to_string_lossy(),
-            x.blob_path.to_string_lossy(),
-        );
     }
-    s += "];\n";
+    s += "];\n\n/// The path of the flash-playback firmware: 3 axes, Q40, `FLASH_PIECES` pieces.\n";
+    s += &format!(
+        "pub static FLASH_BLOB: BlobJob = {};\n",
+        blob_job_src(flash)
+    );
     s
+}
+
+/// A `BlobJob` literal for `j`, its blob included from its file.
+fn blob_job_src(j: &HostJob) -> String {
+    let format = match j.export.playback {
+        Playback::F32 => "Format::F32",
+        Playback::Fixed => "Format::Fixed",
+    };
+    format!(
+        "BlobJob {{ name: {:?}, format: {format}, axes: {}, blob: &strak_trajectory::AlignedBlob(*include_bytes!({:?})).0, events: {} }}",
+        j.name,
+        j.export.axes,
+        j.blob_path.to_string_lossy(),
+        events_src(&j.export.events)
+    )
+}
+
+/// The compile options of `r` as a `CompileOptions` expression.
+fn compile_src(r: &DeviceRecipe) -> String {
+    let c = &r.compile;
+    let mut compile = String::from("strak_trajectory::CompileOptions::new()");
+    match c.tolerance() {
+        strak_trajectory::Tolerance::Absolute(t) => {
+            compile += &format!(".with_tolerance({})", f64_src(t));
+        }
+        strak_trajectory::Tolerance::Relative(t) => {
+            compile += &format!(".with_relative_tolerance({})", f64_src(t));
+        }
+    }
+    compile += &format!(".with_max_piece_ticks({})", c.max_piece_ticks());
+    if let Some((a, j)) = c.limits() {
+        compile += &format!(".with_limits({}, {})", f64_src(a), f64_src(j));
+    }
+    compile += &format!(".with_feed_share({})", f64_src(c.feed_share()));
+    compile
+}
+
+/// The planner options of `r` as a `PlanOptions` expression.
+fn plan_src(r: &DeviceRecipe) -> String {
+    let p = &r.plan;
+    format!(
+        "strak_trajectory::PlanOptions::new().with_shape(strak_trajectory::ProfileShape::{:?}).with_samples({}).with_zone_tolerance({}).with_centripetal_share({}).with_corner_angle({}).with_feed_share({}).with_rate({})",
+        p.shape(),
+        p.samples(),
+        f64_src(p.zone_tolerance()),
+        f64_src(p.centripetal_share()),
+        f64_src(p.corner_angle()),
+        f64_src(p.feed_share()),
+        f64_src(p.rate()),
+    )
+}
+
+/// A `DeviceJob` literal (with its trailing comma) for the recipe `r` of the job exported
+/// as `f` (f32) and `x` (fixed-point).
+fn device_job_src(r: &DeviceRecipe, f: &HostJob, x: &HostJob) -> String {
+    let list = |v: &[f64]| v.iter().map(|x| f64_src(*x)).collect::<Vec<_>>().join(", ");
+    let points: Vec<String> = r.points.iter().map(|p| format!("[{}]", list(p))).collect();
+    format!(
+        "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        plan: {},\n        compile: {},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
+        f.name,
+        f64_src(r.rate_hz),
+        r.degree,
+        points.join(", "),
+        list(&r.limits),
+        list(&r.axis_velocity),
+        list(&r.axis_acceleration),
+        plan_src(r),
+        compile_src(r),
+        events_src(&f.export.events),
+        f.blob_path.to_string_lossy(),
+        x.blob_path.to_string_lossy(),
+    )
 }
 
 /// `cargo ARGS` in the firmware workspace (its own `.cargo/config.toml` applies).
@@ -776,65 +858,42 @@ fn firmware_elf(fw_dir: &Path, fw: &Firmware, bin: &str) -> PathBuf {
         .join(bin)
 }
 
-/// Runs the `stack` firmware (under `-icount`) and the flash-playback firmware on every
-/// target, checks the blobs they played against the host's samples and their stack against
-/// the budget file (or rewrites it when `bless`), writes `target/qemu/stack.json`, and
-/// returns the instruction counts of planning and compiling.
+/// What the stack-measuring firmware reported on every target.
+#[derive(Default)]
+struct StackRun {
+    /// The stack of each operation.
+    measured: Vec<stack::Measured>,
+    /// The sizes of the values: name, target, bytes.
+    sizes: Vec<(String, String, u64)>,
+    /// The instruction counts of planning and compiling.
+    counts: Vec<icount::Measured>,
+}
+
+/// Runs the `stack` firmware (under `-icount`) and the flash-playback firmware (playing
+/// `flash`) on every target, checks the blobs they played against the host's samples and
+/// their stack against the budget file (or rewrites it when `bless`), writes
+/// `target/qemu/stack.json`, and returns the instruction counts of planning and compiling.
 fn check_stack(
     qemu: &Path,
     defmt_print: &Path,
     root: &Path,
     fw_dir: &Path,
-    jobs: &[HostJob],
+    [jobs, flash]: [&[HostJob]; 2],
     bless: bool,
 ) -> Result<Vec<icount::Measured>, String> {
-    let shift = format!("shift={}", icount::ICOUNT_SHIFT);
-    let mut measured = Vec::new();
-    let mut sizes = Vec::new();
-    let mut counts = Vec::new();
+    let mut run = StackRun::default();
     for fw in &FIRMWARES {
-        let elf = firmware_elf(fw_dir, fw, "stack");
-        println!(
-            "\n==> QEMU -icount {shift} {}: stack and RAM of loading, planning and compiling",
-            fw.label
-        );
-        let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
-        let report =
-            stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
-        check_played(fw.label, jobs, &report)?;
-        let cases = icount::parse_output(&report.rest, fw.target)
-            .map_err(|e| format!("{} (stack firmware): {e}", fw.label))?;
-        print_stack(&report);
-        for (name, pieces, ticks) in &report.compiled {
-            println!("    {name}: {pieces} pieces, {ticks} ticks");
-        }
-        print_counts(&cases);
-        sizes.extend(
-            report
-                .sizes
-                .iter()
-                .map(|(n, b)| (n.clone(), fw.target.to_owned(), *b)),
-        );
-        measured.extend(report.stacks);
-        counts.extend(cases);
-
-        let part = Firmware {
-            machine: fw.flash_machine,
-            label: fw.flash_label,
-            ..*fw
-        };
-        let elf = firmware_elf(fw_dir, fw, "flash-play");
-        println!("\n==> QEMU {}: playing a blob from flash", part.label);
-        let text = run_firmware(qemu, defmt_print, &part, &elf, &[])?;
-        let report =
-            stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", part.label))?;
-        check_played(part.label, jobs, &report)?;
-        let ram = report
-            .part_ram
-            .ok_or_else(|| format!("{}: the flash-playback firmware named no RAM", part.label))?;
-        println!("    the part's RAM: {ram} bytes");
-        print_stack(&report);
-        measured.extend(report.stacks);
+        stack_firmware(qemu, defmt_print, fw_dir, fw, jobs, &mut run)?;
+        let flash_stack = flash_firmware(qemu, defmt_print, fw_dir, fw, flash)?;
+        run.measured.extend(flash_stack);
+    }
+    let StackRun {
+        measured,
+        sizes,
+        counts,
+    } = run;
+    for line in stack::target_report(&measured) {
+        println!("    target: {line}");
     }
     let file = fw_dir.join("stack-budgets.txt");
     if bless {
@@ -856,6 +915,74 @@ fn check_stack(
     stack::check(&measured, &budgets)?;
     println!("<== stack within {}", file.display());
     Ok(counts)
+}
+
+/// Runs the `stack` firmware of `fw` under `-icount`, checks the blobs it played against
+/// `jobs`, and adds what it measured to `run`.
+fn stack_firmware(
+    qemu: &Path,
+    defmt_print: &Path,
+    fw_dir: &Path,
+    fw: &Firmware,
+    jobs: &[HostJob],
+    run: &mut StackRun,
+) -> Result<(), String> {
+    let shift = format!("shift={}", icount::ICOUNT_SHIFT);
+    let elf = firmware_elf(fw_dir, fw, "stack");
+    println!(
+        "\n==> QEMU -icount {shift} {}: stack and RAM of loading, planning and compiling",
+        fw.label
+    );
+    let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
+    let report = stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
+    check_played(fw.label, jobs, &report)?;
+    let cases = icount::parse_output(&report.rest, fw.target)
+        .map_err(|e| format!("{} (stack firmware): {e}", fw.label))?;
+    print_stack(&report);
+    for (name, pieces, ticks) in &report.compiled {
+        println!("    {name}: {pieces} pieces, {ticks} ticks");
+    }
+    print_counts(&cases);
+    run.sizes.extend(
+        report
+            .sizes
+            .iter()
+            .map(|(n, b)| (n.clone(), fw.target.to_owned(), *b)),
+    );
+    run.measured.extend(report.stacks);
+    run.counts.extend(cases);
+    Ok(())
+}
+
+/// Runs the flash-playback firmware of `fw` on its part, checks that it played `flash` as
+/// the host does and named the part's RAM, and returns its stack measurements.
+fn flash_firmware(
+    qemu: &Path,
+    defmt_print: &Path,
+    fw_dir: &Path,
+    fw: &Firmware,
+    flash: &[HostJob],
+) -> Result<Vec<stack::Measured>, String> {
+    let part = Firmware {
+        machine: fw.flash_machine,
+        label: fw.flash_label,
+        ..*fw
+    };
+    let elf = firmware_elf(fw_dir, fw, "flash-play");
+    println!(
+        "\n==> QEMU {}: playing a blob of {FLASH_PIECES} pieces from flash",
+        part.label
+    );
+    let text = run_firmware(qemu, defmt_print, &part, &elf, &[])?;
+    let report =
+        stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", part.label))?;
+    check_played(part.label, flash, &report)?;
+    let ram = report
+        .part_ram
+        .ok_or_else(|| format!("{}: the flash-playback firmware named no RAM", part.label))?;
+    println!("    the part's RAM: {ram} bytes");
+    print_stack(&report);
+    Ok(report.stacks)
 }
 
 /// The stack measurements and sizes of `report` as tables.

@@ -8,6 +8,8 @@
 
 use std::fmt;
 
+use crate::budget;
+
 /// Sizes in bytes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Sizes {
@@ -97,44 +99,47 @@ pub(crate) struct Expected {
     pub(crate) sizes: Sizes,
 }
 
-/// Parses the expected-sizes file: `name target text data bss` per line, `#` comments.
+/// The values of a line of the expected-sizes file.
+const FIELDS: [&str; 3] = ["text", "data", "bss"];
+
+/// The header of the expected-sizes file.
+const HEADER: &str = "# Firmware sizes in bytes, read from the ELF section headers by `cargo xtask qemu`.\n\
+     # xtask fails when a firmware's flash (text + data) grows more than 10 % over its line;\n\
+     # `cargo xtask qemu --bless` rewrites this file.\n\
+     # name target text data bss\n";
+
+/// Parses the expected-sizes file: `name target text data bss` per line, `#` comments
+/// (the format of [`crate::budget`]).
 ///
 /// # Errors
-/// A line that does not parse.
+/// The first line that does not parse, by its number.
 pub(crate) fn parse_expected(text: &str) -> Result<Vec<Expected>, String> {
-    text.lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .map(|l| {
-            let w: Vec<&str> = l.split_whitespace().collect();
-            let num = |i: usize| w.get(i).and_then(|v| v.parse::<u64>().ok());
-            match (w.len(), num(2), num(3), num(4)) {
-                (5, Some(text), Some(data), Some(bss)) => Ok(Expected {
-                    name: w[0].to_owned(),
-                    target: w[1].to_owned(),
-                    sizes: Sizes { text, data, bss },
-                }),
-                _ => Err(format!("bad line in the expected sizes: `{l}`")),
+    let lines = budget::parse(text, FIELDS).map_err(|e| format!("the expected sizes: {e}"))?;
+    Ok(lines
+        .into_iter()
+        .map(|b| {
+            let [text, data, bss] = b.values;
+            Expected {
+                name: b.name,
+                target: b.target,
+                sizes: Sizes { text, data, bss },
             }
         })
-        .collect()
+        .collect())
 }
 
-/// The expected-sizes file for `entries`.
+/// The expected-sizes file for `entries` (the sizes as measured: the check allows
+/// [`GROWTH`]).
 pub(crate) fn write_expected(entries: &[Expected]) -> String {
-    let mut s = String::from(
-        "# Firmware sizes in bytes, read from the ELF section headers by `cargo xtask qemu`.\n\
-         # xtask fails when a firmware's flash (text + data) grows more than 10 % over its line;\n\
-         # `cargo xtask qemu --bless` rewrites this file.\n\
-         # name target text data bss\n",
-    );
-    for e in entries {
-        s += &format!(
-            "{} {} {} {} {}\n",
-            e.name, e.target, e.sizes.text, e.sizes.data, e.sizes.bss
-        );
-    }
-    s
+    let lines: Vec<budget::Budget<3>> = entries
+        .iter()
+        .map(|e| budget::Budget {
+            name: e.name.clone(),
+            target: e.target.clone(),
+            values: [e.sizes.text, e.sizes.data, e.sizes.bss],
+        })
+        .collect();
+    budget::write(HEADER, &lines)
 }
 
 /// The allowed growth of flash over the expected size.
@@ -228,6 +233,11 @@ mod tests {
             },
         }];
         assert_eq!(parse_expected(&write_expected(&entries)).unwrap(), entries);
-        assert!(parse_expected("a b 1 2\n").is_err());
+        let e = parse_expected("# c\na b 1 2\n").unwrap_err();
+        assert!(
+            e.contains("line 2: expected `name target text data bss`"),
+            "{e}"
+        );
+        assert!(parse_expected("a b 1 2 3\na b 1 2 3\n").is_err());
     }
 }

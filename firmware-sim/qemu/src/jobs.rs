@@ -99,6 +99,9 @@ pub struct DeviceJob<const D: usize> {
     pub host_blob_fixed: &'static [u8],
 }
 
+/// The pieces of [`FLASH_BLOB`]: the firmware's capacity ([`crate::PIECES`]).
+pub const FLASH_PIECES: usize = crate::PIECES;
+
 /// The blob job `name` in `format` with `axes` axes, if bundled.
 pub fn find_blob(name: &str, format: Format, axes: usize) -> Option<&'static BlobJob> {
     BLOB_JOBS

@@ -44,8 +44,9 @@ use defmt_semihosting as _;
 /// Path capacity of the firmware: the bundled jobs need at most 166 pieces.
 pub const PIECES: usize = 256;
 
-/// The bundled job that the flash-playback and stack firmware play from its blob.
-pub const FLASH_JOB: &str = "pick-and-place";
+/// The bundled job whose blob the stack firmware validates and plays from flash (the
+/// flash-playback firmware plays [`jobs::FLASH_BLOB`]).
+pub const STACK_JOB: &str = "pick-and-place";
 
 /// Exits QEMU with status 0.
 pub fn exit_success() -> ! {

@@ -129,6 +129,8 @@ where
 /// What [`play_blob`] played: the number of samples and a hash of every sample's bits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
 pub struct Played {
+    /// Pieces of the path.
+    pub pieces: usize,
     /// Samples played (the final one included).
     pub samples: u32,
     /// [`mix`] folded over every sample's positions, velocities and accelerations
@@ -157,6 +159,7 @@ where
     let path = PathBlob::<N, A>::from_bytes(blob)?;
     let mut player = Player::new(&path, events);
     let mut played = Played {
+        pieces: path.view().piece_count(),
         samples: 0,
         hash: 0,
     };

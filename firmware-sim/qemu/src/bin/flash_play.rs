@@ -1,7 +1,9 @@
-//! Flash playback on a part with the RAM of a real microcontroller: validates the bundled
-//! pick-and-place blob (fixed-point, 3 axes) in flash and plays it to its end through
-//! [`play_blob`], the whole work of a firmware that plays paths from flash, and logs its
-//! stack high-water mark and the hash of its samples.
+//! Flash playback on a part with the RAM of a real microcontroller: validates the blob
+//! [`FLASH_BLOB`] in flash (3 axes, Q40, [`FLASH_PIECES`] = 256 pieces, the firmware's
+//! capacity; compiled by `cargo xtask qemu` from `flash-256.toml`) and plays it to its end
+//! through [`play_blob`], the whole work of a firmware that plays paths from flash, and logs
+//! its stack high-water mark and the hash of its samples. A blob of another piece count
+//! fails the run.
 //!
 //! Linked with the memory of a real part (`memory/flash-<target>.x`, chosen by `build.rs`):
 //! the Cortex-M3 build has the 64 KiB of RAM of the LM3S6965 and runs on QEMU's
@@ -23,9 +25,9 @@
 #![deny(unsafe_code)]
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
-use strak_qemu::jobs::{Format, find_blob};
+use strak_qemu::jobs::{FLASH_BLOB, FLASH_PIECES, Format};
 use strak_qemu::play::play_blob;
-use strak_qemu::{FLASH_JOB, exit_failure, exit_success};
+use strak_qemu::{exit_failure, exit_success};
 use strak_qemu::{mpu, stack};
 use strak_trajectory::Q40;
 
@@ -40,12 +42,22 @@ fn main() -> ! {
     }
     let [_, (_, ram)] = mpu::part();
     defmt::println!("RAM {=u32}", ram);
-    let Some(job) = find_blob(FLASH_JOB, Format::Fixed, 3) else {
-        defmt::error!("{=str}: no 3-axis fixed-point blob bundled", FLASH_JOB);
+    let job = &FLASH_BLOB;
+    if job.format != Format::Fixed || job.axes != 3 {
+        defmt::error!("{=str}: not a 3-axis fixed-point blob", job.name);
         exit_failure()
-    };
+    }
     let (played, used) = stack::usage(|| play_blob::<Q40, 3>(job.blob, job.events));
     match played {
+        Ok(played) if played.pieces != FLASH_PIECES => {
+            defmt::error!(
+                "{=str}: {=usize} pieces, the flash-playback firmware plays {=usize}",
+                job.name,
+                played.pieces,
+                FLASH_PIECES
+            );
+            exit_failure()
+        }
         Ok(played) => {
             stack::log("flash-play-q40", used);
             defmt::println!(

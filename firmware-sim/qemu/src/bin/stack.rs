@@ -37,7 +37,7 @@ use strak_qemu::jobs::{Format, find_blob};
 use strak_qemu::planning::{self, Curve};
 use strak_qemu::play::{OutBits, Played, play_blob};
 use strak_qemu::stack;
-use strak_qemu::{FLASH_JOB, PIECES, exit_failure, exit_success};
+use strak_qemu::{PIECES, STACK_JOB, exit_failure, exit_success};
 use strak_trajectory::{Kernel, Number, Path, PathBlob, PathTiming, Q40, Sampler};
 
 /// Counts of the report lines.
@@ -110,17 +110,17 @@ fn sizes() {
     size::<BSpline<[f64; 3], 16, 24>>("BSpline<[f64;3],16,24>");
 }
 
-/// Validates and plays the bundled blob of [`FLASH_JOB`] in `N` from flash, logging its stack
+/// Validates and plays the bundled blob of [`STACK_JOB`] in `N` from flash, logging its stack
 /// and its stream's hash.
 #[inline(never)]
 fn blob<N: Kernel>(name: &str, format: Format, lines: &mut Lines)
 where
     N::Out: OutBits,
 {
-    let Some(job) = find_blob(FLASH_JOB, format, 3) else {
+    let Some(job) = find_blob(STACK_JOB, format, 3) else {
         defmt::error!(
             "{=str}: no 3-axis {=str} blob bundled",
-            FLASH_JOB,
+            STACK_JOB,
             format.name()
         );
         exit_failure()
