@@ -28,10 +28,8 @@ pub const BEZIER_MAX_POINTS: usize = 12;
 /// The largest segment degree of a Bézier chain.
 pub const BEZIER_CHAIN_MAX_DEGREE: usize = 5;
 
-/// The most coordinates of an interpolating curve (Lagrange, Hermite, Catmull-Rom, cubic
-/// spline, parabolic blending): strak-curves computes their nodes and coefficients in four
-/// `f64` coordinates.
-pub const MAX_INTERPOLATION_AXES: usize = 4;
+// Every curve kind takes up to MAX_AXES coordinates; strak-curves' points hold up to MAX_DIM.
+const _: () = assert!(MAX_AXES <= strak_curves::MAX_DIM);
 
 /// The longest knot vector: an open B-spline of [`MAX_POINTS`] points and the highest degree.
 pub const MAX_KNOTS: usize = MAX_POINTS + BSPLINE_MAX_DEGREE + 1;
@@ -495,24 +493,6 @@ impl CurveFile {
         let points = self.points();
         check_points(points)?;
         let (n, dim) = (points.len(), self.dim());
-        let interpolating = !matches!(
-            self,
-            CurveFile::Bezier(_)
-                | CurveFile::BezierChain(_)
-                | CurveFile::Bspline(_)
-                | CurveFile::Nurbs(_)
-        );
-        if interpolating && dim > MAX_INTERPOLATION_AXES {
-            return fail(
-                "points[0]",
-                format!(
-                    "a {} curve takes 1 to {MAX_INTERPOLATION_AXES} coordinates, not {dim} \
-                     (strak-curves computes interpolating curves in {MAX_INTERPOLATION_AXES}); \
-                     B-splines, NURBS and Bézier curves take up to {MAX_AXES}",
-                    self.kind().name()
-                ),
-            );
-        }
         check_knots(self.knots())?;
         check_params(self.params(), n)?;
         match self {

@@ -99,6 +99,11 @@ fn cruising_at_axis_velocity_limits() {
 /// A 6-axis cubic B-spline of `n` de Boor points: a circle of radius 100 in x–y rising in z,
 /// the other three axes moving alongside.
 fn six_axis_job(n: usize, number: &str) -> String {
+    six_axis_curve_job(n, number, "kind = \"bspline\"\n        degree = 3")
+}
+
+/// [`six_axis_job`] with the curve kind's lines `kind`.
+fn six_axis_curve_job(n: usize, number: &str, kind: &str) -> String {
     let points: Vec<String> = (0..n)
         .map(|i| {
             let t = i as f64 / (n - 1) as f64;
@@ -119,8 +124,7 @@ fn six_axis_job(n: usize, number: &str) -> String {
         rate_hz = 1000
         number = "{number}"
         [path]
-        kind = "bspline"
-        degree = 3
+        {kind}
         points = [{}]
         [limits]
         velocity = 200
@@ -141,6 +145,21 @@ fn six_axes_and_many_points() {
         let job = Job::parse(&six_axis_job(n, number)).unwrap();
         assert_eq!((job.axes(), job.path.points().len()), (6, n));
         check_job(&format!("six axes, {n} points, {number}"), &job);
+    }
+}
+
+/// The interpolating kinds take six axes too, and pass through every point in all six.
+#[test]
+fn six_axes_through_interpolating_curves() {
+    for kind in ["catmull-rom", "cubic-spline", "parabolic-blend"] {
+        let job = Job::parse(&six_axis_curve_job(
+            40,
+            "f64",
+            &format!("kind = \"{kind}\""),
+        ))
+        .unwrap();
+        assert_eq!(job.axes(), 6, "{kind}");
+        check_job(&format!("six axes through a {kind} curve"), &job);
     }
 }
 

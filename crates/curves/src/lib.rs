@@ -20,7 +20,7 @@ pub use curve::{ParamCurve, ParamCurveDeriv, PieceDeriv, ScalarOf};
 pub use error::Error;
 pub use interpolate::*;
 pub use nurbs::*;
-pub use point::Point;
+pub use point::{MAX_DIM, Point};
 pub use scalar::{I16F16, I32F32, Scalar};
 
 /// The `fixed` crate, re-exported so that users name the same fixed-point types.

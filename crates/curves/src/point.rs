@@ -1,4 +1,4 @@
-//! Points and vectors of 1 to 4 coordinates: glam vectors and `[S; D]` arrays.
+//! Points and vectors of 1 to [`MAX_DIM`] coordinates: glam vectors and `[S; D]` arrays.
 //!
 //! [`Point`] is the vector-space interface every curve is written against. It is implemented
 //! for glam's `Vec2`, `Vec3`, `Vec3A`, `Vec4` (f32) and `DVec2`, `DVec3`, `DVec4` (f64), and for
@@ -12,6 +12,19 @@
 use core::fmt::Debug;
 
 use crate::scalar::Scalar;
+
+/// The most coordinates a [`Point`] has (arrays `[S; D]` with `D > MAX_DIM` do not compile):
+/// the interpolating constructors compute in `f64` arrays of this size
+/// ([`Point::to_f64_array`]), and 8 covers every machine of the crate's users (up to 6 joints
+/// and 2 auxiliary axes).
+///
+/// ```
+/// use strak_curves::{MAX_DIM, Point};
+/// let p: [f64; 6] = Point::from_coords(|i| i as f64);
+/// assert_eq!(p.to_f64_array()[..6], [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
+/// assert_eq!(p.to_f64_array().len(), MAX_DIM);
+/// ```
+pub const MAX_DIM: usize = 8;
 
 /// A point (or vector) with [`Point::DIM`] coordinates of type [`Point::Scalar`].
 ///
@@ -102,8 +115,8 @@ pub trait Point: Copy + Debug + PartialEq + Send + Sync + 'static {
 
     /// The coordinates as `f64` (unused trailing entries are zero).
     #[inline]
-    fn to_f64_array(self) -> [f64; 4] {
-        let mut out = [0.0; 4];
+    fn to_f64_array(self) -> [f64; MAX_DIM] {
+        let mut out = [0.0; MAX_DIM];
         for (i, o) in out.iter_mut().enumerate().take(Self::DIM) {
             *o = self.coord(i).to_f64();
         }
@@ -128,7 +141,10 @@ pub trait Point: Copy + Debug + PartialEq + Send + Sync + 'static {
 
 impl<S: Scalar, const D: usize> Point for [S; D] {
     type Scalar = S;
-    const DIM: usize = D;
+    const DIM: usize = {
+        assert!(D <= MAX_DIM, "a point has at most MAX_DIM = 8 coordinates");
+        D
+    };
 
     #[inline]
     fn from_coords(f: impl FnMut(usize) -> S) -> Self {

@@ -9,7 +9,7 @@ use heapless::Vec;
 use super::hermite::{HermiteSpline, check_points};
 use super::parameterization::NodeSource;
 use crate::error::Error;
-use crate::point::Point;
+use crate::point::{MAX_DIM, Point};
 use crate::scalar::Scalar;
 
 impl<P: Point, const N: usize> HermiteSpline<P, N> {
@@ -82,8 +82,8 @@ impl<P: Point, const N: usize> HermiteSpline<P, N> {
             };
             let (qa, qb) = (qa.to_f64_array(), qb.to_f64_array());
             let du = ub.to_f64() - ua.to_f64();
-            let m: [f64; 4] = core::array::from_fn(|c| (qb[c] - qa[c]) / du * scale);
-            let m = P::from_f64_slice(&m[..P::DIM.min(4)]).ok_or(Error::OutOfRange)?;
+            let m: [f64; MAX_DIM] = core::array::from_fn(|c| (qb[c] - qa[c]) / du * scale);
+            let m = P::from_f64_slice(&m[..P::DIM]).ok_or(Error::OutOfRange)?;
             tangents.push(m).map_err(|_| Error::CapacityExceeded {
                 capacity: N,
                 required: points.len(),

@@ -24,7 +24,7 @@ use super::hermite::{HermiteSpline, check_points};
 use super::parameterization::NodeSource;
 use super::tridiagonal::{solve_cyclic_tridiagonal, solve_tridiagonal};
 use crate::error::Error;
-use crate::point::Point;
+use crate::point::{MAX_DIM, Point};
 use crate::scalar::Scalar;
 
 /// The two end conditions of an interpolating [`CubicSpline`].
@@ -168,22 +168,24 @@ fn solve_tangents<P: Point, const N: usize>(
         _ => f64::NAN,
     };
     let inv_h = |i: usize| 1.0 / h(i);
-    let rhs_part = |i: usize| -> [f64; 4] {
+    let rhs_part = |i: usize| -> [f64; MAX_DIM] {
         let hi = h(i);
         match (points.get(i), points.get(i + 1)) {
             (Some(a), Some(b)) => {
                 let (a, b) = (a.to_f64_array(), b.to_f64_array());
                 core::array::from_fn(|c| 3.0 * (b[c] - a[c]) / (hi * hi))
             }
-            _ => [f64::NAN; 4],
+            _ => [f64::NAN; MAX_DIM],
         }
     };
     let mut sub = [0.0_f64; N];
     let mut diag = [0.0_f64; N];
     let mut sup = [0.0_f64; N];
-    let mut rhs = [[0.0_f64; 4]; N];
+    let mut rhs = [[0.0_f64; MAX_DIM]; N];
     let mut scratch = [0.0_f64; N];
-    let add = |a: [f64; 4], b: [f64; 4]| -> [f64; 4] { core::array::from_fn(|c| a[c] + b[c]) };
+    let add = |a: [f64; MAX_DIM], b: [f64; MAX_DIM]| -> [f64; MAX_DIM] {
+        core::array::from_fn(|c| a[c] + b[c])
+    };
     let size = if matches!(boundary, SplineBoundary::Periodic) {
         n
     } else {
@@ -248,7 +250,7 @@ fn solve_tangents<P: Point, const N: usize>(
         let p = match boundary {
             SplineBoundary::Clamped { start, .. } if i == 0 => start,
             SplineBoundary::Clamped { end, .. } if i == n => end,
-            _ => P::from_f64_slice(&m[..P::DIM.min(4)]).ok_or(Error::OutOfRange)?,
+            _ => P::from_f64_slice(&m[..P::DIM]).ok_or(Error::OutOfRange)?,
         };
         tangents.push(p).map_err(|_| Error::CapacityExceeded {
             capacity: N,

@@ -409,7 +409,7 @@ pub(super) fn piece_bound<P: Point>(
         m1.to_f64_array(),
     );
     let mut bound = delta;
-    for c in 0..P::DIM.min(4) {
+    for c in 0..P::DIM {
         let (a0, a1, t0, t1) = (q0[c].abs(), q1[c].abs(), m0[c].abs(), m1[c].abs());
         let h = delta / 3.0;
         let pos = (a0 + t0 * delta).max(a1 + t1 * delta);

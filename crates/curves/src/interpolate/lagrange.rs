@@ -17,7 +17,7 @@ use super::hermite::check_points;
 use super::parameterization::NodeSource;
 use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
-use crate::point::Point;
+use crate::point::{MAX_DIM, Point};
 use crate::scalar::Scalar;
 
 /// The Lagrange (interpolating polynomial) curve through at most `N` points, degree
@@ -86,7 +86,7 @@ impl<P: Point, const N: usize> LagrangeCurve<P, N> {
         for (x, node) in u.iter_mut().zip(nodes.iter()) {
             *x = node.to_f64();
         }
-        let mut coef = [[0.0_f64; 4]; N];
+        let mut coef = [[0.0_f64; MAX_DIM]; N];
         for (c, p) in coef.iter_mut().zip(points.iter()) {
             *c = p.to_f64_array();
         }
@@ -102,7 +102,7 @@ impl<P: Point, const N: usize> LagrangeCurve<P, N> {
         }
         let mut newton: Vec<P, N> = Vec::new();
         for c in coef.iter().take(n + 1) {
-            let p = P::from_f64_slice(&c[..P::DIM.min(4)]).ok_or(Error::OutOfRange)?;
+            let p = P::from_f64_slice(&c[..P::DIM]).ok_or(Error::OutOfRange)?;
             newton.push(p).map_err(|_| Error::CapacityExceeded {
                 capacity: N,
                 required: points.len(),

@@ -26,7 +26,7 @@ use heapless::Vec;
 use super::hermite::{HermiteSpline, check_points};
 use super::parameterization::Parameterization;
 use crate::error::Error;
-use crate::point::Point;
+use crate::point::{MAX_DIM, Point};
 
 /// A parabolic blending (Overhauser) curve through at least 3 points, node `i` at `u = i`,
 /// domain `[0, n]`; C¹, piecewise cubic (quadratic on the first and last piece).
@@ -69,8 +69,8 @@ impl<P: Point, const N: usize> ParabolicBlend<P, N> {
         let n = points.len() - 1;
         let mut tangents: Vec<P, N> = Vec::new();
         for i in 0..=n {
-            let f = |j: usize| points.get(j).map_or([0.0; 4], |p| p.to_f64_array());
-            let m: [f64; 4] = if i == 0 {
+            let f = |j: usize| points.get(j).map_or([0.0; MAX_DIM], |p| p.to_f64_array());
+            let m: [f64; MAX_DIM] = if i == 0 {
                 let (p0, p1, p2) = (f(0), f(1), f(2));
                 core::array::from_fn(|c| (-3.0 * p0[c] + 4.0 * p1[c] - p2[c]) / 2.0)
             } else if i == n {
@@ -80,7 +80,7 @@ impl<P: Point, const N: usize> ParabolicBlend<P, N> {
                 let (a, b) = (f(i - 1), f(i + 1));
                 core::array::from_fn(|c| (b[c] - a[c]) / 2.0)
             };
-            let m = P::from_f64_slice(&m[..P::DIM.min(4)]).ok_or(Error::OutOfRange)?;
+            let m = P::from_f64_slice(&m[..P::DIM]).ok_or(Error::OutOfRange)?;
             tangents.push(m).map_err(|_| Error::CapacityExceeded {
                 capacity: N,
                 required: points.len(),

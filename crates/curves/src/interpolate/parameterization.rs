@@ -11,7 +11,7 @@
 use heapless::Vec;
 
 use crate::error::Error;
-use crate::point::Point;
+use crate::point::{MAX_DIM, Point};
 use crate::scalar::Scalar;
 
 /// How to compute interpolation nodes from the points.
@@ -82,7 +82,7 @@ impl Parameterization {
         }
         let mut out: Vec<P::Scalar, N> = Vec::new();
         let mut acc = 0.0_f64;
-        let mut prev: Option<(P::Scalar, [f64; 4])> = None;
+        let mut prev: Option<(P::Scalar, [f64; MAX_DIM])> = None;
         for (i, p) in points.iter().enumerate() {
             let c = p.to_f64_array();
             if let Some((prev_node, prev_c)) = prev {
@@ -118,7 +118,7 @@ fn push<S, const N: usize>(v: &mut Vec<S, N>, x: S) -> Result<(), Error> {
 }
 
 /// Euclidean distance of two points given as `f64` coordinates.
-fn distance(a: [f64; 4], b: [f64; 4]) -> f64 {
+fn distance(a: [f64; MAX_DIM], b: [f64; MAX_DIM]) -> f64 {
     let mut s = 0.0;
     for (x, y) in a.iter().zip(b.iter()) {
         let d = y - x;
