@@ -3,7 +3,7 @@
 //! ```text
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
 //! strak-sim run [JOB.toml] [--out DIR]      # exit 3: a planned motion exceeded a limit
-//! strak-sim compile JOB.toml --number f32|fixed --out FILE.strk
+//! strak-sim compile JOB.toml --number f32|fixed|f64 --out FILE.strk
 //! ```
 
 use std::fs;
@@ -15,9 +15,9 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 
 use strak_sim::curve_file::CurveFile;
-use strak_sim::export::{Playback, export};
+use strak_sim::export::export;
 use strak_sim::job::Job;
-use strak_sim::number::Number;
+use strak_sim::number::{self, NumberFormat};
 use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, run_job};
 use strak_sim::sample::{SampleOptions, sample_to_csv};
 
@@ -42,9 +42,10 @@ enum Command {
         /// Number of derivatives with respect to u to write after the point.
         #[arg(long, default_value_t = 0)]
         derivatives: usize,
-        /// Number format the curve is built and evaluated in (`fixed` is I32F32, Q31.32).
-        #[arg(long, value_enum, default_value_t = Number::F64)]
-        number: Number,
+        /// Number format the curve is built and evaluated in: f64, f32 or fixed (I32F32,
+        /// Q31.32).
+        #[arg(long, value_parser = number::parse, default_value = "f64")]
+        number: NumberFormat,
         /// Output file; standard output when omitted.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -63,14 +64,14 @@ enum Command {
     },
     /// Plan and compile a job exactly as `run` does and write the path as a blob
     /// (`Path::to_bytes`) for firmware to embed and play (`PathBlob::from_bytes`). The number format
-    /// is chosen here, not by the job: `f32` (curve and playback in f32) or `fixed` (curve in
-    /// I32F32, playback in Q40).
+    /// is chosen here, not by the job: `f32` (curve and playback in f32), `fixed` (curve in
+    /// I32F32, playback in Q40) or `f64`.
     Compile {
         /// The job file (TOML).
         job: PathBuf,
-        /// Playback number format of the blob.
-        #[arg(long, value_parser = ["f32", "fixed"])]
-        number: String,
+        /// Playback number format of the blob: f32, fixed or f64.
+        #[arg(long, value_parser = number::parse)]
+        number: NumberFormat,
         /// The blob file to write.
         #[arg(long)]
         out: PathBuf,
@@ -122,7 +123,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
             sample(&curve, &options, out.as_deref())
         }
         Command::Run { job, out } => run_command(job.as_deref(), out),
-        Command::Compile { job, number, out } => compile_command(&job, &number, &out),
+        Command::Compile { job, number, out } => compile_command(&job, number, &out),
     }
 }
 
@@ -182,21 +183,20 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
 }
 
 /// `strak-sim compile`.
-fn compile_command(job: &FsPath, number: &str, out: &FsPath) -> anyhow::Result<Outcome> {
+fn compile_command(job: &FsPath, number: NumberFormat, out: &FsPath) -> anyhow::Result<Outcome> {
     let label = job.display().to_string();
     let text = fs::read_to_string(job).with_context(|| format!("cannot read {label}"))?;
     let parsed = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    let playback = Playback::from_name(number)
-        .ok_or_else(|| anyhow::anyhow!("--number must be f32 or fixed"))?;
-    let compiled = export(&parsed, playback).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    let compiled = export(&parsed, number).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     fs::write(out, &compiled.blob).with_context(|| format!("cannot write {}", out.display()))?;
     println!(
-        "{}: {} bytes, {} axes, {} pieces, {} ticks ({number})",
+        "{}: {} bytes, {} axes, {} pieces, {} ticks ({})",
         out.display(),
         compiled.blob.len(),
         compiled.axes,
         compiled.pieces,
-        compiled.ticks
+        compiled.ticks,
+        number::name(number)
     );
     Ok(Outcome::Done)
 }

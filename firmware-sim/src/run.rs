@@ -26,14 +26,13 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strak_curves::{I32F32, ParamCurve, ParamCurveDeriv, Scalar, arc_length};
-use strak_trajectory::{Kernel, Number, Q40, Sample, Sampler};
+use strak_trajectory::{EventPlayer, Kernel, Number, Q40, RunEnd, Sample, Sampler};
 
 use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Job, JobError, JobNumber, ProfileKind};
+use crate::job::{Job, JobError, ProfileKind};
 use crate::measure::{Measure, Observed, distance, norm, to_f64};
-use crate::number::Number as CurveNumber;
+use crate::number::{self, NumberFormat};
 use crate::pipeline::{Compiled, PIECES, Prepared, axis_array, curve_error, is_planned};
-use crate::player::{EventPlayer, Stop};
 use crate::plot::{self, PlotLimits, Recorder};
 use crate::summary::{
     Accuracy, AlongPath, CheckRule, Checked, Differences, EndPoint, FiniteDifferences, Maxima,
@@ -159,13 +158,13 @@ fn dispatch(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
     let axes =
         || -> RunError { JobError::new("path.points", "points need 1 to 6 coordinates").into() };
     match job.number {
-        JobNumber::F64 => {
+        NumberFormat::F64 => {
             crate::with_axes!(job.axes(), run_typed::<f64, f64>(job, options), Err(axes()))
         }
-        JobNumber::F32 => {
+        NumberFormat::F32 => {
             crate::with_axes!(job.axes(), run_typed::<f32, f32>(job, options), Err(axes()))
         }
-        JobNumber::Fixed => {
+        NumberFormat::Q40 => {
             crate::with_axes!(
                 job.axes(),
                 run_typed::<Q40, I32F32>(job, options),
@@ -186,7 +185,7 @@ struct Played<const D: usize> {
     measure: Measure<D>,
     recorder: Recorder,
     samples: u64,
-    stop: Stop,
+    stop: RunEnd,
     aborted: bool,
     applied: usize,
     ignored: usize,
@@ -203,7 +202,7 @@ where
     let started = Instant::now();
     let prepared = Prepared::<S, D>::new(job)?;
     let reference: DynCurve<f64, D> =
-        build_dyn(&job.path, CurveNumber::F64).map_err(curve_error)?;
+        build_dyn(&job.path, NumberFormat::F64).map_err(curve_error)?;
     let built = started.elapsed();
     let compiled = prepared.compile::<N>(job)?;
     let curves = Curves {
@@ -357,7 +356,7 @@ where
         measure,
         recorder,
         samples: player.samples(),
-        stop: player.stop(&sampler),
+        stop: player.end(&sampler),
         aborted: player.aborted(),
         applied: player.applied(),
         ignored: player.ignored(),
@@ -441,14 +440,14 @@ fn path_length<const D: usize>(reference: &DynCurve<f64, D>) -> f64 {
 
 fn stop_text<const D: usize>(played: &Played<D>) -> String {
     match played.stop {
-        Stop::Guard => format!(
+        RunEnd::Guard => format!(
             "stopped by the guard after {} samples: the sampler did not finish (a hold without resume?)",
             played.samples
         ),
-        Stop::Finished if played.aborted && !played.exact_end => {
+        RunEnd::Finished if played.aborted && !played.exact_end => {
             "aborted (stopped on the path before its end)".to_owned()
         }
-        Stop::Finished => "end of path".to_owned(),
+        RunEnd::Finished => "end of path".to_owned(),
     }
 }
 
@@ -530,9 +529,9 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
     let (path_max, per_axis, finite_differences, along_path) = maxima(job, m);
     let mut summary = Summary {
         job: options.name.clone(),
-        number: job.number.name().to_owned(),
+        number: number::name(job.number).to_owned(),
         playback: match job.number {
-            JobNumber::Fixed => format!("{} (samples I32F32)", N::NAME),
+            NumberFormat::Q40 => format!("{} (samples I32F32)", N::NAME),
             _ => N::NAME.to_owned(),
         },
         axes: D,
@@ -547,7 +546,7 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
         samples: played.samples,
         run_time_s: played.samples.saturating_sub(1) as f64 / job.rate_hz,
         stop: stop_text(played),
-        finished: played.stop == Stop::Finished,
+        finished: played.stop == RunEnd::Finished,
         events_applied: played.applied,
         events_ignored: played.ignored,
         path_length: path_length(curves.reference),
