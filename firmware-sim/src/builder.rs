@@ -205,7 +205,11 @@ fn vectors<S: Scalar, const D: usize>(
         .collect()
 }
 
-fn scalars<S: Scalar>(field: &str, values: &[f64], number: NumberFormat) -> Result<Vec<S>, FieldError> {
+fn scalars<S: Scalar>(
+    field: &str,
+    values: &[f64],
+    number: NumberFormat,
+) -> Result<Vec<S>, FieldError> {
     values
         .iter()
         .enumerate()

@@ -18,7 +18,7 @@ use strak_sim::curve_file::CurveFile;
 use strak_sim::export::export;
 use strak_sim::job::Job;
 use strak_sim::number::{self, NumberFormat};
-use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, run_job};
+use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, exit_code, run_job, violation_lines};
 use strak_sim::sample::{SampleOptions, sample_to_csv};
 
 /// Host simulator for strak: sample curves, run jobs through the firmware's sampler.
@@ -78,26 +78,24 @@ enum Command {
     },
 }
 
-/// The exit code of a run whose planned motion exceeded a limit or the accuracy bound.
-const EXIT_EXCEEDED: u8 = 3;
-
 /// How a command ended without an error.
 enum Outcome {
     /// Everything held.
     Done,
-    /// `strak-sim run`: the planned motion failed these checks (one line each).
-    Exceeded(String, Vec<String>),
+    /// `strak-sim run`: the planned motion failed checks: the exit code and one error line
+    /// each.
+    Exceeded(u8, Vec<String>),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
-        Ok(Outcome::Exceeded(label, violations)) => {
-            for v in violations {
-                eprintln!("strak-sim: error: {label}: limit exceeded: {v}");
+        Ok(Outcome::Exceeded(code, lines)) => {
+            for line in lines {
+                eprintln!("{line}");
             }
-            ExitCode::from(EXIT_EXCEEDED)
+            ExitCode::from(code)
         }
         Err(e) => {
             eprintln!("strak-sim: error: {e:#}");
@@ -169,16 +167,16 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
         out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
         name,
         progress: true,
+        velocity_factor: None,
     };
     let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     println!("{summary}");
     if !summary.finished {
         eprintln!("strak-sim: warning: {}", summary.stop);
     }
-    if summary.violations.is_empty() {
-        Ok(Outcome::Done)
-    } else {
-        Ok(Outcome::Exceeded(label, summary.violations))
+    match exit_code(&summary) {
+        0 => Ok(Outcome::Done),
+        code => Ok(Outcome::Exceeded(code, violation_lines(&label, &summary))),
     }
 }
 

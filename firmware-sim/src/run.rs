@@ -65,6 +65,35 @@ pub struct RunOptions {
     pub name: String,
     /// Show a progress bar on long runs (only when standard error is a terminal).
     pub progress: bool,
+    /// For tests of the verdict only: every sampled velocity is multiplied by this factor
+    /// before it is measured, so that the samples of a planned motion exceed its velocity
+    /// limit (the library's planned motions do not) and the run's checks, violations and
+    /// [`exit_code`] can be seen to fail. `None` in every real run.
+    pub velocity_factor: Option<f64>,
+}
+
+/// The exit code of `strak-sim run` whose planned motion exceeded a limit or the accuracy
+/// bound.
+pub const EXIT_EXCEEDED: u8 = 3;
+
+/// The exit code of `strak-sim run` for a run that produced `summary`: 0, or
+/// [`EXIT_EXCEEDED`] when it lists [`violations`](Summary::violations).
+pub fn exit_code(summary: &Summary) -> u8 {
+    if summary.violations.is_empty() {
+        0
+    } else {
+        EXIT_EXCEEDED
+    }
+}
+
+/// The lines `strak-sim run` writes to standard error for `summary`'s violations, one per
+/// quantity: `strak-sim: error: <label>: limit exceeded: <violation>`.
+pub fn violation_lines(label: &str, summary: &Summary) -> Vec<String> {
+    summary
+        .violations
+        .iter()
+        .map(|v| format!("strak-sim: error: {label}: limit exceeded: {v}"))
+        .collect()
 }
 
 /// Why a run failed.
@@ -212,7 +241,7 @@ where
     let out = &options.out_dir;
     fs::create_dir_all(out).map_err(io_error(out))?;
     let play_started = Instant::now();
-    let played = play(job, &compiled, &curves, out, options.progress)?;
+    let played = play(job, &compiled, &curves, options)?;
     let wall = WallTime {
         plan_s: (built + compiled.plan_time).as_secs_f64(),
         compile_s: compiled.compile_time.as_secs_f64(),
@@ -304,14 +333,14 @@ fn play<N, S, const D: usize>(
     job: &Job,
     compiled: &Compiled<'_, N, D>,
     curves: &Curves<'_, S, D>,
-    out: &FsPath,
-    progress: bool,
+    options: &RunOptions,
 ) -> Result<Played<D>, RunError>
 where
     N: Kernel,
     N::Out: CsvCell,
     S: Scalar,
 {
+    let out = &options.out_dir;
     let csv_path = out.join("samples.csv");
     let mut csv = BufWriter::new(File::create(&csv_path).map_err(io_error(&csv_path))?);
     writeln!(csv, "{}", csv_header(D)).map_err(io_error(&csv_path))?;
@@ -320,7 +349,7 @@ where
     let mut player = EventPlayer::new(&events, path.ticks());
     let last_event = events.last().map_or(0, |e| e.tick);
     let expected = (u64::from(path.ticks()) + 1).max(last_event + 1);
-    let bar = progress_bar(progress, expected);
+    let bar = progress_bar(options.progress, expected);
     let mut sampler = Sampler::new(path);
     let mut measure = Measure::<D>::new(job.rate_hz);
     let mut recorder = Recorder::new(D, expected);
@@ -336,7 +365,10 @@ where
         let t = k as f64 / job.rate_hz;
         write_row(&mut row, k, t, &s);
         csv.write_all(row.as_bytes()).map_err(io_error(&csv_path))?;
-        let observed = observe(t, &s, before, compiled, curves);
+        let mut observed = observe(t, &s, before, compiled, curves);
+        if let Some(f) = options.velocity_factor {
+            observed.velocity = observed.velocity.map(|v| v * f);
+        }
         channels(&observed, measure.push(&observed), &mut values);
         recorder.push(t, &values);
         last = Some((observed.position, s.position));

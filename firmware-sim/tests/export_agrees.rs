@@ -9,8 +9,8 @@ use std::fs;
 use common::bundled_job;
 use strak_curves::I32F32;
 use strak_sim::export::export;
-use strak_sim::number::NumberFormat;
 use strak_sim::job::Job;
+use strak_sim::number::NumberFormat;
 use strak_sim::run::{RunOptions, run_job};
 use strak_trajectory::{Path, Q40, Sampler};
 
@@ -21,6 +21,7 @@ fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
         out_dir: dir.path().to_owned(),
         name: "export".to_owned(),
         progress: false,
+        velocity_factor: None,
     };
     let summary = run_job(job, &options).unwrap();
     assert!(summary.finished);

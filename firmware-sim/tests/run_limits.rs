@@ -156,6 +156,7 @@ fn check_job(name: &str, job: &Job) {
                 out_dir: dir.path().to_owned(),
                 name: name.clone(),
                 progress: false,
+                velocity_factor: None,
             },
         )
         .unwrap();

@@ -228,10 +228,7 @@ mod tests {
             let list: Vec<String> = b.iter().map(u64::to_string).collect();
             s += &format!("S {i} [{}]\n", list.join(", "));
         }
-        s += &format!(
-            "E job Q40 blob {}\nC job Q40 120 3\nDONE 1\n",
-            bits.len()
-        );
+        s += &format!("E job Q40 blob {}\nC job Q40 120 3\nDONE 1\n", bits.len());
         s
     }
 
@@ -288,7 +285,10 @@ mod tests {
 
     #[test]
     fn bits_show_as_numbers() {
-        assert_eq!(show_bits(NumberFormat::F32, 0x3f80_0000), "1.0 (0x3f800000)");
+        assert_eq!(
+            show_bits(NumberFormat::F32, 0x3f80_0000),
+            "1.0 (0x3f800000)"
+        );
         assert_eq!(
             show_bits(NumberFormat::Q40, (-3_i64 << 31).cast_unsigned()),
             "-1.5 (0xfffffffe80000000)"

@@ -132,7 +132,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     let qemu = ensure_qemu()?;
     let defmt_print = ensure_defmt_print()?;
 
-    println!("\n==> host: compiling and playing the bundled jobs (f32 and fixed)");
+    println!("\n==> host: compiling and playing the bundled jobs (f32 and Q40)");
     let t = Instant::now();
     let blob_dir = root.join("target").join("qemu").join("blobs");
     let jobs = export_jobs(&root.join("firmware-sim/examples/jobs"), &blob_dir)?;
@@ -246,8 +246,8 @@ fn export_file(
     let job = Job::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
     let mut out = Vec::new();
     for &playback in playbacks {
-        let export = export(&job, playback)
-            .map_err(|e| format!("{} ({playback}): {e}", file.display()))?;
+        let export =
+            export(&job, playback).map_err(|e| format!("{} ({playback}): {e}", file.display()))?;
         let blob_path = blob_dir.join(format!("{name}-{playback}.strk"));
         write_if_changed(&blob_path, &export.blob)?;
         println!(
@@ -340,7 +340,9 @@ fn events_src(events: &[TimedEvent]) -> String {
 fn device_jobs(jobs: &[HostJob]) -> Vec<(&HostJob, &HostJob)> {
     jobs.iter()
         .filter(|j| {
-            j.export.playback == NumberFormat::F32 && j.export.axes == 3 && j.export.recipe.is_some()
+            j.export.playback == NumberFormat::F32
+                && j.export.axes == 3
+                && j.export.recipe.is_some()
         })
         .filter_map(|f| {
             jobs.iter()
@@ -658,11 +660,7 @@ fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, St
         .iter()
         .filter(|j| fw.formats.contains(&j.export.playback))
     {
-        let key = (
-            j.name.clone(),
-            j.export.playback,
-            "blob".to_owned(),
-        );
+        let key = (j.name.clone(), j.export.playback, "blob".to_owned());
         expected.push((key, j));
     }
     for (f, x) in device_jobs(jobs) {
@@ -1067,7 +1065,10 @@ mod tests {
             m.starts_with(&format!("compiles to {} pieces;", e.pieces)),
             "{m}"
         );
-        assert!(m.contains(&format!("plays a path of {FLASH_PIECES} pieces")), "{m}");
+        assert!(
+            m.contains(&format!("plays a path of {FLASH_PIECES} pieces")),
+            "{m}"
+        );
     }
 
     #[test]
@@ -1076,7 +1077,10 @@ mod tests {
             "firmware-sim/examples/jobs/pick-and-place.toml",
             NumberFormat::F32,
         );
-        let two_axes = exported("firmware-sim/examples/jobs/circle-f32.toml", NumberFormat::Q40);
+        let two_axes = exported(
+            "firmware-sim/examples/jobs/circle-f32.toml",
+            NumberFormat::Q40,
+        );
         assert_eq!(two_axes.axes, 2);
         for blob in [&f32_blob.blob, &two_axes.blob] {
             let m = check_flash_blob(blob).unwrap_err();

@@ -1,8 +1,8 @@
 //! The jobs embedded in flash: what `cargo xtask qemu` generated into `jobs.rs` (see the
 //! crate docs), as the types of this module and the library's events and number formats.
 
-pub use strak_trajectory::{Event, NumberFormat, TimedEvent};
 use strak_trajectory::{CompileOptions, PlanOptions};
+pub use strak_trajectory::{Event, NumberFormat, TimedEvent};
 
 /// Whether this firmware plays `format`: `Q40` everywhere, `f32` only on a target with a
 /// floating-point unit (the jobs are bundled in these two formats).

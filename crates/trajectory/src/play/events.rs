@@ -437,7 +437,11 @@ mod tests {
     fn holds_count_ticks() {
         // Events at the same tick apply together; a late event after a hold still comes at
         // its tick, counted in samples (the held ones included), not in path progress.
-        let events = [at(1, Event::Hold), at(1, Event::Feed(0.5)), at(6, Event::Resume)];
+        let events = [
+            at(1, Event::Hold),
+            at(1, Event::Feed(0.5)),
+            at(6, Event::Resume),
+        ];
         let mut p = EventPlayer::new(&events, 2);
         let mut s = fake(3);
         while p.step(&mut s).is_some() {}
@@ -495,7 +499,11 @@ mod tests {
         let options = CompileOptions::new().with_limits(2_000.0, 200_000.0);
         let path: Path<f32, 2, 16> =
             compile(&Along::new(&curve, &Smooth), 1_000.0, &options).unwrap();
-        let events = [at(30, Event::Feed(0.5)), at(80, Event::Hold), at(300, Event::Resume)];
+        let events = [
+            at(30, Event::Feed(0.5)),
+            at(80, Event::Hold),
+            at(300, Event::Resume),
+        ];
         let mut player = EventPlayer::new(&events, path.ticks());
         let mut by_player = Sampler::new(&path);
         let mut by_hand = Sampler::new(&path);
@@ -511,7 +519,10 @@ mod tests {
             let holding = by_player.state() == crate::SamplerState::Holding;
             if !by_player.is_finished() {
                 let held = (80..300).contains(&k);
-                assert_eq!(holding, held, "tick {k}: hold before sample 80, resume before 300");
+                assert_eq!(
+                    holding, held,
+                    "tick {k}: hold before sample 80, resume before 300"
+                );
             }
             k += 1;
         }
