@@ -16,7 +16,7 @@ use crate::curve_file::{
     BEZIER_MAX_POINTS, BoundaryName, BsplineFields, CubicSplineFields, CurveFile, FieldError, Kind,
     MAX_POINTS, NurbsFields,
 };
-use crate::number::{FixedScalar, Number};
+use crate::number::{FixedScalar, NumberFormat};
 use crate::summary::num;
 
 /// The point capacity of the curves of files with at most this many points and knots.
@@ -95,7 +95,7 @@ impl CurveVisitor for BoxSampled {
 ///
 /// # Errors
 /// A [`FieldError`] naming the field the constructor rejected.
-pub fn build_curve(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>, FieldError> {
+pub fn build_curve(file: &CurveFile, number: NumberFormat) -> Result<Box<dyn Sampled>, FieldError> {
     visit_curve(file, number, BoxSampled)
 }
 
@@ -106,14 +106,14 @@ pub fn build_curve(file: &CurveFile, number: Number) -> Result<Box<dyn Sampled>,
 /// (`points[3][1]`), or the field a constructor rejected.
 pub fn visit_curve<V: CurveVisitor>(
     file: &CurveFile,
-    number: Number,
+    number: NumberFormat,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
     file.check()?;
     match number {
-        Number::F64 => by_capacity::<f64, V>(file, number, visitor),
-        Number::F32 => by_capacity::<f32, V>(file, number, visitor),
-        Number::Fixed => by_capacity::<FixedScalar, V>(file, number, visitor),
+        NumberFormat::F64 => by_capacity::<f64, V>(file, number, visitor),
+        NumberFormat::F32 => by_capacity::<f32, V>(file, number, visitor),
+        NumberFormat::Q40 => by_capacity::<FixedScalar, V>(file, number, visitor),
     }
 }
 
@@ -122,7 +122,7 @@ const G: usize = BSPLINE_MAX_DEGREE;
 
 fn by_capacity<S: Scalar, V: CurveVisitor>(
     file: &CurveFile,
-    number: Number,
+    number: NumberFormat,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
     let items = file
@@ -147,11 +147,11 @@ fn by_capacity<S: Scalar, V: CurveVisitor>(
     }
 }
 
-fn number_name(number: Number) -> &'static str {
+fn number_name(number: NumberFormat) -> &'static str {
     match number {
-        Number::F64 => "f64",
-        Number::F32 => "f32",
-        Number::Fixed => "fixed (I32F32)",
+        NumberFormat::F64 => "f64",
+        NumberFormat::F32 => "f32",
+        NumberFormat::Q40 => "fixed (I32F32)",
     }
 }
 
@@ -165,7 +165,7 @@ fn range_text(limit: f64) -> String {
 }
 
 /// `value` of `field` does not fit `S`.
-fn out_of_range<S: Scalar>(field: &str, value: f64, number: Number) -> FieldError {
+fn out_of_range<S: Scalar>(field: &str, value: f64, number: NumberFormat) -> FieldError {
     FieldError::new(
         field,
         format!(
@@ -182,7 +182,7 @@ fn out_of_range<S: Scalar>(field: &str, value: f64, number: Number) -> FieldErro
 fn vector<S: Scalar, const D: usize>(
     field: &str,
     coords: &[f64],
-    number: Number,
+    number: NumberFormat,
 ) -> Result<[S; D], FieldError> {
     let mut p = [S::ZERO; D];
     for (j, c) in p.iter_mut().enumerate() {
@@ -197,7 +197,7 @@ fn vector<S: Scalar, const D: usize>(
 fn vectors<S: Scalar, const D: usize>(
     field: &str,
     rows: &[Vec<f64>],
-    number: Number,
+    number: NumberFormat,
 ) -> Result<Vec<[S; D]>, FieldError> {
     rows.iter()
         .enumerate()
@@ -205,7 +205,11 @@ fn vectors<S: Scalar, const D: usize>(
         .collect()
 }
 
-fn scalars<S: Scalar>(field: &str, values: &[f64], number: Number) -> Result<Vec<S>, FieldError> {
+fn scalars<S: Scalar>(
+    field: &str,
+    values: &[f64],
+    number: NumberFormat,
+) -> Result<Vec<S>, FieldError> {
     values
         .iter()
         .enumerate()
@@ -305,7 +309,7 @@ fn constructor_message<S: Scalar>(
     kind: Kind,
     periodic: bool,
     e: Error,
-    number: Number,
+    number: NumberFormat,
     storage: Storage,
 ) -> String {
     match e {
@@ -333,7 +337,7 @@ fn constructor_message<S: Scalar>(
 
 fn constructor_error<S: Scalar>(
     file: &CurveFile,
-    number: Number,
+    number: NumberFormat,
     storage: Storage,
 ) -> impl Fn(Error) -> FieldError + '_ {
     let periodic = matches!(
@@ -357,7 +361,7 @@ fn constructor_error<S: Scalar>(
 #[inline(never)]
 fn build<S, V, const C: usize, const CP: usize, const K: usize, const D: usize>(
     file: &CurveFile,
-    number: Number,
+    number: NumberFormat,
     visitor: V,
 ) -> Result<V::Output, FieldError>
 where
@@ -412,7 +416,7 @@ where
 
 fn cubic_boundary<S: Scalar, const D: usize>(
     c: &CubicSplineFields,
-    number: Number,
+    number: NumberFormat,
 ) -> Result<SplineBoundary<[S; D]>, FieldError> {
     let tangent = |field: &str, v: &Option<Vec<f64>>| match v {
         Some(v) => vector::<S, D>(field, v, number),
@@ -495,7 +499,7 @@ fn build_bezier_chain<S: Scalar, const D: usize, const C: usize, V: CurveVisitor
 
 fn knots_of<S: Scalar>(
     knots: Option<&[f64]>,
-    number: Number,
+    number: NumberFormat,
 ) -> Result<Option<Vec<S>>, FieldError> {
     knots.map(|k| scalars("knots", k, number)).transpose()
 }
@@ -504,7 +508,7 @@ fn knots_of<S: Scalar>(
 fn build_bspline<S: Scalar, const D: usize, const CP: usize, const K: usize, V: CurveVisitor>(
     b: &BsplineFields,
     points: &[[S; D]],
-    number: Number,
+    number: NumberFormat,
     err: &dyn Fn(Error) -> FieldError,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
@@ -524,7 +528,7 @@ fn build_bspline<S: Scalar, const D: usize, const CP: usize, const K: usize, V: 
 fn build_nurbs<S: Scalar, const D: usize, const CP: usize, const K: usize, V: CurveVisitor>(
     f: &NurbsFields,
     points: &[[S; D]],
-    number: Number,
+    number: NumberFormat,
     err: &dyn Fn(Error) -> FieldError,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
@@ -591,7 +595,7 @@ mod tests {
         }
     }
 
-    fn build(text: &str, number: Number) -> Result<(f64, f64, usize), FieldError> {
+    fn build(text: &str, number: NumberFormat) -> Result<(f64, f64, usize), FieldError> {
         visit_curve(&CurveFile::parse(text).unwrap(), number, Domain)
     }
 
@@ -599,7 +603,7 @@ mod tests {
     fn out_of_range_names_the_coordinate_and_the_range() {
         let e = build(
             "kind = \"bezier\"\npoints = [[0, 0], [1, 2], [3, 5e10]]",
-            Number::Fixed,
+            NumberFormat::Q40,
         )
         .unwrap_err();
         assert_eq!(e.field, "points[2][1]");
@@ -609,7 +613,7 @@ mod tests {
         );
         let e = build(
             "kind = \"nurbs\"\ndegree = 1\npoints = [[0], [1]]\nweights = [1, 1e40]",
-            Number::F32,
+            NumberFormat::F32,
         )
         .unwrap_err();
         assert_eq!(e.field, "weights[1]");
@@ -620,7 +624,7 @@ mod tests {
         assert_eq!(
             build(
                 "kind = \"bezier\"\npoints = [[0,0,0,0,0,0], [1,2,3,4,5,6]]",
-                Number::F64
+                NumberFormat::F64
             )
             .unwrap()
             .2,
@@ -631,6 +635,6 @@ mod tests {
             "kind = \"bspline\"\ndegree = 1\npoints = [{}]",
             points.join(", ")
         );
-        assert_eq!(build(&text, Number::F32).unwrap(), (0.0, 1.0, 2));
+        assert_eq!(build(&text, NumberFormat::F32).unwrap(), (0.0, 1.0, 2));
     }
 }

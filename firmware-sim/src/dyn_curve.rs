@@ -10,7 +10,7 @@ use strak_curves::{ParamCurve, ParamCurveDeriv, PieceDeriv, Scalar};
 
 use crate::builder::{CurveVisitor, visit_curve};
 use crate::curve_file::{CurveFile, FieldError};
-use crate::number::Number;
+use crate::number::NumberFormat;
 
 /// Any curve of strak-curves with points `[S; D]`, boxed.
 pub struct DynCurve<S: Scalar, const D: usize>(Box<dyn PieceDeriv<Point = [S; D]>>);
@@ -76,7 +76,7 @@ impl CurveVisitor for BoxDyn {
 }
 
 /// Builds the curve of `file` in the number format `number`, whose scalar must be `S`
-/// (`f64`, `f32`, `I32F32` for [`Number::F64`], [`Number::F32`], [`Number::Fixed`]) with `D`
+/// (`f64`, `f32`, `I32F32` for [`NumberFormat::F64`], [`NumberFormat::F32`], [`NumberFormat::Q40`]) with `D`
 /// coordinates per point.
 ///
 /// # Errors
@@ -84,7 +84,7 @@ impl CurveVisitor for BoxDyn {
 /// match `number` and the file (a bug of the caller).
 pub fn build_dyn<S: Scalar, const D: usize>(
     file: &CurveFile,
-    number: Number,
+    number: NumberFormat,
 ) -> Result<DynCurve<S, D>, FieldError> {
     let any = visit_curve(file, number, BoxDyn)?;
     any.downcast::<DynCurve<S, D>>()
@@ -100,16 +100,16 @@ mod tests {
     fn boxed_curve_evaluates_like_the_file() {
         let file =
             CurveFile::parse("kind = \"bezier\"\npoints = [[0.0, 0.0], [2.0, 4.0]]").unwrap();
-        let c: DynCurve<f64, 2> = build_dyn(&file, Number::F64).unwrap();
+        let c: DynCurve<f64, 2> = build_dyn(&file, NumberFormat::F64).unwrap();
         assert_eq!(c.domain(), (0.0, 1.0));
         assert_eq!(c.eval(0.25), [0.5, 1.0]);
         assert_eq!(c.deriv(0.5, 1), [2.0, 4.0]);
         assert_eq!(c.piece_deriv(0, 1.0, 0), [2.0, 4.0]);
-        let f: DynCurve<f32, 2> = build_dyn(&file, Number::F32).unwrap();
+        let f: DynCurve<f32, 2> = build_dyn(&file, NumberFormat::F32).unwrap();
         assert_eq!(f.eval(0.5), [1.0, 2.0]);
         // the wrong dimension or scalar is an error, not a panic
-        assert!(build_dyn::<f64, 3>(&file, Number::F64).is_err());
-        assert!(build_dyn::<f32, 2>(&file, Number::F64).is_err());
+        assert!(build_dyn::<f64, 3>(&file, NumberFormat::F64).is_err());
+        assert!(build_dyn::<f32, 2>(&file, NumberFormat::F64).is_err());
     }
 
     #[test]
@@ -118,7 +118,7 @@ mod tests {
             "kind = \"bezier-chain\"\ndegree = 1\npoints = [[0.0, 0.0], [2.0, 4.0], [3.0, 4.0]]",
         )
         .unwrap();
-        let c: DynCurve<f64, 2> = build_dyn(&file, Number::F64).unwrap();
+        let c: DynCurve<f64, 2> = build_dyn(&file, NumberFormat::F64).unwrap();
         assert_eq!(c.domain(), (0.0, 2.0));
         assert_eq!(c.piece_count(), 2);
         assert_eq!(c.piece_domain(1), (1.0, 2.0));
@@ -126,7 +126,7 @@ mod tests {
         // at the join: the segment starting there, and the left-hand limit of the one ending
         assert_eq!(c.deriv(1.0, 1), [1.0, 0.0]);
         assert_eq!(c.piece_deriv(0, 1.0, 1), [2.0, 4.0]);
-        let q: DynCurve<strak_curves::I32F32, 2> = build_dyn(&file, Number::Fixed).unwrap();
+        let q: DynCurve<strak_curves::I32F32, 2> = build_dyn(&file, NumberFormat::Q40).unwrap();
         assert_eq!(q.piece_count(), 2);
     }
 }

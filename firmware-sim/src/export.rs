@@ -5,57 +5,25 @@
 //! under QEMU against: the firmware plays the same blob with the same events, one
 //! [`Sampler::next`] per tick, and must produce the same bits.
 //!
-//! The playback format is chosen here, not by the job's `number`: [`Playback::F32`] builds the
-//! curve in `f32` and plays `Path<f32, …>`, [`Playback::Fixed`] builds it in `I32F32` and plays
-//! `Path<Q40, …>` (as [`JobNumber::curve_number`] pairs them). Planning and compiling are the
-//! [`pipeline`](crate::pipeline) of `strak-sim run`, and the events are played by the same
-//! [`EventPlayer`].
+//! The playback format is chosen here, not by the job's `number`: [`NumberFormat::F32`] builds
+//! the curve in `f32` and plays `Path<f32, …>`, [`NumberFormat::Q40`] builds it in `I32F32` and
+//! plays `Path<Q40, …>`, [`NumberFormat::F64`] builds and plays in `f64` (as `strak-sim run`
+//! pairs them). Planning and compiling are the [`pipeline`](crate::pipeline) of
+//! `strak-sim run`, and the events are played by the same [`EventPlayer`].
 
 use strak_curves::{I32F32, Scalar};
-use strak_trajectory::{CompileOptions, Kernel, Limits, Number, Path, PlanOptions, Q40, Sampler};
+use strak_trajectory::{
+    CompileOptions, EventPlayer, Kernel, Limits, Number, Path, PlanOptions, Q40, RunEnd, Sampler,
+    TimedEvent,
+};
 
 use crate::curve_file::CurveFile;
-use crate::job::{Action, Job, JobError, JobNumber};
+use crate::job::{Job, JobError};
+use crate::number::NumberFormat;
 use crate::pipeline::{PIECES, Prepared, compile_options, is_planned, plan_options};
-use crate::player::EventPlayer;
 
-/// The number format a job is compiled and played in for firmware.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Playback {
-    /// Curve in `f32`, playback in `f32`, samples in `f32` (bits: `u32`).
-    F32,
-    /// Curve in `I32F32`, playback in `Q40`, samples in `I32F32` (bits: `i64`).
-    Fixed,
-}
-
-impl Playback {
-    /// Both formats.
-    pub const ALL: [Playback; 2] = [Playback::F32, Playback::Fixed];
-
-    /// The name on the command line and in the firmware's output (`f32`, `fixed`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Playback::F32 => "f32",
-            Playback::Fixed => "fixed",
-        }
-    }
-
-    /// The format named `name`.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|p| p.name() == name)
-    }
-
-    /// The job number format with the same curve and playback types.
-    pub fn job_number(self) -> JobNumber {
-        match self {
-            Playback::F32 => JobNumber::F32,
-            Playback::Fixed => JobNumber::Fixed,
-        }
-    }
-}
-
-/// A sample value's raw bits, widened to `u64` (`f32`: `to_bits`; `I32F32`: the `i64` bits
-/// reinterpreted).
+/// A sample value's raw bits, widened to `u64` (`f32`, `f64`: `to_bits`; `I32F32`: the `i64`
+/// bits reinterpreted).
 pub trait OutBits: Scalar {
     /// The bits.
     fn out_bits(self) -> u64;
@@ -64,6 +32,12 @@ pub trait OutBits: Scalar {
 impl OutBits for f32 {
     fn out_bits(self) -> u64 {
         u64::from(self.to_bits())
+    }
+}
+
+impl OutBits for f64 {
+    fn out_bits(self) -> u64 {
+        self.to_bits()
     }
 }
 
@@ -100,7 +74,7 @@ pub struct DeviceRecipe {
 #[derive(Clone, Debug)]
 pub struct Export {
     /// The playback format.
-    pub playback: Playback,
+    pub playback: NumberFormat,
     /// Number of axes.
     pub axes: usize,
     /// The serialized path ([`Path::to_bytes`]).
@@ -109,8 +83,8 @@ pub struct Export {
     pub pieces: usize,
     /// Length of the path in ticks.
     pub ticks: u32,
-    /// The events, sorted by tick (feed as the sampler receives it: `f32`).
-    pub events: Vec<(u64, Action)>,
+    /// The events, sorted by tick, as the [`EventPlayer`] plays them.
+    pub events: Vec<TimedEvent>,
     /// Every sample's bits, `3 · axes` values per tick: positions, velocities, accelerations.
     pub bits: Vec<u64>,
     /// Whether the sampler finished (`false`: stopped by the guard of `strak-sim run`).
@@ -139,17 +113,18 @@ impl Export {
 /// # Errors
 /// A [`JobError`] naming the field, as `strak-sim run` reports it, when the job cannot be
 /// built, planned, compiled or serialized.
-pub fn export(job: &Job, playback: Playback) -> Result<Export, JobError> {
+pub fn export(job: &Job, playback: NumberFormat) -> Result<Export, JobError> {
     let mut job = job.clone();
-    job.number = playback.job_number();
+    job.number = playback;
     let job = &job;
     std::thread::scope(|scope| {
         std::thread::Builder::new()
             .name("strak-sim export".to_owned())
             .stack_size(crate::run::STACK_BYTES)
             .spawn_scoped(scope, || match playback {
-                Playback::F32 => by_dim::<f32, f32>(job, playback),
-                Playback::Fixed => by_dim::<Q40, I32F32>(job, playback),
+                NumberFormat::F32 => by_dim::<f32, f32>(job, playback),
+                NumberFormat::F64 => by_dim::<f64, f64>(job, playback),
+                NumberFormat::Q40 => by_dim::<Q40, I32F32>(job, playback),
             })
             .map_err(|e| JobError::new("job", format!("cannot start the export thread: {e}")))?
             .join()
@@ -157,7 +132,7 @@ pub fn export(job: &Job, playback: Playback) -> Result<Export, JobError> {
     })
 }
 
-fn by_dim<N, S>(job: &Job, playback: Playback) -> Result<Export, JobError>
+fn by_dim<N, S>(job: &Job, playback: NumberFormat) -> Result<Export, JobError>
 where
     N: Kernel,
     N::Out: OutBits,
@@ -212,10 +187,10 @@ where
             bits.push(v.out_bits());
         }
     }
-    (bits, player.stop(&sampler) == crate::player::Stop::Finished)
+    (bits, player.end(&sampler) == RunEnd::Finished)
 }
 
-fn export_typed<N, S, const D: usize>(job: &Job, playback: Playback) -> Result<Export, JobError>
+fn export_typed<N, S, const D: usize>(job: &Job, playback: NumberFormat) -> Result<Export, JobError>
 where
     N: Kernel,
     N::Out: OutBits,
@@ -233,14 +208,7 @@ where
         blob,
         pieces: path.pieces().len(),
         ticks: path.ticks(),
-        events: job
-            .sorted_events()
-            .into_iter()
-            .map(|(t, a)| match a {
-                Action::Feed(f) => (t, Action::Feed(f64::from(f as f32))),
-                other => (t, other),
-            })
-            .collect(),
+        events: job.timed_events(),
         bits,
         finished,
         recipe: recipe::<D>(job, &prepared.limits),
@@ -272,16 +240,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn playback_names_round_trip() {
-        for p in Playback::ALL {
-            assert_eq!(Playback::from_name(p.name()), Some(p));
-        }
-        assert_eq!(Playback::from_name("f64"), None);
-    }
-
-    #[test]
     fn out_bits_are_the_raw_bits() {
         assert_eq!(1.0_f32.out_bits(), 0x3f80_0000);
+        assert_eq!((-2.0_f64).out_bits(), 0xc000_0000_0000_0000);
         assert_eq!(I32F32::from_num(-1).out_bits(), 0xffff_ffff_0000_0000);
     }
 }

@@ -47,9 +47,9 @@ use std::fmt;
 use serde::{Deserialize, Deserializer, de::Error as _};
 
 use crate::curve_file::CurveFile;
-use crate::number::Number as CurveNumber;
-use crate::player::{Event, TimedEvent};
+use crate::number::{self, NumberFormat};
 use crate::toml_error::{Tagged, locate};
+use strak_trajectory::{Event, TimedEvent};
 
 /// The lowest and highest control rates in Hz.
 pub const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);
@@ -161,38 +161,6 @@ mod range {
                 v[i]
             ))),
             None => Ok(Some(v)),
-        }
-    }
-}
-
-/// The number format of playback.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum JobNumber {
-    /// The curve in `f64`, playback in `f64`.
-    F64,
-    /// The curve in `f32`, playback in `f32`.
-    F32,
-    /// The curve in `I32F32`, playback in `Q40` (Q23.40), samples as `I32F32`.
-    Fixed,
-}
-
-impl JobNumber {
-    /// The name used in the file.
-    pub fn name(self) -> &'static str {
-        match self {
-            JobNumber::F64 => "f64",
-            JobNumber::F32 => "f32",
-            JobNumber::Fixed => "fixed",
-        }
-    }
-
-    /// The number format the curve is built in (the format of `strak-sim sample`).
-    pub fn curve_number(self) -> CurveNumber {
-        match self {
-            JobNumber::F64 => CurveNumber::F64,
-            JobNumber::F32 => CurveNumber::F32,
-            JobNumber::Fixed => CurveNumber::Fixed,
         }
     }
 }
@@ -408,8 +376,10 @@ pub struct Job {
     /// Control rate in Hz.
     #[serde(deserialize_with = "range::rate")]
     pub rate_hz: f64,
-    /// Number format of the curve and of playback.
-    pub number: JobNumber,
+    /// Number format of the curve and of playback (`f64`, `f32`, or `fixed`: the curve in
+    /// `I32F32`, playback in `Q40`; read by [`number::parse`]).
+    #[serde(deserialize_with = "number::deserialize")]
+    pub number: NumberFormat,
     /// The length unit, for display (default "units").
     #[serde(default, deserialize_with = "non_empty")]
     pub unit: Option<String>,
@@ -588,7 +558,7 @@ kind = "s-curve"
     fn parses_a_job() {
         let job = Job::parse(GOOD).unwrap();
         assert_eq!(job.rate_hz, 1000.0);
-        assert_eq!(job.number, JobNumber::F64);
+        assert_eq!(job.number, NumberFormat::F64);
         assert_eq!(job.axes(), 2);
         assert_eq!(job.profile.kind(), ProfileKind::SCurve);
         assert_eq!(job.profile.planner(), Some(&PlannerSettings::default()));

@@ -12,7 +12,6 @@ pub mod job;
 pub mod measure;
 pub mod number;
 pub mod pipeline;
-pub mod player;
 pub mod plot;
 pub mod run;
 pub mod sample;

@@ -3,7 +3,7 @@
 //! ```text
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
 //! strak-sim run [JOB.toml] [--out DIR]      # exit 3: a planned motion exceeded a limit
-//! strak-sim compile JOB.toml --number f32|fixed --out FILE.strk
+//! strak-sim compile JOB.toml --number f32|fixed|f64 --out FILE.strk
 //! ```
 
 use std::fs;
@@ -15,10 +15,10 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 
 use strak_sim::curve_file::CurveFile;
-use strak_sim::export::{Playback, export};
+use strak_sim::export::export;
 use strak_sim::job::Job;
-use strak_sim::number::Number;
-use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, run_job};
+use strak_sim::number::{self, NumberFormat};
+use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, exit_code, run_job, violation_lines};
 use strak_sim::sample::{SampleOptions, sample_to_csv};
 
 /// Host simulator for strak: sample curves, run jobs through the firmware's sampler.
@@ -42,9 +42,10 @@ enum Command {
         /// Number of derivatives with respect to u to write after the point.
         #[arg(long, default_value_t = 0)]
         derivatives: usize,
-        /// Number format the curve is built and evaluated in (`fixed` is I32F32, Q31.32).
-        #[arg(long, value_enum, default_value_t = Number::F64)]
-        number: Number,
+        /// Number format the curve is built and evaluated in: f64, f32 or fixed (I32F32,
+        /// Q31.32).
+        #[arg(long, value_parser = number::parse, default_value = "f64")]
+        number: NumberFormat,
         /// Output file; standard output when omitted.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -63,40 +64,38 @@ enum Command {
     },
     /// Plan and compile a job exactly as `run` does and write the path as a blob
     /// (`Path::to_bytes`) for firmware to embed and play (`PathBlob::from_bytes`). The number format
-    /// is chosen here, not by the job: `f32` (curve and playback in f32) or `fixed` (curve in
-    /// I32F32, playback in Q40).
+    /// is chosen here, not by the job: `f32` (curve and playback in f32), `fixed` (curve in
+    /// I32F32, playback in Q40) or `f64`.
     Compile {
         /// The job file (TOML).
         job: PathBuf,
-        /// Playback number format of the blob.
-        #[arg(long, value_parser = ["f32", "fixed"])]
-        number: String,
+        /// Playback number format of the blob: f32, fixed or f64.
+        #[arg(long, value_parser = number::parse)]
+        number: NumberFormat,
         /// The blob file to write.
         #[arg(long)]
         out: PathBuf,
     },
 }
 
-/// The exit code of a run whose planned motion exceeded a limit or the accuracy bound.
-const EXIT_EXCEEDED: u8 = 3;
-
 /// How a command ended without an error.
 enum Outcome {
     /// Everything held.
     Done,
-    /// `strak-sim run`: the planned motion failed these checks (one line each).
-    Exceeded(String, Vec<String>),
+    /// `strak-sim run`: the planned motion failed checks: the exit code and one error line
+    /// each.
+    Exceeded(u8, Vec<String>),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
-        Ok(Outcome::Exceeded(label, violations)) => {
-            for v in violations {
-                eprintln!("strak-sim: error: {label}: limit exceeded: {v}");
+        Ok(Outcome::Exceeded(code, lines)) => {
+            for line in lines {
+                eprintln!("{line}");
             }
-            ExitCode::from(EXIT_EXCEEDED)
+            ExitCode::from(code)
         }
         Err(e) => {
             eprintln!("strak-sim: error: {e:#}");
@@ -122,7 +121,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
             sample(&curve, &options, out.as_deref())
         }
         Command::Run { job, out } => run_command(job.as_deref(), out),
-        Command::Compile { job, number, out } => compile_command(&job, &number, &out),
+        Command::Compile { job, number, out } => compile_command(&job, number, &out),
     }
 }
 
@@ -168,35 +167,34 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
         out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
         name,
         progress: true,
+        velocity_factor: None,
     };
     let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     println!("{summary}");
     if !summary.finished {
         eprintln!("strak-sim: warning: {}", summary.stop);
     }
-    if summary.violations.is_empty() {
-        Ok(Outcome::Done)
-    } else {
-        Ok(Outcome::Exceeded(label, summary.violations))
+    match exit_code(&summary) {
+        0 => Ok(Outcome::Done),
+        code => Ok(Outcome::Exceeded(code, violation_lines(&label, &summary))),
     }
 }
 
 /// `strak-sim compile`.
-fn compile_command(job: &FsPath, number: &str, out: &FsPath) -> anyhow::Result<Outcome> {
+fn compile_command(job: &FsPath, number: NumberFormat, out: &FsPath) -> anyhow::Result<Outcome> {
     let label = job.display().to_string();
     let text = fs::read_to_string(job).with_context(|| format!("cannot read {label}"))?;
     let parsed = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    let playback = Playback::from_name(number)
-        .ok_or_else(|| anyhow::anyhow!("--number must be f32 or fixed"))?;
-    let compiled = export(&parsed, playback).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    let compiled = export(&parsed, number).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     fs::write(out, &compiled.blob).with_context(|| format!("cannot write {}", out.display()))?;
     println!(
-        "{}: {} bytes, {} axes, {} pieces, {} ticks ({number})",
+        "{}: {} bytes, {} axes, {} pieces, {} ticks ({})",
         out.display(),
         compiled.blob.len(),
         compiled.axes,
         compiled.pieces,
-        compiled.ticks
+        compiled.ticks,
+        number::name(number)
     );
     Ok(Outcome::Done)
 }

@@ -16,7 +16,7 @@
 
 use strak_curves::Scalar;
 
-use crate::job::JobNumber;
+use crate::number::NumberFormat;
 
 /// The relative tolerance of every check: the rounding of the `f64` arithmetic of the check.
 pub const RELATIVE_TOLERANCE: f64 = 1e-9;
@@ -24,16 +24,16 @@ pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 /// The resolution `u(M)` of a sample value of magnitude `magnitude` in the job's format.
 ///
 /// ```
-/// use strak_sim::job::JobNumber;
+/// use strak_sim::number::NumberFormat;
 /// use strak_sim::measure::resolution;
-/// assert_eq!(resolution(JobNumber::F32, 1.0), f64::from(f32::EPSILON));
-/// assert_eq!(resolution(JobNumber::Fixed, 1e6), 2f64.powi(-32));
+/// assert_eq!(resolution(NumberFormat::F32, 1.0), f64::from(f32::EPSILON));
+/// assert_eq!(resolution(NumberFormat::Q40, 1e6), 2f64.powi(-32));
 /// ```
-pub fn resolution(number: JobNumber, magnitude: f64) -> f64 {
+pub fn resolution(number: NumberFormat, magnitude: f64) -> f64 {
     match number {
-        JobNumber::F64 => magnitude * f64::EPSILON,
-        JobNumber::F32 => magnitude * f64::from(f32::EPSILON),
-        JobNumber::Fixed => 2.0_f64.powi(-32),
+        NumberFormat::F64 => magnitude * f64::EPSILON,
+        NumberFormat::F32 => magnitude * f64::from(f32::EPSILON),
+        NumberFormat::Q40 => 2.0_f64.powi(-32),
     }
 }
 
@@ -210,7 +210,7 @@ impl<const D: usize> Measure<D> {
 
     /// The tolerance of a finite difference of samples of magnitude `magnitude`, for one axis
     /// (`norm`: for the norm over the axes); see the module docs.
-    pub fn slack(&self, number: JobNumber, magnitude: f64, norm: bool) -> f64 {
+    pub fn slack(&self, number: NumberFormat, magnitude: f64, norm: bool) -> f64 {
         let axes = if norm { (D as f64).sqrt() } else { 1.0 };
         2.0 * resolution(number, magnitude) * self.rate * axes
     }
@@ -263,11 +263,11 @@ mod tests {
     fn slack_is_two_units_per_tick() {
         let m = Measure::<4>::new(1000.0);
         assert_eq!(
-            m.slack(JobNumber::Fixed, 5.0, false),
+            m.slack(NumberFormat::Q40, 5.0, false),
             2.0 * 2f64.powi(-32) * 1000.0
         );
         assert_eq!(
-            m.slack(JobNumber::F32, 2.0, true),
+            m.slack(NumberFormat::F32, 2.0, true),
             2.0 * 2.0 * f64::from(f32::EPSILON) * 1000.0 * 2.0
         );
     }

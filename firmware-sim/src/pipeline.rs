@@ -28,7 +28,8 @@ use strak_trajectory::{
 };
 
 use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Job, JobError, JobNumber, Profile, ProfileKind};
+use crate::job::{Job, JobError, Profile, ProfileKind};
+use crate::number::{self, NumberFormat};
 use crate::summary::num;
 
 /// Piece capacity of a compiled path (a path of `A` axes in `f64` takes about
@@ -201,7 +202,7 @@ fn max_abs(job: &Job) -> f64 {
 /// # Errors
 /// A [`JobError`] on the coordinate.
 pub fn check_playback_range(job: &Job) -> Result<(), JobError> {
-    if job.number != JobNumber::Fixed {
+    if job.number != NumberFormat::Q40 {
         return Ok(());
     }
     let limit = <Q40 as Number>::LIMIT;
@@ -241,9 +242,9 @@ pub fn compile_error(job: &Job, e: TrajError, duration: f64) -> JobError {
                 "the compiled path does not fit `{}` playback ({}; the path's points reach {}, \
                  the curve between them goes further): move or scale the path, or use number \
                  = \"f64\"",
-                job.number.name(),
+                number::name(job.number),
                 match job.number {
-                    JobNumber::Fixed => format!(
+                    NumberFormat::Q40 => format!(
                         "Q40 keeps every position, velocity and acceleration within ±{} units",
                         num(<Q40 as Number>::LIMIT)
                     ),
@@ -336,7 +337,7 @@ impl<S: Scalar, const D: usize> Prepared<S, D> {
     /// A [`JobError`] naming the field.
     pub fn new(job: &Job) -> Result<Self, JobError> {
         check_playback_range(job)?;
-        let curve = build_dyn(&job.path, job.number.curve_number()).map_err(curve_error)?;
+        let curve = build_dyn(&job.path, job.number).map_err(curve_error)?;
         let limits = planning_limits::<D>(job)?;
         Ok(Prepared { curve, limits })
     }

@@ -26,14 +26,13 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strak_curves::{I32F32, ParamCurve, ParamCurveDeriv, Scalar, arc_length};
-use strak_trajectory::{Kernel, Number, Q40, Sample, Sampler};
+use strak_trajectory::{EventPlayer, Kernel, Number, Q40, RunEnd, Sample, Sampler};
 
 use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Job, JobError, JobNumber, ProfileKind};
+use crate::job::{Job, JobError, ProfileKind};
 use crate::measure::{Measure, Observed, distance, norm, to_f64};
-use crate::number::Number as CurveNumber;
+use crate::number::{self, NumberFormat};
 use crate::pipeline::{Compiled, PIECES, Prepared, axis_array, curve_error, is_planned};
-use crate::player::{EventPlayer, Stop};
 use crate::plot::{self, PlotLimits, Recorder};
 use crate::summary::{
     Accuracy, AlongPath, CheckRule, Checked, Differences, EndPoint, FiniteDifferences, Maxima,
@@ -66,6 +65,35 @@ pub struct RunOptions {
     pub name: String,
     /// Show a progress bar on long runs (only when standard error is a terminal).
     pub progress: bool,
+    /// For tests of the verdict only: every sampled velocity is multiplied by this factor
+    /// before it is measured, so that the samples of a planned motion exceed its velocity
+    /// limit (the library's planned motions do not) and the run's checks, violations and
+    /// [`exit_code`] can be seen to fail. `None` in every real run.
+    pub velocity_factor: Option<f64>,
+}
+
+/// The exit code of `strak-sim run` whose planned motion exceeded a limit or the accuracy
+/// bound.
+pub const EXIT_EXCEEDED: u8 = 3;
+
+/// The exit code of `strak-sim run` for a run that produced `summary`: 0, or
+/// [`EXIT_EXCEEDED`] when it lists [`violations`](Summary::violations).
+pub fn exit_code(summary: &Summary) -> u8 {
+    if summary.violations.is_empty() {
+        0
+    } else {
+        EXIT_EXCEEDED
+    }
+}
+
+/// The lines `strak-sim run` writes to standard error for `summary`'s violations, one per
+/// quantity: `strak-sim: error: <label>: limit exceeded: <violation>`.
+pub fn violation_lines(label: &str, summary: &Summary) -> Vec<String> {
+    summary
+        .violations
+        .iter()
+        .map(|v| format!("strak-sim: error: {label}: limit exceeded: {v}"))
+        .collect()
 }
 
 /// Why a run failed.
@@ -159,13 +187,13 @@ fn dispatch(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
     let axes =
         || -> RunError { JobError::new("path.points", "points need 1 to 6 coordinates").into() };
     match job.number {
-        JobNumber::F64 => {
+        NumberFormat::F64 => {
             crate::with_axes!(job.axes(), run_typed::<f64, f64>(job, options), Err(axes()))
         }
-        JobNumber::F32 => {
+        NumberFormat::F32 => {
             crate::with_axes!(job.axes(), run_typed::<f32, f32>(job, options), Err(axes()))
         }
-        JobNumber::Fixed => {
+        NumberFormat::Q40 => {
             crate::with_axes!(
                 job.axes(),
                 run_typed::<Q40, I32F32>(job, options),
@@ -186,7 +214,7 @@ struct Played<const D: usize> {
     measure: Measure<D>,
     recorder: Recorder,
     samples: u64,
-    stop: Stop,
+    stop: RunEnd,
     aborted: bool,
     applied: usize,
     ignored: usize,
@@ -203,7 +231,7 @@ where
     let started = Instant::now();
     let prepared = Prepared::<S, D>::new(job)?;
     let reference: DynCurve<f64, D> =
-        build_dyn(&job.path, CurveNumber::F64).map_err(curve_error)?;
+        build_dyn(&job.path, NumberFormat::F64).map_err(curve_error)?;
     let built = started.elapsed();
     let compiled = prepared.compile::<N>(job)?;
     let curves = Curves {
@@ -213,7 +241,7 @@ where
     let out = &options.out_dir;
     fs::create_dir_all(out).map_err(io_error(out))?;
     let play_started = Instant::now();
-    let played = play(job, &compiled, &curves, out, options.progress)?;
+    let played = play(job, &compiled, &curves, options)?;
     let wall = WallTime {
         plan_s: (built + compiled.plan_time).as_secs_f64(),
         compile_s: compiled.compile_time.as_secs_f64(),
@@ -305,14 +333,14 @@ fn play<N, S, const D: usize>(
     job: &Job,
     compiled: &Compiled<'_, N, D>,
     curves: &Curves<'_, S, D>,
-    out: &FsPath,
-    progress: bool,
+    options: &RunOptions,
 ) -> Result<Played<D>, RunError>
 where
     N: Kernel,
     N::Out: CsvCell,
     S: Scalar,
 {
+    let out = &options.out_dir;
     let csv_path = out.join("samples.csv");
     let mut csv = BufWriter::new(File::create(&csv_path).map_err(io_error(&csv_path))?);
     writeln!(csv, "{}", csv_header(D)).map_err(io_error(&csv_path))?;
@@ -321,7 +349,7 @@ where
     let mut player = EventPlayer::new(&events, path.ticks());
     let last_event = events.last().map_or(0, |e| e.tick);
     let expected = (u64::from(path.ticks()) + 1).max(last_event + 1);
-    let bar = progress_bar(progress, expected);
+    let bar = progress_bar(options.progress, expected);
     let mut sampler = Sampler::new(path);
     let mut measure = Measure::<D>::new(job.rate_hz);
     let mut recorder = Recorder::new(D, expected);
@@ -337,7 +365,10 @@ where
         let t = k as f64 / job.rate_hz;
         write_row(&mut row, k, t, &s);
         csv.write_all(row.as_bytes()).map_err(io_error(&csv_path))?;
-        let observed = observe(t, &s, before, compiled, curves);
+        let mut observed = observe(t, &s, before, compiled, curves);
+        if let Some(f) = options.velocity_factor {
+            observed.velocity = observed.velocity.map(|v| v * f);
+        }
         channels(&observed, measure.push(&observed), &mut values);
         recorder.push(t, &values);
         last = Some((observed.position, s.position));
@@ -357,7 +388,7 @@ where
         measure,
         recorder,
         samples: player.samples(),
-        stop: player.stop(&sampler),
+        stop: player.end(&sampler),
         aborted: player.aborted(),
         applied: player.applied(),
         ignored: player.ignored(),
@@ -441,14 +472,14 @@ fn path_length<const D: usize>(reference: &DynCurve<f64, D>) -> f64 {
 
 fn stop_text<const D: usize>(played: &Played<D>) -> String {
     match played.stop {
-        Stop::Guard => format!(
+        RunEnd::Guard => format!(
             "stopped by the guard after {} samples: the sampler did not finish (a hold without resume?)",
             played.samples
         ),
-        Stop::Finished if played.aborted && !played.exact_end => {
+        RunEnd::Finished if played.aborted && !played.exact_end => {
             "aborted (stopped on the path before its end)".to_owned()
         }
-        Stop::Finished => "end of path".to_owned(),
+        RunEnd::Finished => "end of path".to_owned(),
     }
 }
 
@@ -530,9 +561,9 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
     let (path_max, per_axis, finite_differences, along_path) = maxima(job, m);
     let mut summary = Summary {
         job: options.name.clone(),
-        number: job.number.name().to_owned(),
+        number: number::name(job.number).to_owned(),
         playback: match job.number {
-            JobNumber::Fixed => format!("{} (samples I32F32)", N::NAME),
+            NumberFormat::Q40 => format!("{} (samples I32F32)", N::NAME),
             _ => N::NAME.to_owned(),
         },
         axes: D,
@@ -547,7 +578,7 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
         samples: played.samples,
         run_time_s: played.samples.saturating_sub(1) as f64 / job.rate_hz,
         stop: stop_text(played),
-        finished: played.stop == Stop::Finished,
+        finished: played.stop == RunEnd::Finished,
         events_applied: played.applied,
         events_ignored: played.ignored,
         path_length: path_length(curves.reference),

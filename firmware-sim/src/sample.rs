@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 
 use crate::builder::build_curve;
 use crate::curve_file::{CurveFile, FieldError};
-pub use crate::number::{FixedScalar, Number};
+pub use crate::number::{FixedScalar, NumberFormat};
 
 /// What to sample.
 #[derive(Clone, Copy, Debug)]
@@ -17,7 +17,7 @@ pub struct SampleOptions {
     /// Number of derivatives after the point.
     pub derivatives: usize,
     /// Number format.
-    pub number: Number,
+    pub number: NumberFormat,
 }
 
 /// The evenly spaced parameters over `[a, b]`, first and last exactly `a` and `b`.

@@ -8,8 +8,9 @@ use std::fs;
 
 use common::bundled_job;
 use strak_curves::I32F32;
-use strak_sim::export::{Playback, export};
+use strak_sim::export::export;
 use strak_sim::job::Job;
+use strak_sim::number::NumberFormat;
 use strak_sim::run::{RunOptions, run_job};
 use strak_trajectory::{Path, Q40, Sampler};
 
@@ -20,6 +21,7 @@ fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
         out_dir: dir.path().to_owned(),
         name: "export".to_owned(),
         progress: false,
+        velocity_factor: None,
     };
     let summary = run_job(job, &options).unwrap();
     assert!(summary.finished);
@@ -33,7 +35,7 @@ fn csv_bits(job: &Job, parse: fn(&str) -> u64) -> Vec<u64> {
 #[test]
 fn f32_export_equals_the_run_of_an_f32_job() {
     let job = bundled_job("circle-f32");
-    let e = export(&job, Playback::F32).unwrap();
+    let e = export(&job, NumberFormat::F32).unwrap();
     assert!(e.finished);
     assert_eq!(e.axes, 2);
     assert_eq!(e.samples(), e.ticks as usize + 1);
@@ -45,7 +47,7 @@ fn f32_export_equals_the_run_of_an_f32_job() {
 #[test]
 fn fixed_export_equals_the_run_of_a_fixed_job() {
     let job = bundled_job("contour-fixed");
-    let e = export(&job, Playback::Fixed).unwrap();
+    let e = export(&job, NumberFormat::Q40).unwrap();
     assert!(e.finished);
     let run = csv_bits(&job, |s| {
         s.parse::<I32F32>().unwrap().to_bits().cast_unsigned()
@@ -60,7 +62,7 @@ fn fixed_export_equals_the_run_of_a_fixed_job() {
 #[test]
 fn events_are_applied_and_the_blob_plays_back() {
     let job = bundled_job("feed-hold");
-    let e = export(&job, Playback::Fixed).unwrap();
+    let e = export(&job, NumberFormat::Q40).unwrap();
     assert_eq!(e.events.len(), 4);
     // the hold stretches the run beyond the path's ticks
     assert!(e.samples() > e.ticks as usize + 1);
@@ -76,7 +78,7 @@ fn events_are_applied_and_the_blob_plays_back() {
     // a recipe for on-device compiling exists for the plain B-spline, not for the circle
     assert!(e.recipe.is_some());
     assert!(
-        export(&bundled_job("circle-f32"), Playback::F32)
+        export(&bundled_job("circle-f32"), NumberFormat::F32)
             .unwrap()
             .recipe
             .is_none()

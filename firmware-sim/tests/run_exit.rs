@@ -9,9 +9,12 @@ use std::path::Path as FsPath;
 use std::process::Output;
 
 use common::{QUARTER_TURN as GOOD, bundled_jobs, run_text, stem};
+use strak_sim::job::Job;
+use strak_sim::run::{RunOptions, exit_code, run_job, violation_lines};
+use strak_sim::summary::Summary;
 
 /// A straight line (73.65 units) at 1 kHz in f64 with an S-curve whose jerk phases last a few
-/// ticks: the compiled spline overshoots the planned velocity, |v| 21.72 against 21.23.
+/// ticks, planned at its velocity limit of 21.23.
 const SHORT_JERK_PHASES: &str = r#"rate_hz = 1000
 number = "f64"
 
@@ -96,32 +99,62 @@ fn a_planned_job_that_holds_exits_0() {
     agrees(&r);
 }
 
+/// The run of `text` through the library (`run_job`, as `strak-sim run` calls it) with its
+/// sampled velocities multiplied by `factor` before they are measured.
+fn run_scaled(name: &str, text: &str, dir: &FsPath, factor: Option<f64>) -> Summary {
+    let options = RunOptions {
+        out_dir: dir.join(name),
+        name: name.to_owned(),
+        progress: false,
+        velocity_factor: factor,
+    };
+    run_job(&Job::parse(text).unwrap(), &options).unwrap()
+}
+
+/// No planned job is known to break a limit (the library keeps them), so the samples of the
+/// straight line are made to: its sampled velocities, 3 % too fast, go through the run's
+/// measuring, checks and violations to the exit code and the error lines of `strak-sim
+/// run` (`exit_code`, `violation_lines`, the functions the binary calls).
 #[test]
-#[ignore = "the job's straight-line overshoot is fixed (the compiled fit keeps the plan's limits): \
-            no planned job is known to break a limit; it needs a new violating job"]
 fn a_planned_overshoot_exits_3_naming_the_quantity() {
     let dir = tempfile::tempdir().unwrap();
-    let r = run("line", SHORT_JERK_PHASES, dir.path());
-    assert_eq!(
-        r.output.status.code(),
-        Some(3),
-        "{}\n{}",
-        r.stderr,
-        r.stdout
-    );
+    let held = run_scaled("line", SHORT_JERK_PHASES, dir.path(), None);
+    assert_eq!(exit_code(&held), 0, "{:?}", held.violations);
+    let v_max = held.path.velocity.max;
+    assert!(v_max <= 21.23 && v_max > 0.99 * 21.23, "{v_max}");
+
+    let s = run_scaled("line", SHORT_JERK_PHASES, dir.path(), Some(1.03));
+    assert_eq!(exit_code(&s), 3);
+    let lines = violation_lines("line.toml", &s);
+    // Only the sampled velocity is scaled: it alone exceeds its limit (the finite
+    // differences of the positions and the accelerations are the run's own).
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    let measured: f64 = lines[0]
+        .strip_prefix("strak-sim: error: line.toml: limit exceeded: velocity |v| = ")
+        .and_then(|rest| rest.split_once(" at t = "))
+        .and_then(|(v, _)| v.parse().ok())
+        .unwrap_or_else(|| panic!("{}", lines[0]));
     assert!(
-        r.stderr
-            .lines()
-            .any(|l| l.contains("line.toml: limit exceeded: velocity |v| = ")),
+        (measured / (1.03 * v_max) - 1.0).abs() < 1e-5,
         "{}",
-        r.stderr
+        lines[0]
     );
-    assert_eq!(r.summary["path"]["velocity"]["within"], false);
-    assert_eq!(r.summary["path"]["velocity"]["enforced"], true);
-    assert!(r.stdout.contains("EXCEEDED"), "{}", r.stdout);
+    assert!(lines[0].contains("exceeds 21.23 by "), "{}", lines[0]);
+    assert_eq!(s.path.velocity.within, Some(false));
+    assert!(s.path.velocity.enforced);
+    assert!(!s.limits_respected);
+    assert!(s.to_string().contains("EXCEEDED"), "{s}");
     // The output is written all the same, for a look at what went wrong.
     assert!(dir.path().join("line/samples.csv").exists());
-    agrees(&r);
+
+    // A law not planned under the limits reports the same excess without failing.
+    let unplanned = SHORT_JERK_PHASES.replace(
+        "kind = \"s-curve\"",
+        "kind = \"constant-speed\"\nspeed = 21",
+    );
+    let u = run_scaled("speed", &unplanned, dir.path(), Some(1.03));
+    assert_eq!(u.path.velocity.within, Some(false));
+    assert_eq!((exit_code(&u), violation_lines("x", &u).len()), (0, 0));
 }
 
 #[test]

@@ -7,7 +7,8 @@
 mod common;
 
 use common::{bundled_jobs, stem};
-use strak_sim::job::{Job, JobNumber};
+use strak_sim::job::Job;
+use strak_sim::number::NumberFormat;
 use strak_sim::run::{RunOptions, run_job};
 
 fn norm(v: &[f64]) -> f64 {
@@ -15,11 +16,11 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// The relative resolution of a sample value in the job's format (for finite-difference noise).
-fn resolution(number: JobNumber, magnitude: f64) -> f64 {
+fn resolution(number: NumberFormat, magnitude: f64) -> f64 {
     match number {
-        JobNumber::F64 => 2.0 * f64::EPSILON * magnitude,
-        JobNumber::F32 => 2.0 * f64::from(f32::EPSILON) * magnitude,
-        JobNumber::Fixed => 2.0_f64.powi(-32),
+        NumberFormat::F64 => 2.0 * f64::EPSILON * magnitude,
+        NumberFormat::F32 => 2.0 * f64::from(f32::EPSILON) * magnitude,
+        NumberFormat::Q40 => 2.0_f64.powi(-32),
     }
 }
 
@@ -174,6 +175,7 @@ fn check_job(name: &str, job: &Job) {
                 out_dir: dir.path().to_owned(),
                 name: name.clone(),
                 progress: false,
+                velocity_factor: None,
             },
         )
         .unwrap();

@@ -14,7 +14,7 @@ use std::process::Command;
 
 use strak_ref as r;
 use strak_sim::curve_file::{BoundaryName, CurveFile};
-use strak_sim::number::Number;
+use strak_sim::number::NumberFormat;
 use strak_sim::sample::{SampleOptions, header, sample_rows};
 
 const DERIVATIVES: usize = 2;
@@ -157,7 +157,7 @@ fn extent(points: &[Vec<f64>]) -> f64 {
 }
 
 /// Largest error of each derivative order, relative to its scale.
-fn relative_errors(file: &CurveFile, number: Number) -> Vec<f64> {
+fn relative_errors(file: &CurveFile, number: NumberFormat) -> Vec<f64> {
     let options = SampleOptions {
         count: COUNT,
         derivatives: DERIVATIVES,
@@ -172,9 +172,9 @@ fn relative_errors(file: &CurveFile, number: Number) -> Vec<f64> {
     // The domain ends are computed in the curve's own number type (chord lengths, knots), so
     // they agree with the f64 reference to that type's resolution.
     let u_tol = match number {
-        Number::F64 => 1e-12,
-        Number::F32 => 1e-6,
-        Number::Fixed => 1e-8,
+        NumberFormat::F64 => 1e-12,
+        NumberFormat::F32 => 1e-6,
+        NumberFormat::Q40 => 1e-8,
     } * (b - a).abs().max(1.0);
     assert!(
         (rows[0][0] - a).abs() <= u_tol,
@@ -202,7 +202,7 @@ fn relative_errors(file: &CurveFile, number: Number) -> Vec<f64> {
         .collect()
 }
 
-fn check(number: Number, tolerance: f64) {
+fn check(number: NumberFormat, tolerance: f64) {
     let files = examples();
     assert!(files.len() >= 10, "examples missing: {files:?}");
     for path in files {
@@ -224,17 +224,17 @@ fn check(number: Number, tolerance: f64) {
 
 #[test]
 fn f64_agrees_with_the_reference_within_1e_10() {
-    check(Number::F64, 1e-10);
+    check(NumberFormat::F64, 1e-10);
 }
 
 #[test]
 fn f32_agrees_with_the_reference_within_1e_5() {
-    check(Number::F32, 1e-5);
+    check(NumberFormat::F32, 1e-5);
 }
 
 #[test]
 fn fixed_point_agrees_with_the_reference_within_1e_8() {
-    check(Number::Fixed, 1e-8);
+    check(NumberFormat::Q40, 1e-8);
 }
 
 #[test]
@@ -250,9 +250,9 @@ fn one_and_four_coordinates() {
     ] {
         let file = CurveFile::parse(text).unwrap();
         for (number, tol) in [
-            (Number::F64, 1e-10),
-            (Number::F32, 1e-5),
-            (Number::Fixed, 1e-8),
+            (NumberFormat::F64, 1e-10),
+            (NumberFormat::F32, 1e-5),
+            (NumberFormat::Q40, 1e-8),
         ] {
             for (k, e) in relative_errors(&file, number).iter().enumerate() {
                 assert!(*e <= tol, "{text}: derivative {k} {number:?}: {e:e}");
@@ -287,9 +287,9 @@ fn more_than_256_points() {
         let file = CurveFile::parse(&text).unwrap();
         assert_eq!(file.points().len(), n);
         for (number, tol) in [
-            (Number::F64, 1e-10),
-            (Number::F32, 1e-5),
-            (Number::Fixed, 1e-8),
+            (NumberFormat::F64, 1e-10),
+            (NumberFormat::F32, 1e-5),
+            (NumberFormat::Q40, 1e-8),
         ] {
             for (k, e) in relative_errors(&file, number).iter().enumerate() {
                 assert!(*e <= tol, "{n} points: derivative {k} {number:?}: {e:e}");
@@ -327,7 +327,7 @@ fn command_line_writes_the_library_rows() {
         &SampleOptions {
             count: 9,
             derivatives: 1,
-            number: Number::F64,
+            number: NumberFormat::F64,
         },
     )
     .unwrap();

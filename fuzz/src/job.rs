@@ -17,9 +17,9 @@
 use strak_curves::{I32F32, Scalar};
 use strak_sim::curve_file::CurveFile;
 use strak_sim::dyn_curve::{DynCurve, build_dyn};
-use strak_sim::job::{Action, Job, JobNumber, Profile, ProfileKind};
+use strak_sim::job::{Action, Job, Profile, ProfileKind};
 use strak_sim::pipeline::{compile_options, plan_options, planning_limits};
-use strak_sim::sample::{Number as CurveNumber, SampleOptions, sample_rows};
+use strak_sim::sample::{NumberFormat, SampleOptions, sample_rows};
 use strak_trajectory::{Along, Kernel, ParameterTiming, Path, PathTiming, Q40, Timing, compile};
 
 use crate::check::{Bounds, FeedEvent, MAX_TICKS};
@@ -54,7 +54,7 @@ pub fn run(data: &[u8]) -> Result<(), Violation> {
 }
 
 fn curve_file(file: &CurveFile) -> Result<(), Violation> {
-    for number in [CurveNumber::F64, CurveNumber::F32, CurveNumber::Fixed] {
+    for number in [NumberFormat::F64, NumberFormat::F32, NumberFormat::Q40] {
         let options = SampleOptions {
             count: 9,
             derivatives: 2,
@@ -86,15 +86,15 @@ fn valid_job(job: &Job) -> Result<(), Violation> {
 }
 
 fn by_number<const D: usize>(job: &Job) -> Result<(), Violation> {
-    let n = job.number.curve_number();
+    let n = job.number;
     match job.number {
-        JobNumber::F64 => {
+        NumberFormat::F64 => {
             build_dyn::<f64, D>(&job.path, n).map_or(Ok(()), |c| plan::<f64, f64, D>(job, &c))
         }
-        JobNumber::F32 => {
+        NumberFormat::F32 => {
             build_dyn::<f32, D>(&job.path, n).map_or(Ok(()), |c| plan::<f32, f32, D>(job, &c))
         }
-        JobNumber::Fixed => {
+        NumberFormat::Q40 => {
             build_dyn::<I32F32, D>(&job.path, n).map_or(Ok(()), |c| plan::<Q40, I32F32, D>(job, &c))
         }
     }

@@ -8,8 +8,10 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-/// Identifies a stream: job name, format (`f32` | `fixed`), source (`blob` | `device`).
-pub(crate) type StreamKey = (String, String, String);
+use strak_trajectory::NumberFormat;
+
+/// Identifies a stream: job name, playback format, source (`blob` | `device`).
+pub(crate) type StreamKey = (String, NumberFormat, String);
 
 /// One stream of samples from the firmware.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -28,7 +30,7 @@ pub(crate) struct FirmwareOutput {
     /// The streams, in the order they started.
     pub(crate) streams: Vec<(StreamKey, Stream)>,
     /// The device-compiled paths: (job, format) → (bytes, pieces).
-    pub(crate) compiled: BTreeMap<(String, String), (usize, usize)>,
+    pub(crate) compiled: BTreeMap<(String, NumberFormat), (usize, usize)>,
     /// The stream count of the `DONE` line.
     pub(crate) done: Option<u32>,
     /// Lines that are not part of the protocol (errors, panics).
@@ -58,6 +60,7 @@ pub(crate) fn parse(text: &str) -> Result<FirmwareOutput, String> {
         let line = raw.trim();
         let bad = || format!("firmware output line {}: cannot parse `{raw}`", n + 1);
         let w = words(line);
+        let format = |i: usize| w.get(i).and_then(|f| f.parse::<NumberFormat>().ok());
         match w.first().copied() {
             Some("S") => {
                 let i = current.ok_or_else(|| format!("{}: a sample outside a stream", bad()))?;
@@ -84,7 +87,7 @@ pub(crate) fn parse(text: &str) -> Result<FirmwareOutput, String> {
             }
             Some("J") if w.len() == 5 => {
                 let axes: usize = w[4].parse().map_err(|_| bad())?;
-                let key = (w[1].to_owned(), w[2].to_owned(), w[3].to_owned());
+                let key = (w[1].to_owned(), format(2).ok_or_else(bad)?, w[3].to_owned());
                 if out.stream(&key).is_some() {
                     return Err(format!("{}: the stream started twice", bad()));
                 }
@@ -99,7 +102,7 @@ pub(crate) fn parse(text: &str) -> Result<FirmwareOutput, String> {
             }
             Some("E") if w.len() == 5 => {
                 let i = current.ok_or_else(bad)?;
-                let key = (w[1].to_owned(), w[2].to_owned(), w[3].to_owned());
+                let key = (w[1].to_owned(), format(2).ok_or_else(bad)?, w[3].to_owned());
                 if out.streams[i].0 != key {
                     return Err(format!("{}: ends another stream", bad()));
                 }
@@ -109,8 +112,8 @@ pub(crate) fn parse(text: &str) -> Result<FirmwareOutput, String> {
             Some("C") if w.len() == 5 => {
                 let bytes = w[3].parse().map_err(|_| bad())?;
                 let pieces = w[4].parse().map_err(|_| bad())?;
-                out.compiled
-                    .insert((w[1].to_owned(), w[2].to_owned()), (bytes, pieces));
+                let key = (w[1].to_owned(), format(2).ok_or_else(bad)?);
+                out.compiled.insert(key, (bytes, pieces));
             }
             Some("DONE") if w.len() == 2 => {
                 out.done = Some(w[1].parse().map_err(|_| bad())?);
@@ -135,15 +138,17 @@ pub(crate) struct Mismatch {
     /// The firmware's bits (`None`: the firmware has no sample at this tick).
     pub(crate) firmware: Option<u64>,
     /// The number format, for showing the bits as numbers.
-    pub(crate) format: String,
+    pub(crate) format: NumberFormat,
 }
 
-/// The bits as the number they encode, for messages.
-pub(crate) fn show_bits(format: &str, bits: u64) -> String {
+/// The bits of a sample value as the number they encode, for messages (`Q40` playback
+/// samples in `I32F32`).
+pub(crate) fn show_bits(format: NumberFormat, bits: u64) -> String {
     match format {
         #[allow(clippy::cast_possible_truncation)]
-        "f32" => format!("{:?} ({bits:#010x})", f32::from_bits(bits as u32)),
-        _ => {
+        NumberFormat::F32 => format!("{:?} ({bits:#010x})", f32::from_bits(bits as u32)),
+        NumberFormat::F64 => format!("{:?} ({bits:#018x})", f64::from_bits(bits)),
+        NumberFormat::Q40 => {
             let v = bits.cast_signed() as f64 / 4_294_967_296.0;
             format!("{v:?} ({bits:#018x})")
         }
@@ -153,7 +158,7 @@ pub(crate) fn show_bits(format: &str, bits: u64) -> String {
 impl fmt::Display for Mismatch {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let side = |b: Option<u64>| {
-            b.map_or_else(|| "no sample".to_owned(), |b| show_bits(&self.format, b))
+            b.map_or_else(|| "no sample".to_owned(), |b| show_bits(self.format, b))
         };
         write!(
             f,
@@ -177,7 +182,7 @@ pub(crate) fn compare(
     host: &[u64],
     firmware: &[u64],
     axes: usize,
-    format: &str,
+    format: NumberFormat,
 ) -> Result<usize, Mismatch> {
     let per = 3 * axes.max(1);
     let ticks = host.len().max(firmware.len()).div_ceil(per);
@@ -192,7 +197,7 @@ pub(crate) fn compare(
                     value: "sample".to_owned(),
                     host: h.map(|h| h[0]),
                     firmware: w.map(|w| w[0]),
-                    format: format.to_owned(),
+                    format,
                 });
             }
         };
@@ -206,7 +211,7 @@ pub(crate) fn compare(
                 ),
                 host: Some(h[i]),
                 firmware: Some(w[i]),
-                format: format.to_owned(),
+                format,
             });
         }
     }
@@ -218,15 +223,12 @@ mod tests {
     use super::*;
 
     fn output(bits: &[[u64; 6]]) -> String {
-        let mut s = String::from("J job fixed blob 2\n");
+        let mut s = String::from("J job Q40 blob 2\n");
         for (i, b) in bits.iter().enumerate() {
             let list: Vec<String> = b.iter().map(u64::to_string).collect();
             s += &format!("S {i} [{}]\n", list.join(", "));
         }
-        s += &format!(
-            "E job fixed blob {}\nC job fixed 120 3\nDONE 1\n",
-            bits.len()
-        );
+        s += &format!("E job Q40 blob {}\nC job Q40 120 3\nDONE 1\n", bits.len());
         s
     }
 
@@ -238,13 +240,13 @@ mod tests {
     fn parses_the_protocol() {
         let host = [[1, 2, 3, 4, 5, 6], [7, 8, 9, 10, 11, u64::MAX]];
         let out = parse(&output(&host)).unwrap();
-        let key = ("job".to_owned(), "fixed".to_owned(), "blob".to_owned());
+        let key = ("job".to_owned(), NumberFormat::Q40, "blob".to_owned());
         let s = out.stream(&key).unwrap();
         assert_eq!((s.axes, s.ended), (2, Some(2)));
         assert_eq!(s.bits, stream(&host));
         assert_eq!(out.done, Some(1));
         assert_eq!(
-            out.compiled[&("job".to_owned(), "fixed".to_owned())],
+            out.compiled[&("job".to_owned(), NumberFormat::Q40)],
             (120, 3)
         );
         assert!(out.other.is_empty());
@@ -256,13 +258,13 @@ mod tests {
             .map(|i| [i, i + 1, i + 2, i + 3, i + 4, i + 5])
             .collect();
         let firmware = parse(&output(&host)).unwrap();
-        let key = ("job".to_owned(), "fixed".to_owned(), "blob".to_owned());
+        let key = ("job".to_owned(), NumberFormat::Q40, "blob".to_owned());
         let fw = &firmware.stream(&key).unwrap().bits;
-        assert_eq!(compare(&stream(&host), fw, 2, "fixed"), Ok(50));
+        assert_eq!(compare(&stream(&host), fw, 2, NumberFormat::Q40), Ok(50));
         // corrupt the host's velocity y at tick 37 and the position x at tick 40
         host[37][3] ^= 1;
         host[40][0] ^= 1 << 40;
-        let m = compare(&stream(&host), fw, 2, "fixed").unwrap_err();
+        let m = compare(&stream(&host), fw, 2, NumberFormat::Q40).unwrap_err();
         assert_eq!(m.tick, 37);
         assert_eq!(m.value, "velocity y");
         assert_eq!((m.host, m.firmware), (Some(40 ^ 1), Some(40)));
@@ -275,7 +277,7 @@ mod tests {
     fn a_short_stream_names_the_first_missing_tick() {
         let host: Vec<[u64; 6]> = (0..10).map(|i| [i; 6]).collect();
         let fw = stream(&host[..7]);
-        let m = compare(&stream(&host), &fw, 2, "f32").unwrap_err();
+        let m = compare(&stream(&host), &fw, 2, NumberFormat::F32).unwrap_err();
         assert_eq!((m.tick, m.value.as_str()), (7, "sample"));
         assert_eq!((m.host, m.firmware), (Some(7), None));
         assert!(m.to_string().contains("firmware no sample"));
@@ -283,9 +285,12 @@ mod tests {
 
     #[test]
     fn bits_show_as_numbers() {
-        assert_eq!(show_bits("f32", 0x3f80_0000), "1.0 (0x3f800000)");
         assert_eq!(
-            show_bits("fixed", (-3_i64 << 31).cast_unsigned()),
+            show_bits(NumberFormat::F32, 0x3f80_0000),
+            "1.0 (0x3f800000)"
+        );
+        assert_eq!(
+            show_bits(NumberFormat::Q40, (-3_i64 << 31).cast_unsigned()),
             "-1.5 (0xfffffffe80000000)"
         );
     }
@@ -295,6 +300,7 @@ mod tests {
         assert!(parse("S 0 [1, 2]\n").is_err()); // outside a stream
         assert!(parse("J a f32 blob 1\nS 0 [1, 2]\n").is_err()); // 2 values, 3 expected
         assert!(parse("J a f32 blob 1\nS 1 [1, 2, 3]\n").is_err()); // tick 1 before tick 0
+        assert!(parse("J a fixed blob 1\n").is_err()); // not a format's name
         let out = parse("ERROR panic: boom\n").unwrap();
         assert_eq!(out.other, ["ERROR panic: boom"]);
     }

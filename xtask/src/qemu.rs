@@ -38,8 +38,9 @@ use std::process::{Child, Command, Stdio};
 use std::thread;
 use std::time::{Duration, Instant};
 
-use strak_sim::export::{DeviceRecipe, Export, Playback, export};
-use strak_sim::job::{Action, Job};
+use strak_sim::export::{DeviceRecipe, Export, export};
+use strak_sim::job::Job;
+use strak_trajectory::{Event, NumberFormat, TimedEvent};
 
 use crate::compare::{self, StreamKey};
 use crate::icount;
@@ -63,6 +64,9 @@ const BINARIES: [&str; 5] = [
     "flash-play",
 ];
 
+/// The playback formats of the firmware: `f32` (Cortex-M4F only) and `Q40`.
+const FIRMWARE_FORMATS: [NumberFormat; 2] = [NumberFormat::F32, NumberFormat::Q40];
+
 /// The job of the flash-playback firmware, compiled in fixed-point into exactly
 /// [`FLASH_PIECES`] pieces of 3 axes (relative to the workspace root).
 const FLASH_JOB_FILE: &str = "firmware-sim/qemu/flash-256.toml";
@@ -78,7 +82,7 @@ struct Firmware {
     target: &'static str,
     cpu: &'static str,
     machine: &'static str,
-    formats: &'static [Playback],
+    formats: &'static [NumberFormat],
     /// The flash-playback firmware's machine and its label (the part it stands for).
     flash_machine: &'static str,
     flash_label: &'static str,
@@ -90,7 +94,7 @@ const FIRMWARES: [Firmware; 2] = [
         target: "thumbv7em-none-eabihf",
         cpu: "cortex-m4",
         machine: "mps2-an386",
-        formats: &[Playback::F32, Playback::Fixed],
+        formats: &[NumberFormat::F32, NumberFormat::Q40],
         flash_machine: "mps2-an386",
         flash_label: "Cortex-M4F (mps2-an386, the RAM and flash of an STM32F401CB)",
     },
@@ -99,7 +103,7 @@ const FIRMWARES: [Firmware; 2] = [
         target: "thumbv7m-none-eabi",
         cpu: "cortex-m3",
         machine: "mps2-an385",
-        formats: &[Playback::Fixed],
+        formats: &[NumberFormat::Q40],
         flash_machine: "lm3s6965evb",
         flash_label: "Cortex-M3 (lm3s6965evb: the LM3S6965, 64 KiB RAM)",
     },
@@ -128,7 +132,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     let qemu = ensure_qemu()?;
     let defmt_print = ensure_defmt_print()?;
 
-    println!("\n==> host: compiling and playing the bundled jobs (f32 and fixed)");
+    println!("\n==> host: compiling and playing the bundled jobs (f32 and Q40)");
     let t = Instant::now();
     let blob_dir = root.join("target").join("qemu").join("blobs");
     let jobs = export_jobs(&root.join("firmware-sim/examples/jobs"), &blob_dir)?;
@@ -222,7 +226,7 @@ fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
         .map_err(|e| format!("cannot create {}: {e}", blob_dir.display()))?;
     let mut out = Vec::new();
     for file in files {
-        out.extend(export_file(&file, blob_dir, &Playback::ALL)?);
+        out.extend(export_file(&file, blob_dir, &FIRMWARE_FORMATS)?);
     }
     Ok(out)
 }
@@ -231,7 +235,7 @@ fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
 fn export_file(
     file: &Path,
     blob_dir: &Path,
-    playbacks: &[Playback],
+    playbacks: &[NumberFormat],
 ) -> Result<Vec<HostJob>, String> {
     let name = file
         .file_stem()
@@ -242,13 +246,12 @@ fn export_file(
     let job = Job::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
     let mut out = Vec::new();
     for &playback in playbacks {
-        let export = export(&job, playback)
-            .map_err(|e| format!("{} ({}): {e}", file.display(), playback.name()))?;
-        let blob_path = blob_dir.join(format!("{name}-{}.strk", playback.name()));
+        let export =
+            export(&job, playback).map_err(|e| format!("{} ({playback}): {e}", file.display()))?;
+        let blob_path = blob_dir.join(format!("{name}-{playback}.strk"));
         write_if_changed(&blob_path, &export.blob)?;
         println!(
-            "    {name} {}: {} axes, {} pieces, {} ticks, {} samples, blob {} bytes{}",
-            playback.name(),
+            "    {name} {playback}: {} axes, {} pieces, {} ticks, {} samples, blob {} bytes{}",
             export.axes,
             export.pieces,
             export.ticks,
@@ -269,24 +272,37 @@ fn export_file(
     Ok(out)
 }
 
-/// Exports the flash-playback firmware's job ([`FLASH_JOB_FILE`]) in fixed-point and checks
-/// that its path has 3 axes and [`FLASH_PIECES`] pieces.
+/// Exports the flash-playback firmware's job ([`FLASH_JOB_FILE`]) in `Q40` and checks its
+/// blob ([`check_flash_blob`]).
 fn flash_job(file: &Path, blob_dir: &Path) -> Result<HostJob, String> {
-    let mut jobs = export_file(file, blob_dir, &[Playback::Fixed])?;
+    let mut jobs = export_file(file, blob_dir, &[NumberFormat::Q40])?;
     let job = jobs
         .pop()
         .ok_or_else(|| format!("{}: nothing exported", file.display()))?;
-    if job.export.axes != 3 || job.export.pieces != FLASH_PIECES {
+    check_flash_blob(&job.export.blob).map_err(|e| format!("{}: {e}", file.display()))?;
+    Ok(job)
+}
+
+/// Checks that `blob` is what the flash-playback firmware plays: it loads as a 3-axis `Q40`
+/// path (as the firmware loads it, [`PathBlob::from_bytes`](strak_trajectory::PathBlob)) of
+/// [`FLASH_PIECES`] pieces. The firmware fails on any other blob; this check names the cause
+/// on the host.
+///
+/// # Errors
+/// The load error, or the piece count and how to change it.
+fn check_flash_blob(blob: &[u8]) -> Result<(), String> {
+    let path = strak_trajectory::PathBlob::<strak_trajectory::Q40, 3>::from_bytes(blob).map_err(
+        |e| format!("the flash-playback firmware plays a 3-axis Q40 blob; this one does not load as one: {e}"),
+    )?;
+    let pieces = path.view().piece_count();
+    if pieces != FLASH_PIECES {
         return Err(format!(
-            "{}: compiles to {} pieces of {} axes; the flash-playback firmware plays a path of \
+            "compiles to {pieces} pieces; the flash-playback firmware plays a path of \
              {FLASH_PIECES} pieces of 3 axes (the pieces are duration · rate_hz / \
-             max_piece_ticks: change those)",
-            file.display(),
-            job.export.pieces,
-            job.export.axes
+             max_piece_ticks: change those)"
         ));
     }
-    Ok(job)
+    Ok(())
 }
 
 /// Writes `bytes` to `path` unless it holds them already (an unchanged file keeps its time,
@@ -303,21 +319,18 @@ fn f64_src(x: f64) -> String {
     format!("f64::from_bits({:#018x})", x.to_bits())
 }
 
-fn events_src(events: &[(u64, Action)]) -> String {
+/// Rust source of the events (`strak_trajectory::TimedEvent`s), the feed with its bits.
+fn events_src(events: &[TimedEvent]) -> String {
     let list: Vec<String> = events
         .iter()
-        .map(|(tick, a)| {
-            let event = match a {
-                #[allow(clippy::cast_possible_truncation)]
-                Action::Feed(f) => format!(
-                    "Event::Feed(f32::from_bits({:#010x}))",
-                    (*f as f32).to_bits()
-                ),
-                Action::Hold => "Event::Hold".to_owned(),
-                Action::Resume => "Event::Resume".to_owned(),
-                Action::Abort => "Event::Abort".to_owned(),
+        .map(|e| {
+            let event = match e.event {
+                Event::Feed(f) => format!("Event::Feed(f32::from_bits({:#010x}))", f.to_bits()),
+                Event::Hold => "Event::Hold".to_owned(),
+                Event::Resume => "Event::Resume".to_owned(),
+                Event::Abort => "Event::Abort".to_owned(),
             };
-            format!("TimedEvent {{ tick: {tick}, event: {event} }}")
+            format!("TimedEvent {{ tick: {}, event: {event} }}", e.tick)
         })
         .collect();
     format!("&[{}]", list.join(", "))
@@ -327,11 +340,13 @@ fn events_src(events: &[(u64, Action)]) -> String {
 fn device_jobs(jobs: &[HostJob]) -> Vec<(&HostJob, &HostJob)> {
     jobs.iter()
         .filter(|j| {
-            j.export.playback == Playback::F32 && j.export.axes == 3 && j.export.recipe.is_some()
+            j.export.playback == NumberFormat::F32
+                && j.export.axes == 3
+                && j.export.recipe.is_some()
         })
         .filter_map(|f| {
             jobs.iter()
-                .find(|x| x.name == f.name && x.export.playback == Playback::Fixed)
+                .find(|x| x.name == f.name && x.export.playback == NumberFormat::Q40)
                 .map(|x| (f, x))
         })
         .collect()
@@ -364,13 +379,10 @@ fn jobs_source(jobs: &[HostJob], flash: &HostJob) -> String {
 
 /// A `BlobJob` literal for `j`, its blob included from its file.
 fn blob_job_src(j: &HostJob) -> String {
-    let format = match j.export.playback {
-        Playback::F32 => "Format::F32",
-        Playback::Fixed => "Format::Fixed",
-    };
     format!(
-        "BlobJob {{ name: {:?}, format: {format}, axes: {}, blob: &strak_trajectory::AlignedBlob(*include_bytes!({:?})).0, events: {} }}",
+        "BlobJob {{ name: {:?}, format: NumberFormat::{:?}, axes: {}, blob: &strak_trajectory::AlignedBlob(*include_bytes!({:?})).0, events: {} }}",
         j.name,
+        j.export.playback,
         j.export.axes,
         j.blob_path.to_string_lossy(),
         events_src(&j.export.events)
@@ -648,18 +660,14 @@ fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, St
         .iter()
         .filter(|j| fw.formats.contains(&j.export.playback))
     {
-        let key = (
-            j.name.clone(),
-            j.export.playback.name().to_owned(),
-            "blob".to_owned(),
-        );
+        let key = (j.name.clone(), j.export.playback, "blob".to_owned());
         expected.push((key, j));
     }
     for (f, x) in device_jobs(jobs) {
         for j in [f, x] {
             if fw.formats.contains(&j.export.playback) {
-                let format = j.export.playback.name().to_owned();
-                match out.compiled.get(&(j.name.clone(), format.clone())) {
+                let format = j.export.playback;
+                match out.compiled.get(&(j.name.clone(), format)) {
                     Some(&(bytes, pieces))
                         if bytes == j.export.blob.len() && pieces == j.export.pieces => {}
                     other => {
@@ -685,7 +693,7 @@ fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, St
                 stream.axes, job.export.axes
             ));
         }
-        let n = compare::compare(&job.export.bits, &stream.bits, stream.axes, &key.1)
+        let n = compare::compare(&job.export.bits, &stream.bits, stream.axes, key.1)
             .map_err(|m| format!("{label}: the firmware differs from the host: {m}"))?;
         if stream.ended != u32::try_from(n).ok() {
             return Err(format!(
@@ -1005,7 +1013,7 @@ fn check_played(label: &str, jobs: &[HostJob], report: &stack::Report) -> Result
     for p in &report.played {
         let job = jobs
             .iter()
-            .find(|j| j.name == p.job && j.export.playback.name() == p.format)
+            .find(|j| j.name == p.job && j.export.playback == p.format)
             .ok_or_else(|| {
                 format!(
                     "{label}: played {} {}, which the host has not",
@@ -1025,4 +1033,58 @@ fn check_played(label: &str, jobs: &[HostJob], report: &stack::Report) -> Result
         report.played.len()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn exported(file: &str, format: NumberFormat) -> Export {
+        let path = root().join(file);
+        let text = fs::read_to_string(&path).unwrap();
+        export(&Job::parse(&text).unwrap(), format).unwrap()
+    }
+
+    #[test]
+    fn the_flash_job_compiles_to_the_blob_the_flash_firmware_plays() {
+        let e = exported(FLASH_JOB_FILE, NumberFormat::Q40);
+        assert_eq!((e.axes, e.pieces), (3, FLASH_PIECES));
+        assert_eq!(check_flash_blob(&e.blob), Ok(()));
+    }
+
+    #[test]
+    fn a_blob_of_another_piece_count_is_named_with_its_count() {
+        let e = exported(
+            "firmware-sim/examples/jobs/pick-and-place.toml",
+            NumberFormat::Q40,
+        );
+        assert_eq!(e.axes, 3);
+        assert_ne!(e.pieces, FLASH_PIECES);
+        let m = check_flash_blob(&e.blob).unwrap_err();
+        assert!(
+            m.starts_with(&format!("compiles to {} pieces;", e.pieces)),
+            "{m}"
+        );
+        assert!(
+            m.contains(&format!("plays a path of {FLASH_PIECES} pieces")),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn a_blob_of_another_format_or_axis_count_does_not_load() {
+        let f32_blob = exported(
+            "firmware-sim/examples/jobs/pick-and-place.toml",
+            NumberFormat::F32,
+        );
+        let two_axes = exported(
+            "firmware-sim/examples/jobs/circle-f32.toml",
+            NumberFormat::Q40,
+        );
+        assert_eq!(two_axes.axes, 2);
+        for blob in [&f32_blob.blob, &two_axes.blob] {
+            let m = check_flash_blob(blob).unwrap_err();
+            assert!(m.contains("does not load as one"), "{m}");
+        }
+    }
 }

@@ -13,6 +13,8 @@
 
 use std::fmt::Write as _;
 
+use strak_trajectory::NumberFormat;
+
 use crate::budget;
 
 /// One operation measured on one target.
@@ -33,7 +35,7 @@ pub(crate) struct Measured {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Played {
     pub(crate) job: String,
-    pub(crate) format: String,
+    pub(crate) format: NumberFormat,
     pub(crate) samples: u64,
     pub(crate) hash: u64,
 }
@@ -115,7 +117,9 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Report, String> {
             ["SIZE", name, bytes] => r.sizes.push(((*name).to_owned(), num(bytes)?)),
             ["H", job, format, samples, hash] => r.played.push(Played {
                 job: (*job).to_owned(),
-                format: (*format).to_owned(),
+                format: format
+                    .parse()
+                    .map_err(|e| format!("`{line}`: `{format}`: {e}"))?,
                 samples: num(samples)?,
                 hash: num(hash)?,
             }),
@@ -250,7 +254,7 @@ mod tests {
     #[test]
     fn output_parses_and_keeps_the_other_lines() {
         let text = "CAL 154 6707 64\nSIZE Path<Q40,3,256> 57400\nSTACK load-play-q40 1200 70000\n\
-                    H pick-and-place fixed 1003 42\nC compile-x 50 2500\nI a 1 1 1 1 0\n\
+                    H pick-and-place Q40 1003 42\nC compile-x 50 2500\nI a 1 1 1 1 0\n\
                     STACKS 1\nDONE 1\n";
         let r = parse_output(text, "t").unwrap();
         assert_eq!(
@@ -267,7 +271,7 @@ mod tests {
             r.played,
             vec![Played {
                 job: "pick-and-place".into(),
-                format: "fixed".into(),
+                format: NumberFormat::Q40,
                 samples: 1003,
                 hash: 42
             }]

@@ -20,4 +20,5 @@ pub use path::{
     Sample, crc32,
 };
 pub use plan::*;
+pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};
 pub use play::{Kernel, Sampler, SamplerState};

@@ -1,56 +1,17 @@
 //! The jobs embedded in flash: what `cargo xtask qemu` generated into `jobs.rs` (see the
-//! crate docs), as the types of this module.
+//! crate docs), as the types of this module and the library's events and number formats.
 
 use strak_trajectory::{CompileOptions, PlanOptions};
+pub use strak_trajectory::{Event, NumberFormat, TimedEvent};
 
-/// The playback number format of a job.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
-pub enum Format {
-    /// Curve and playback in `f32` (needs the FPU to be fast; Cortex-M4F only here).
-    F32,
-    /// Curve in `I32F32`, playback in `Q40`, samples in `I32F32` (any Cortex-M).
-    Fixed,
-}
-
-impl Format {
-    /// The name in the output protocol.
-    pub fn name(self) -> &'static str {
-        match self {
-            Format::F32 => "f32",
-            Format::Fixed => "fixed",
-        }
+/// Whether this firmware plays `format`: `Q40` everywhere, `f32` only on a target with a
+/// floating-point unit (the jobs are bundled in these two formats).
+pub fn played_here(format: NumberFormat) -> bool {
+    match format {
+        NumberFormat::F32 => cfg!(target_abi = "eabihf"),
+        NumberFormat::Q40 => true,
+        NumberFormat::F64 => false,
     }
-
-    /// Whether this firmware plays the format: fixed-point everywhere, `f32` only on a
-    /// target with a floating-point unit.
-    pub fn played_here(self) -> bool {
-        match self {
-            Format::F32 => cfg!(target_abi = "eabihf"),
-            Format::Fixed => true,
-        }
-    }
-}
-
-/// An operator event of a job, applied before the sample of its tick.
-#[derive(Clone, Copy, Debug, PartialEq, defmt::Format)]
-pub enum Event {
-    /// `Sampler::set_feed`.
-    Feed(f32),
-    /// `Sampler::hold`.
-    Hold,
-    /// `Sampler::resume`.
-    Resume,
-    /// `Sampler::abort`.
-    Abort,
-}
-
-/// An event at a tick (ticks count samples, holds included).
-#[derive(Clone, Copy, Debug, PartialEq, defmt::Format)]
-pub struct TimedEvent {
-    /// The tick before whose sample the event applies.
-    pub tick: u64,
-    /// What happens.
-    pub event: Event,
 }
 
 /// A job compiled on the host: a path blob in flash and its events.
@@ -58,8 +19,8 @@ pub struct TimedEvent {
 pub struct BlobJob {
     /// The job's name (its file name).
     pub name: &'static str,
-    /// The blob's playback format.
-    pub format: Format,
+    /// The blob's playback format (`f32` or `Q40`).
+    pub format: NumberFormat,
     /// Number of axes.
     pub axes: usize,
     /// The serialized path (`Path::to_bytes` on the host).
@@ -103,7 +64,7 @@ pub struct DeviceJob<const D: usize> {
 pub const FLASH_PIECES: usize = crate::PIECES;
 
 /// The blob job `name` in `format` with `axes` axes, if bundled.
-pub fn find_blob(name: &str, format: Format, axes: usize) -> Option<&'static BlobJob> {
+pub fn find_blob(name: &str, format: NumberFormat, axes: usize) -> Option<&'static BlobJob> {
     BLOB_JOBS
         .iter()
         .find(|j| j.name == name && j.format == format && j.axes == axes)

@@ -18,8 +18,9 @@
 //! E <job> <format> <source> <samples>   the stream ends
 //! DONE <streams>                        all streams played; exit code 0 follows
 //! ```
-//! A sample's bits are `f32::to_bits` (f32 playback) or the `i64` bits of the `I32F32`
-//! output (fixed-point playback), widened to `u64`. Nothing else is logged on success, so
+//! `<format>` is the playback format's [`NumberFormat`](strak_trajectory::NumberFormat)
+//! name (`f32`, `Q40`). A sample's bits are `f32::to_bits` (f32 playback) or the `i64` bits
+//! of the `I32F32` output (`Q40` playback), widened to `u64`. Nothing else is logged on success, so
 //! the output is deterministic.
 
 #![no_std]

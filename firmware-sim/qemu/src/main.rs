@@ -15,7 +15,7 @@
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::{I32F32, Point, Scalar};
 use strak_qemu::device::{compile_job, first_difference};
-use strak_qemu::jobs::{BLOB_JOBS, BlobJob, DEVICE_JOBS, DeviceJob, Format};
+use strak_qemu::jobs::{BLOB_JOBS, BlobJob, DEVICE_JOBS, DeviceJob, NumberFormat, played_here};
 use strak_qemu::play::{OutBits, play_and_log};
 use strak_qemu::{PIECES, counter::Counter, exit_failure, exit_success};
 use strak_trajectory::{Kernel, PathBlob, Q40};
@@ -30,17 +30,17 @@ fn main() -> ! {
     let _counter = cortex_m::Peripherals::take().map(|p| Counter::start(p.SYST));
     let mut streams: u32 = 0;
     for job in BLOB_JOBS {
-        if job.format.played_here() {
+        if played_here(job.format) {
             play_blob(job);
             streams += 1;
         }
     }
     for job in DEVICE_JOBS {
-        for format in [Format::F32, Format::Fixed] {
-            if format.played_here() {
+        for format in [NumberFormat::F32, NumberFormat::Q40] {
+            if played_here(format) {
                 match format {
-                    Format::F32 => device::<f32, f32>(job, format, job.host_blob_f32),
-                    Format::Fixed => device::<Q40, I32F32>(job, format, job.host_blob_fixed),
+                    NumberFormat::F32 => device::<f32, f32>(job, format, job.host_blob_f32),
+                    _ => device::<Q40, I32F32>(job, format, job.host_blob_fixed),
                 }
                 streams += 1;
             }
@@ -52,14 +52,15 @@ fn main() -> ! {
 
 fn play_blob(job: &BlobJob) {
     match (job.format, job.axes) {
-        (Format::F32, 2) => blob::<f32, 2>(job),
-        (Format::F32, 3) => blob::<f32, 3>(job),
-        (Format::Fixed, 2) => blob::<Q40, 2>(job),
-        (Format::Fixed, 3) => blob::<Q40, 3>(job),
-        (_, axes) => {
+        (NumberFormat::F32, 2) => blob::<f32, 2>(job),
+        (NumberFormat::F32, 3) => blob::<f32, 3>(job),
+        (NumberFormat::Q40, 2) => blob::<Q40, 2>(job),
+        (NumberFormat::Q40, 3) => blob::<Q40, 3>(job),
+        (format, axes) => {
             defmt::error!(
-                "{=str}: {=usize} axes are not built into this firmware",
+                "{=str}: {=str} with {=usize} axes is not built into this firmware",
                 job.name,
+                format.name(),
                 axes
             );
             exit_failure()
@@ -92,7 +93,7 @@ where
 }
 
 #[inline(never)]
-fn device<N, S>(job: &DeviceJob<3>, format: Format, host_blob: &[u8])
+fn device<N, S>(job: &DeviceJob<3>, format: NumberFormat, host_blob: &[u8])
 where
     N: Kernel,
     N::Out: OutBits,

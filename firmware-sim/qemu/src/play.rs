@@ -1,10 +1,11 @@
-//! Playing a path: the control-tick handler a timer interrupt would call, and the output of
-//! every sample.
+//! Playing a path with its events through the library's [`EventPlayer`] (the player of
+//! `strak-sim run` and `strak-sim compile`: the events of a tick apply before its sample, the
+//! guard ends a hold without resume), and the output of every sample.
 
 use strak_curves::I32F32;
-use strak_trajectory::{Error, Kernel, PathBlob, PathView, Sample, Sampler};
+use strak_trajectory::{Error, EventPlayer, Kernel, NumberFormat, PathBlob, PathView, Sampler};
 
-use crate::jobs::{Event, Format, TimedEvent};
+use crate::jobs::TimedEvent;
 use crate::mix;
 
 /// A sample value's raw bits, widened to `u64` (as the host's `strak_sim::export::OutBits`).
@@ -25,64 +26,11 @@ impl OutBits for I32F32 {
     }
 }
 
-/// Plays a path with its events, one [`Player::on_tick`] per control tick, exactly as
-/// `strak-sim run` plays a job: the events of a tick apply before its sample; the run ends
-/// when the sampler is finished, or after `10·(ticks + 1) + last event tick + 1` samples
-/// (a hold without resume).
-#[derive(Debug)]
-pub struct Player<'a, N: Kernel, const A: usize> {
-    sampler: Sampler<'a, N, A>,
-    events: &'a [TimedEvent],
-    next_event: usize,
-    tick: u64,
-    guard: u64,
-}
-
-impl<'a, N: Kernel, const A: usize> Player<'a, N, A> {
-    /// A player at tick 0 of `path` (a `&Path` or a view of a blob in flash).
-    pub fn new(path: impl Into<PathView<'a, N, A>>, events: &'a [TimedEvent]) -> Self {
-        let path = path.into();
-        let last_event = events.last().map_or(0, |e| e.tick);
-        Player {
-            sampler: Sampler::new(path),
-            events,
-            next_event: 0,
-            tick: 0,
-            guard: 10 * (u64::from(path.ticks()) + 1) + last_event + 1,
-        }
-    }
-
-    /// One control tick — the body of the timer interrupt handler: apply the events due,
-    /// then one [`Sampler::next`].
-    #[inline]
-    pub fn on_tick(&mut self) -> Sample<N::Out, A> {
-        while let Some(e) = self.events.get(self.next_event) {
-            if e.tick > self.tick {
-                break;
-            }
-            match e.event {
-                Event::Feed(f) => self.sampler.set_feed(f),
-                Event::Hold => self.sampler.hold(),
-                Event::Resume => self.sampler.resume(),
-                Event::Abort => self.sampler.abort(),
-            }
-            self.next_event += 1;
-        }
-        self.tick += 1;
-        self.sampler.next()
-    }
-
-    /// Whether the run is over (the sampler finished, or the guard stopped it).
-    pub fn done(&self) -> bool {
-        self.sampler.is_finished() || self.tick >= self.guard
-    }
-}
-
 /// Plays `path` with `events` and logs the stream (`J`, one `S` per tick, `E`); returns the
 /// number of samples.
 pub fn play_and_log<'a, N, const A: usize>(
     name: &str,
-    format: Format,
+    format: NumberFormat,
     source: &str,
     path: impl Into<PathView<'a, N, A>>,
     events: &'a [TimedEvent],
@@ -98,11 +46,12 @@ where
         source,
         A
     );
-    let mut player = Player::new(path, events);
+    let path: PathView<'a, N, A> = path.into();
+    let mut player = EventPlayer::new(events, path.ticks());
+    let mut sampler = Sampler::new(path);
     let mut count: u32 = 0;
     let mut bits = [0_u64; 12];
-    loop {
-        let s = player.on_tick();
+    while let Some(s) = player.step(&mut sampler) {
         for (b, v) in bits
             .iter_mut()
             .zip(s.position.iter().chain(&s.velocity).chain(&s.acceleration))
@@ -112,9 +61,6 @@ where
         let n = (3 * A).min(bits.len());
         defmt::println!("S {=u32} {=[?]}", count, bits.get(..n).unwrap_or(&[]));
         count = count.wrapping_add(1);
-        if player.done() {
-            break;
-        }
     }
     defmt::println!(
         "E {=str} {=str} {=str} {=u32}",
@@ -157,20 +103,19 @@ where
     N::Out: OutBits,
 {
     let path = PathBlob::<N, A>::from_bytes(blob)?;
-    let mut player = Player::new(&path, events);
+    let view = path.view();
+    let mut player = EventPlayer::new(events, view.ticks());
+    let mut sampler = Sampler::new(view);
     let mut played = Played {
-        pieces: path.view().piece_count(),
+        pieces: view.piece_count(),
         samples: 0,
         hash: 0,
     };
-    loop {
-        let s = player.on_tick();
+    while let Some(s) = player.step(&mut sampler) {
         for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
             played.hash = mix(played.hash, v.out_bits());
         }
         played.samples = played.samples.wrapping_add(1);
-        if player.done() {
-            return Ok(played);
-        }
     }
+    Ok(played)
 }

@@ -1,6 +1,7 @@
 //! Playing a compiled [`Path`] back at its control rate: one [`Sample`] per tick, in constant
 //! time, with feed override, feed hold, resume and abort.
 
+pub(crate) mod events;
 mod feed;
 pub(crate) mod kernel;
 

@@ -25,7 +25,7 @@
 #![deny(unsafe_code)]
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
-use strak_qemu::jobs::{FLASH_BLOB, FLASH_PIECES, Format};
+use strak_qemu::jobs::{FLASH_BLOB, FLASH_PIECES, NumberFormat};
 use strak_qemu::play::play_blob;
 use strak_qemu::{exit_failure, exit_success};
 use strak_qemu::{mpu, stack};
@@ -43,7 +43,7 @@ fn main() -> ! {
     let [_, (_, ram)] = mpu::part();
     defmt::println!("RAM {=u32}", ram);
     let job = &FLASH_BLOB;
-    if job.format != Format::Fixed || job.axes != 3 {
+    if job.format != NumberFormat::Q40 || job.axes != 3 {
         defmt::error!("{=str}: not a 3-axis fixed-point blob", job.name);
         exit_failure()
     }
@@ -63,7 +63,7 @@ fn main() -> ! {
             defmt::println!(
                 "H {=str} {=str} {=u32} {=u64}",
                 job.name,
-                Format::Fixed.name(),
+                NumberFormat::Q40.name(),
                 played.samples,
                 played.hash
             );

@@ -6,7 +6,7 @@
 #![forbid(unsafe_code)]
 
 use cortex_m_rt::entry;
-use strak_qemu::jobs::{BLOB_JOBS, Format};
+use strak_qemu::jobs::{BLOB_JOBS, NumberFormat};
 use strak_qemu::play::OutBits;
 use strak_qemu::{PIECES, exit_failure, exit_success, mix};
 use strak_trajectory::{Number, Path, Q40};
@@ -15,7 +15,7 @@ use strak_trajectory::{Number, Path, Q40};
 fn main() -> ! {
     let Some(job) = BLOB_JOBS
         .iter()
-        .find(|j| j.format == Format::Fixed && j.axes == 3)
+        .find(|j| j.format == NumberFormat::Q40 && j.axes == 3)
     else {
         exit_failure()
     };

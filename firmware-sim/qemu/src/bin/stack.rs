@@ -33,7 +33,7 @@
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::{BSpline, I32F32, Point, Scalar};
 use strak_qemu::counter::{Calibration, WideCounter};
-use strak_qemu::jobs::{Format, find_blob};
+use strak_qemu::jobs::{NumberFormat, find_blob};
 use strak_qemu::planning::{self, Curve};
 use strak_qemu::play::{OutBits, Played, play_blob};
 use strak_qemu::stack;
@@ -56,7 +56,7 @@ fn main() -> ! {
     // The stack first, with SysTick and its exception off: no exception frame lands in a
     // measurement.
     let mut lines = Lines::default();
-    blob::<Q40>("load-play-q40", Format::Fixed, &mut lines);
+    blob::<Q40>("load-play-q40", NumberFormat::Q40, &mut lines);
     #[cfg(target_abi = "eabihf")]
     let names = [
         "plan-bspline16-f32",
@@ -71,7 +71,7 @@ fn main() -> ! {
     ];
     #[cfg(target_abi = "eabihf")]
     {
-        blob::<f32>("load-play-f32", Format::F32, &mut lines);
+        blob::<f32>("load-play-f32", NumberFormat::F32, &mut lines);
         plan_compile::<f32, f32>(names, &mut lines);
     }
     #[cfg(not(target_abi = "eabihf"))]
@@ -113,7 +113,7 @@ fn sizes() {
 /// Validates and plays the bundled blob of [`STACK_JOB`] in `N` from flash, logging its stack
 /// and its stream's hash.
 #[inline(never)]
-fn blob<N: Kernel>(name: &str, format: Format, lines: &mut Lines)
+fn blob<N: Kernel>(name: &str, format: NumberFormat, lines: &mut Lines)
 where
     N::Out: OutBits,
 {
