@@ -481,14 +481,14 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Trajectory for PathTimi
 mod tests {
     extern crate std;
     use super::*;
-    use strak_curves::{Bezier, I16F16};
+    use strak_curves::{Bezier, I16F16, MAX_DIM};
 
     /// `x(t) = c(u(t))` in f64.
-    fn pos<C: ParamCurveDeriv, T: Timing>(c: &C, timing: &T, t: f64) -> [f64; 4] {
+    fn pos<C: ParamCurveDeriv, T: Timing>(c: &C, timing: &T, t: f64) -> [f64; MAX_DIM] {
         c.eval(to_param(c, timing.param(t).0)).to_f64_array()
     }
 
-    fn dist(a: [f64; 4], b: [f64; 4]) -> f64 {
+    fn dist(a: [f64; MAX_DIM], b: [f64; MAX_DIM]) -> f64 {
         a.iter()
             .zip(b.iter())
             .map(|(x, y)| (x - y) * (x - y))
