@@ -142,8 +142,8 @@ pub struct Played {
 /// end, as the tick handler would, folding every sample into a hash: the whole work of a
 /// firmware that plays a path from flash.
 ///
-/// The blob is validated in place ([`PathBlob::from_bytes`]) and its pieces are read from
-/// flash at each piece switch: no copy of them in RAM.
+/// The blob is validated in place ([`PathBlob::read_bytes`] into a blob in this frame) and
+/// its pieces are read from flash at each piece switch: no copy of them in RAM.
 ///
 /// # Errors
 /// The error of [`PathBlob::from_bytes`].
@@ -156,7 +156,8 @@ where
     N: Kernel,
     N::Out: OutBits,
 {
-    let path = PathBlob::<N, A>::from_bytes(blob)?;
+    let mut path = PathBlob::<N, A>::new();
+    path.read_bytes(blob)?;
     let mut player = Player::new(&path, events);
     let mut played = Played {
         pieces: path.view().piece_count(),

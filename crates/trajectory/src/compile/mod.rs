@@ -334,8 +334,12 @@ where
         velocity: array_try(|i| out(final_slope.get(i).copied().unwrap_or(0.0) / period))?,
         acceleration: array_try(|i| out(last_acc.get(i).copied().unwrap_or(0.0)))?,
     };
-    let meta = path_meta(peaks, rate_hz, duration, tolerance, options);
-    Path::from_parts(pieces, meta, end)
+    let mut path = Path::new();
+    path.pieces = pieces;
+    path.header.meta = path_meta(peaks, rate_hz, duration, tolerance, options);
+    path.header.end = end;
+    path.seal()?;
+    Ok(path)
 }
 
 /// The path's description: its peaks, and the limits of feed changes (given, or derived

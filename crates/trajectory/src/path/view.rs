@@ -209,17 +209,34 @@ fn record<N: Number>(bytes: &[u8], j: usize, axes: usize) -> Option<(u32, &[u8])
     Some((ticks, values))
 }
 
-/// Decodes `9·A` little-endian values into the states (in the order of [`AxisState`]).
+/// Decodes `9·A` little-endian values into the states (in the order of [`AxisState`]);
+/// missing bytes read as 0.
 pub(crate) fn decode_states<N: Number, const A: usize>(
     bytes: &[u8],
     state: &mut [AxisState<N>; A],
 ) {
-    let mut chunks = bytes.chunks_exact(N::BYTES);
+    let mut chunks = bytes.chunks(9 * N::BYTES);
     for axis in state.iter_mut() {
-        let mut v = [N::ZERO; 9];
-        for x in &mut v {
-            *x = chunks.next().map_or(N::ZERO, N::read_le);
-        }
-        *axis = AxisState::from_values(v);
+        *axis = decode_state(chunks.next().unwrap_or(&[]));
+    }
+}
+
+/// Decodes one axis's 9 little-endian values (in the order of [`AxisState`]); missing
+/// bytes read as 0.
+#[inline]
+pub(crate) fn decode_state<N: Number>(bytes: &[u8]) -> AxisState<N> {
+    let mut values = bytes.chunks_exact(N::BYTES);
+    let mut next = || values.next().map_or(N::ZERO, N::read_le);
+    // Struct fields are evaluated in the order written: the order of the record.
+    AxisState {
+        position: next(),
+        delta1: next(),
+        delta2: next(),
+        delta3: next(),
+        velocity: next(),
+        velocity_delta1: next(),
+        velocity_delta2: next(),
+        acceleration: next(),
+        acceleration_delta: next(),
     }
 }
