@@ -12,7 +12,7 @@ mod path;
 mod plan;
 mod play;
 
-pub use compile::{CompileOptions, Tolerance, compile};
+pub use compile::{CompileOptions, Tolerance, compile, compile_into};
 pub use error::{BlobFormat, Error, Quantity};
 pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use path::{
