@@ -13,9 +13,9 @@ pub use options::{CompileOptions, Tolerance};
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
-use crate::error::{Error, Quantity};
+use crate::error::{Error, Quantity, Units};
 use crate::num::Number;
-use crate::path::{AxisState, Path, PathEnd, PathMeta, RATE_RANGE};
+use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta, RATE_RANGE};
 use crate::plan::{Timing, Trajectory};
 use knots::{Knots, PieceKnots};
 use law::TickLaw;
@@ -114,6 +114,9 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// * [`Error::OutOfRange`]: a value does not fit the number format (fixed-point range);
 /// * [`Error::LimitExceeded`]: the compiled pieces exceed a limit of the time law by more
 ///   than [`CompileOptions::max_slowdown`] allows;
+/// * [`Error::PlaybackBoundExceeded`]: the error playback in `N` may add
+///   ([`playback_bound`](crate::PathHeader::playback_bound)) exceeds the tolerance (`f32`
+///   far from the origin);
 /// * [`Error::Curve`]: the time law or the curve produced a non-finite value.
 ///
 /// ```
@@ -227,7 +230,8 @@ where
             path.header.meta = path_meta(peaks, rate_hz, law.duration(), tolerance, options);
             end_into::<N, _, _, A, _>(curve, &law, &fit, &mut path.header.end)?;
             write_states(fit, period)?;
-            return path.seal();
+            path.seal()?;
+            return check_playback_bound(&path.header);
         };
         // Slower by what the peaks ask for (and a margin), at least one tick, at most the
         // largest slow-down.
@@ -240,6 +244,22 @@ where
         margin *= 2.0;
     }
     Err(Error::LimitExceeded { quantity: exceeded })
+}
+
+/// The playback bound of a compiled path within its tolerance.
+///
+/// # Errors
+/// [`Error::PlaybackBoundExceeded`] otherwise.
+fn check_playback_bound<N: Number, const A: usize>(header: &PathHeader<N, A>) -> Result<(), Error> {
+    let (bound, tolerance) = (header.playback_bound(), header.tolerance());
+    if bound <= tolerance {
+        Ok(())
+    } else {
+        Err(Error::PlaybackBoundExceeded {
+            bound: Units(bound),
+            tolerance: Units(tolerance),
+        })
+    }
 }
 
 /// Checks the options, the rate, the axis count and the time law's duration.
@@ -479,6 +499,31 @@ mod tests {
 
     fn line() -> Bezier<[f64; 2], 2> {
         Bezier::new([[0.0, 0.0], [3.0, 4.0]]).unwrap()
+    }
+
+    /// An `f32` path 4.5·10⁶ units from the origin: the spacing of `f32` there (0.5) puts
+    /// the playback bound far above a tolerance of 0.001, which the compiler reports with
+    /// both figures; `f64` and a wide enough tolerance compile.
+    #[test]
+    fn playback_bound_above_the_tolerance_is_an_error() {
+        use std::string::ToString;
+        let far = Bezier::new([[4.5e6, 0.0, 0.0], [4.5e6 + 20.0, 10.0, 0.0]]).unwrap();
+        let law = Smoothstep::new(0.5);
+        let trajectory = Along::new(&far, &law);
+        let options = CompileOptions::new().with_tolerance(1e-3);
+        let r: Result<Path<f32, 3, 64>, _> = compile(&trajectory, 1_000.0, &options);
+        let Err(Error::PlaybackBoundExceeded { bound, tolerance }) = r else {
+            panic!("{r:?}");
+        };
+        assert_eq!(tolerance, Units(1e-3));
+        assert!(bound.0 > 0.1 && bound.0 < 100.0, "{bound}");
+        let message = Error::PlaybackBoundExceeded { bound, tolerance }.to_string();
+        assert!(message.contains(&bound.to_string()) && message.contains("0.001"));
+        let wide: Path<f64, 3, 64> = compile(&trajectory, 1_000.0, &options).unwrap();
+        assert!(wide.playback_bound() <= 1e-3);
+        let loose = CompileOptions::new().with_tolerance(2.0 * bound.0);
+        let coarse: Path<f32, 3, 64> = compile(&trajectory, 1_000.0, &loose).unwrap();
+        assert!(coarse.playback_bound() <= coarse.tolerance());
     }
 
     #[test]
