@@ -690,7 +690,16 @@ mod tests {
         assert!(ee <= bound, "format error {ee} > {bound}");
         assert!(ep <= tol + bound, "position error {ep}");
         assert!(ev <= 1e-5 * v_peak + v_format, "velocity error {ev}");
-        assert!(ea <= 1e-3 * a_peak + a_format, "acceleration error {ea}");
+        // the fit's acceleration error grows with its tolerance (200 times wider in f32)
+        let fit_share = if N::FORMAT == crate::NumberFormat::F32 {
+            2e-3
+        } else {
+            1e-3
+        };
+        assert!(
+            ea <= fit_share * a_peak + a_format,
+            "acceleration error {ea}"
+        );
     }
 
     #[test]
