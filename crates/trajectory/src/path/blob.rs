@@ -7,7 +7,7 @@ use core::ops::Deref;
 use super::header::{PathHeader, Validator};
 use super::owned::Path;
 use super::state::{AxisState, Piece};
-use super::view::{PathView, decode_state, decode_states, piece_record_len};
+use super::view::{PathView, decode_into, decode_states, piece_record_len};
 use crate::error::{BlobFormat, Error};
 use crate::num::{Number, NumberFormat};
 
@@ -288,6 +288,7 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
 /// [`Path::to_bytes`] for the layout and the order of the checks): the structure (magic,
 /// version, CRC, format, count, length). Returns the stored tick count and the piece
 /// records, which [`validate_records`] checks.
+#[inline(never)] // its frame is gone before playing starts
 fn read_fixed<'b, N: Number, const A: usize>(
     bytes: &'b [u8],
     header: &mut PathHeader<N, A>,
@@ -348,6 +349,7 @@ fn read_fixed<'b, N: Number, const A: usize>(
 /// Validates every piece record (as [`Validator::piece`], one axis at a time), calling
 /// `each` with each piece's start, length and value bytes, then the end and the tick count
 /// `ticks`, completing `header` (whose description and end [`read_fixed`] wrote).
+#[inline(never)] // its frame is gone before playing starts
 fn validate_records<N: Number, const A: usize>(
     header: &mut PathHeader<N, A>,
     records: &[u8],
@@ -363,14 +365,20 @@ fn validate_records<N: Number, const A: usize>(
         let length = u32::from_le_bytes(t);
         let start = check.next_start();
         check.piece_start(start, length)?;
+        let mut state = AxisState::ZERO;
         for axis in values.chunks_exact(9 * N::BYTES) {
-            check.axis(length, &decode_state(axis))?;
+            decode_into(axis, &mut state);
+            check.axis(length, &state)?;
         }
         each(start, length, values)?;
         last = Some((length, values));
     }
     let last = last.map(|(length, values)| {
-        let axis = move |a: usize| decode_state(values.get(a * 9 * N::BYTES..).unwrap_or(&[]));
+        let axis = move |a: usize| {
+            let mut state = AxisState::ZERO;
+            decode_into(values.get(a * 9 * N::BYTES..).unwrap_or(&[]), &mut state);
+            state
+        };
         (length, axis)
     });
     check.finish(last)?;

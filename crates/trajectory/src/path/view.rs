@@ -210,33 +210,31 @@ fn record<N: Number>(bytes: &[u8], j: usize, axes: usize) -> Option<(u32, &[u8])
 }
 
 /// Decodes `9·A` little-endian values into the states (in the order of [`AxisState`]);
-/// missing bytes read as 0.
+/// missing bytes read as 0. Each value is written where it lies (no state is returned by
+/// value: this runs at a piece switch, below the sampler's frames).
 pub(crate) fn decode_states<N: Number, const A: usize>(
     bytes: &[u8],
     state: &mut [AxisState<N>; A],
 ) {
     let mut chunks = bytes.chunks(9 * N::BYTES);
     for axis in state.iter_mut() {
-        *axis = decode_state(chunks.next().unwrap_or(&[]));
+        decode_into(chunks.next().unwrap_or(&[]), axis);
     }
 }
 
-/// Decodes one axis's 9 little-endian values (in the order of [`AxisState`]); missing
-/// bytes read as 0.
+/// Decodes one axis's 9 little-endian values (in the order of [`AxisState`]) into `axis`;
+/// missing bytes read as 0.
 #[inline]
-pub(crate) fn decode_state<N: Number>(bytes: &[u8]) -> AxisState<N> {
+pub(crate) fn decode_into<N: Number>(bytes: &[u8], axis: &mut AxisState<N>) {
     let mut values = bytes.chunks_exact(N::BYTES);
     let mut next = || values.next().map_or(N::ZERO, N::read_le);
-    // Struct fields are evaluated in the order written: the order of the record.
-    AxisState {
-        position: next(),
-        delta1: next(),
-        delta2: next(),
-        delta3: next(),
-        velocity: next(),
-        velocity_delta1: next(),
-        velocity_delta2: next(),
-        acceleration: next(),
-        acceleration_delta: next(),
-    }
+    axis.position = next();
+    axis.delta1 = next();
+    axis.delta2 = next();
+    axis.delta3 = next();
+    axis.velocity = next();
+    axis.velocity_delta1 = next();
+    axis.velocity_delta2 = next();
+    axis.acceleration = next();
+    axis.acceleration_delta = next();
 }
