@@ -40,6 +40,10 @@ pub struct Player<'a, N: Kernel, const A: usize> {
 
 impl<'a, N: Kernel, const A: usize> Player<'a, N, A> {
     /// A player at tick 0 of `path` (a `&Path` or a view of a blob in flash).
+    ///
+    /// Not inlined: the sampler it builds is moved into the player in this call's own frame,
+    /// which is gone before the first tick, so the caller's frame holds one sampler only.
+    #[inline(never)]
     pub fn new(path: impl Into<PathView<'a, N, A>>, events: &'a [TimedEvent]) -> Self {
         let path = path.into();
         let last_event = events.last().map_or(0, |e| e.tick);
