@@ -133,7 +133,7 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///     }
 /// }
 /// let curve = Bezier::new([[0.0_f64, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 5.0]])?;
-/// let options = CompileOptions::new().with_tolerance(1e-6);
+/// let options = CompileOptions::new().with_tolerance(1e-4); // within f32 playback (2·10⁻⁵)
 /// let path: Path<f32, 3, 64> = compile(&Along::new(&curve, &Smooth), 10_000.0, &options)?;
 /// assert_eq!(path.ticks(), 2_000);
 /// assert_eq!(path.end_position(), [10.0, 10.0, 5.0]);
