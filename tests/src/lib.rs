@@ -174,7 +174,28 @@ pub fn ensure(cond: bool, what: impl FnOnce() -> String) -> TestCaseResult {
 // Trajectory playback against the exact f64 curve
 
 use strak_curves::{ParamCurveDeriv, Scalar};
-use strak_trajectory::{Kernel, Path, Sample, Sampler, Timing};
+use strak_trajectory::{
+    CompileOptions, Error, Kernel, Number, Path, Sample, Sampler, Timing, Trajectory, compile,
+};
+
+/// [`compile`], and when the number format's playback bound exceeds the tolerance
+/// ([`Error::PlaybackBoundExceeded`], typical of `f32` at tight tolerances), once more to
+/// twice the bound the error names: the error is what a user acts on.
+pub fn compile_within_bound<N: Number, const A: usize, const P: usize, M>(
+    trajectory: &M,
+    rate: f64,
+    options: &CompileOptions,
+) -> Result<Path<N, A, P>, Error>
+where
+    M: Trajectory + ?Sized,
+{
+    match compile(trajectory, rate, options) {
+        Err(Error::PlaybackBoundExceeded { bound, .. }) => {
+            compile(trajectory, rate, &options.with_tolerance(2.0 * bound.0))
+        }
+        other => other,
+    }
+}
 
 /// Runs `f` on a thread with a large stack (paths and the compiler's scratch live on it).
 pub fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {

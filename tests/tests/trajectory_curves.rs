@@ -64,8 +64,10 @@ where
     let options = CompileOptions::new().with_tolerance(1e-6);
     let p64: Path<f64, 3, PIECES> =
         compile(&Along::new(curve, &plan), RATE, &options).expect("compile f64");
+    // f32 to what its playback holds on these paths (bounds 4·10⁻⁴ … 1.3·10⁻³)
+    let options32 = CompileOptions::new().with_tolerance(2e-3);
     let p32: Path<f32, 3, PIECES> =
-        compile(&Along::new(curve, &plan), RATE, &options).expect("compile f32");
+        compile(&Along::new(curve, &plan), RATE, &options32).expect("compile f32");
     assert_eq!(p32.ticks(), p64.ticks(), "{name}: same tick count");
     let r64 = check_playback(name, curve, &plan, &p64);
     let r32 = check_playback(name, curve, &plan, &p32);

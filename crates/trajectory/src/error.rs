@@ -79,6 +79,44 @@ pub enum Error {
         /// The quantity whose limit the compiled motion exceeds.
         quantity: Quantity,
     },
+    /// The error that playback in the path's number format may add
+    /// ([`PathHeader::playback_bound`](crate::PathHeader::playback_bound): rounding of the
+    /// stored states, propagated over a piece) exceeds the position tolerance the path was
+    /// compiled to: far from the origin a float's spacing is coarse (`f32` at 4.5·10⁶ units
+    /// has a spacing of 0.5). Compile in a wider format, nearer the origin (offsets), with
+    /// shorter pieces, or to a wider tolerance.
+    PlaybackBoundExceeded {
+        /// The playback bound of the compiled path, in the path's units.
+        bound: Units,
+        /// The requested position tolerance, in the path's units.
+        tolerance: Units,
+    },
+}
+
+/// A length in the path's units, as an error reports it. Compared bit for bit, so that
+/// [`Error`] stays `Eq`.
+///
+/// ```
+/// use strak_trajectory::Units;
+/// assert_eq!(Units(1.5), Units(1.5));
+/// assert_eq!(Units(1.5).to_string(), "1.5");
+/// ```
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Units(pub f64);
+
+impl PartialEq for Units {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.to_bits() == other.0.to_bits()
+    }
+}
+
+impl Eq for Units {}
+
+impl fmt::Display for Units {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.0, f)
+    }
 }
 
 /// The number format and axis count of a serialized path.
@@ -185,6 +223,12 @@ impl fmt::Display for Error {
             Error::LimitExceeded { quantity } => write!(
                 f,
                 "the compiled path would exceed the time law's {quantity} limit even slowed down"
+            ),
+            Error::PlaybackBoundExceeded { bound, tolerance } => write!(
+                f,
+                "playback in the path's number format may add an error of {bound} units, more \
+                 than the position tolerance {tolerance} (compile in a wider format, nearer the \
+                 origin, or to a wider tolerance)"
             ),
         }
     }

@@ -12,8 +12,8 @@ mod path;
 mod plan;
 mod play;
 
-pub use compile::{CompileOptions, Tolerance, compile};
-pub use error::{BlobFormat, Error, Quantity};
+pub use compile::{CompileOptions, Tolerance, compile, compile_into};
+pub use error::{BlobFormat, Error, Quantity, Units};
 pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use path::{
     AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, Path, PathBlob, PathHeader, PathView, Piece,

@@ -3,12 +3,13 @@
 //! [`Path`] of [`PIECES`] pieces at [`RATE_HZ`], the operations whose stack and instructions
 //! the `stack` firmware measures.
 //!
-//! Each stage is one `#[inline(never)]` function taking its input by reference, so that a
-//! measurement around it sees that stage alone.
+//! Each stage is one `#[inline(never)]` function taking its input by reference and writing
+//! its result in place into the caller's value (the plan, the path), so that a measurement
+//! around it sees that stage's own stack alone.
 
 use heapless::Vec;
 use strak_curves::{BSpline, Point, Scalar};
-use strak_trajectory::{CompileOptions, Error, Limits, Number, Path, PathTiming, compile};
+use strak_trajectory::{CompileOptions, Error, Limits, Number, Path, PathTiming, PlanOptions};
 
 use crate::PIECES;
 
@@ -83,26 +84,31 @@ where
     Ok(BSpline::clamped_uniform(3, &points, S::ZERO, S::ONE)?)
 }
 
-/// Plans the S-curve along `curve` under the job's limits.
+/// Plans the S-curve along the curve of `plan` under the job's limits, in place
+/// ([`PathTiming::plan_into`] with the default options, as [`PathTiming::scurve`]).
 ///
 /// # Errors
 /// The planner's error.
 #[inline(never)]
-pub fn plan<S: Scalar>(curve: &Curve<S>) -> Result<Plan<'_, S>, Error>
+pub fn plan<S: Scalar>(plan: &mut Plan<'_, S>) -> Result<(), Error>
 where
     [S; 3]: Point<Scalar = S>,
 {
-    PathTiming::scurve(curve, &limits()?)
+    plan.plan_into(&limits()?, &PlanOptions::new())
 }
 
-/// Compiles `plan` (along its curve) into a path played in `N`, with the default options.
+/// Compiles `plan` (along its curve) into `path`, in place, played in `N`, with the default
+/// options ([`PathTiming::compile_into`]).
 ///
 /// # Errors
 /// The compiler's error.
 #[inline(never)]
-pub fn compile_plan<N: Number, S: Scalar>(plan: &Plan<'_, S>) -> Result<Path<N, 3, PIECES>, Error>
+pub fn compile_plan<N: Number, S: Scalar>(
+    plan: &Plan<'_, S>,
+    path: &mut Path<N, 3, PIECES>,
+) -> Result<(), Error>
 where
     [S; 3]: Point<Scalar = S>,
 {
-    compile(plan, RATE_HZ, &CompileOptions::new())
+    plan.compile_into(&CompileOptions::new(), path)
 }

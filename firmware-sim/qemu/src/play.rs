@@ -88,8 +88,8 @@ pub struct Played {
 /// end, as the tick handler would, folding every sample into a hash: the whole work of a
 /// firmware that plays a path from flash.
 ///
-/// The blob is validated in place ([`PathBlob::from_bytes`]) and its pieces are read from
-/// flash at each piece switch: no copy of them in RAM.
+/// The blob is validated in place ([`PathBlob::read_bytes`] into a blob in this frame) and
+/// its pieces are read from flash at each piece switch: no copy of them in RAM.
 ///
 /// # Errors
 /// The error of [`PathBlob::from_bytes`].
@@ -102,10 +102,11 @@ where
     N: Kernel,
     N::Out: OutBits,
 {
-    let path = PathBlob::<N, A>::from_bytes(blob)?;
+    let mut path = PathBlob::<N, A>::new();
+    path.read_bytes(blob)?;
     let view = path.view();
     let mut player = EventPlayer::new(events, view.ticks());
-    let mut sampler = Sampler::new(view);
+    let mut sampler = sampler_of(view);
     let mut played = Played {
         pieces: view.piece_count(),
         samples: 0,
@@ -118,4 +119,13 @@ where
         played.samples = played.samples.wrapping_add(1);
     }
     Ok(played)
+}
+
+/// The sampler at tick 0 of `view`, built in the caller's slot.
+///
+/// Not inlined: the values [`Sampler::new`] builds live in this call's own frame, which is gone
+/// before the first tick, so the caller's frame holds one sampler only.
+#[inline(never)]
+fn sampler_of<N: Kernel, const A: usize>(view: PathView<'_, N, A>) -> Sampler<'_, N, A> {
+    Sampler::new(view)
 }

@@ -557,7 +557,7 @@ fn interval<S: Scalar>(xs: &[S], x: S) -> usize {
 /// each piece is sampled uniformly in the parameter. When the curve has more pieces than
 /// `N − 1`, the samples fall back to uniform in the parameter over the whole domain (no
 /// sample is flagged as a piece boundary).
-fn nodes<C, const N: usize>(curve: &C) -> ([ScalarOf<C>; N], [bool; N])
+fn nodes<C, const N: usize>(curve: &C, u: &mut [ScalarOf<C>; N]) -> [bool; N]
 where
     C: ParamCurve,
 {
@@ -567,7 +567,7 @@ where
     let last = N.saturating_sub(1);
     #[allow(clippy::cast_precision_loss)]
     let last_f = last as f64;
-    let mut u = [start; N];
+    u.fill(start);
     let mut knot = [false; N];
     let pieces = curve.piece_count();
     let bounds = |i: usize| piece_bounds(curve, i, pieces, start, end);
@@ -590,7 +590,7 @@ where
         if let Some(first) = u.first_mut() {
             *first = start;
         }
-        return (u, knot);
+        return knot;
     }
     let (mut j0, mut k) = (0_usize, 0_usize);
     for i in 0..pieces {
@@ -638,7 +638,7 @@ where
     if let Some(final_) = u.last_mut() {
         *final_ = end;
     }
-    (u, knot)
+    knot
 }
 
 /// A parameter just below the piece boundary `x` (about two units of the scalar's
@@ -700,27 +700,83 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
         C: ParamCurveDeriv,
         C::Point: Point<Scalar = S>,
     {
+        let mut table = Self::EMPTY;
+        table.rebuild(curve, accuracy)?;
+        Ok(table)
+    }
+
+    /// A table of length zero (every sample at 0; lookups return 0): storage that
+    /// [`rebuild`](Self::rebuild) fills in place, for example in a `static` or inside a
+    /// larger value.
+    ///
+    /// ```
+    /// use strak_curves::ArcLengthTable;
+    /// static TABLE: ArcLengthTable<f32, 64> = ArcLengthTable::EMPTY;
+    /// assert_eq!((TABLE.length(), TABLE.param_at(1.0)), (0.0, 0.0));
+    /// ```
+    pub const EMPTY: Self = ArcLengthTable {
+        u: [S::ZERO; N],
+        s: [S::ZERO; N],
+        u_tan: [[S::ZERO; 2]; N],
+        s_tan: [[S::ZERO; 2]; N],
+        error: 0.0,
+    };
+
+    /// [`new`](Self::new), in place: the samples are written where the table lies, so that
+    /// building it needs no stack frame the size of the table. On an error the table is
+    /// left [`EMPTY`](Self::EMPTY).
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    ///
+    /// ```
+    /// use strak_curves::{ArcLengthTable, Bezier};
+    /// let mut table = ArcLengthTable::<f64, 16>::EMPTY;
+    /// table.rebuild(&Bezier::new([[0.0, 0.0], [3.0, 4.0]])?, 1e-9)?;
+    /// assert!((table.length() - 5.0).abs() < 1e-9);
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
+    pub fn rebuild<C>(&mut self, curve: &C, accuracy: f64) -> Result<(), Error>
+    where
+        C: ParamCurveDeriv,
+        C::Point: Point<Scalar = S>,
+    {
+        let result = self.build(curve, accuracy);
+        if result.is_err() {
+            *self = Self::EMPTY;
+        }
+        result
+    }
+
+    /// The body of [`rebuild`](Self::rebuild).
+    fn build<C>(&mut self, curve: &C, accuracy: f64) -> Result<(), Error>
+    where
+        C: ParamCurveDeriv,
+        C::Point: Point<Scalar = S>,
+    {
         if N < 2 {
             return Err(Error::InvalidArgument);
         }
         check_length_accuracy(curve, accuracy)?;
         #[allow(clippy::cast_precision_loss)]
         let last = (N - 1) as f64;
-        let (u, knot) = nodes::<C, N>(curve);
+        let knot = nodes::<C, N>(curve, &mut self.u);
+        let u = &self.u;
         for i in 1..N {
-            if !greater(at(&u, i), at(&u, i - 1)) {
+            if !greater(at(&self.u, i), at(&self.u, i - 1)) {
                 return Err(Error::ZeroLengthInterval { index: i - 1 });
             }
         }
 
         // Arc lengths, accumulated in f64, each interval within accuracy / (2 (N − 1)).
         let share = 0.5 * accuracy / last;
-        let mut s = [S::ZERO; N];
+        let s = &mut self.s;
+        s.fill(S::ZERO);
         let mut acc = 0.0;
         for i in 1..N {
-            acc += length_between(curve, at(&u, i - 1).to_f64(), at(&u, i).to_f64(), share)?;
+            acc += length_between(curve, at(u, i - 1).to_f64(), at(u, i).to_f64(), share)?;
             let si = S::from_f64(acc).ok_or(Error::OutOfRange)?;
-            if !greater(si, at(&s, i - 1)) {
+            if !greater(si, at(&s[..], i - 1)) {
                 return Err(Error::ZeroLengthInterval { index: i - 1 });
             }
             if let Some(slot) = s.get_mut(i) {
@@ -732,17 +788,19 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
         // piece boundary one-sided (the left slope from the left piece limited by the left
         // interval, the right slope from the right piece by the right interval), elsewhere
         // one slope limited by both intervals.
-        let du = |i: usize| at(&u, i + 1).to_f64() - at(&u, i).to_f64();
-        let ds = |i: usize| at(&s, i + 1).to_f64() - at(&s, i).to_f64();
-        let mut u_tan = [[S::ZERO; 2]; N];
-        let mut s_tan = [[S::ZERO; 2]; N];
+        let s = &self.s;
+        let du = |i: usize| at(u, i + 1).to_f64() - at(u, i).to_f64();
+        let ds = |i: usize| at(s, i + 1).to_f64() - at(s, i).to_f64();
+        let (u_tan, s_tan) = (&mut self.u_tan, &mut self.s_tan);
+        u_tan.fill([S::ZERO; 2]);
+        s_tan.fill([S::ZERO; 2]);
         // (du/ds, ds/du) from the left and from the right of sample i.
         let slopes = |i: usize| -> Result<[(f64, f64); 2], Error> {
-            let ui = at(&u, i);
+            let ui = at(u, i);
             let right = norm64(&curve.deriv(ui, 1));
             let is_knot = at(&knot, i);
             let left = if is_knot {
-                norm64(&curve.deriv(below(ui, at(&u, i.saturating_sub(1))), 1))
+                norm64(&curve.deriv(below(ui, at(u, i.saturating_sub(1))), 1))
             } else {
                 right
             };
@@ -783,14 +841,8 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
             here = next;
         }
 
-        let mut table = Self {
-            u,
-            s,
-            u_tan,
-            s_tan,
-            error: 0.0,
-        };
-
+        self.error = 0.0;
+        let table = &*self;
         // Measure the interpolation error at the interval midpoints.
         let mut worst = 0.0_f64;
         for i in 0..N - 1 {
@@ -807,8 +859,8 @@ impl<S: Scalar, const N: usize> ArcLengthTable<S, N> {
         if !worst.is_finite() {
             return Err(Error::NonFinite);
         }
-        table.error = worst + accuracy;
-        Ok(table)
+        self.error = worst + accuracy;
+        Ok(())
     }
 
     /// The total arc length `L` (the last sample).

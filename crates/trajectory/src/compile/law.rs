@@ -3,6 +3,7 @@
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
+use super::knots::Knots;
 use super::spline_fit::SplineFit;
 use crate::error::Error;
 use crate::plan::{MotionLimits, Timing};
@@ -154,9 +155,9 @@ where
     ///   pieces after it: so pieces of one tick are used only when no break is placed on a
     ///   single knot;
     /// * otherwise a close break gets no knot.
-    pub(super) fn knots_on_breaks<const A: usize, const P: usize>(
+    pub(super) fn knots_on_breaks<const A: usize, K: Knots<A>>(
         &self,
-        fit: &mut SplineFit<A, P>,
+        fit: &mut SplineFit<A, K>,
         one_tick_pieces: bool,
     ) -> Result<(), Error> {
         let isolated = |k: f64, before: f64, after: f64| {

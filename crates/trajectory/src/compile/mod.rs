@@ -1,5 +1,6 @@
 //! Compiling a curve and a time law into a [`Path`] of polynomial pieces in control ticks.
 
+mod knots;
 mod law;
 mod options;
 mod peaks;
@@ -10,13 +11,13 @@ pub(crate) mod testing;
 
 pub use options::{CompileOptions, Tolerance};
 
-use heapless::Vec;
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
-use crate::error::{Error, Quantity};
+use crate::error::{Error, Quantity, Units};
 use crate::num::Number;
-use crate::path::{AxisState, Path, PathEnd, PathMeta, Piece, RATE_RANGE};
+use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta, RATE_RANGE};
 use crate::plan::{Timing, Trajectory};
+use knots::{Knots, PieceKnots};
 use law::TickLaw;
 use peaks::Peaks;
 use spline_fit::SplineFit;
@@ -113,6 +114,9 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// * [`Error::OutOfRange`]: a value does not fit the number format (fixed-point range);
 /// * [`Error::LimitExceeded`]: the compiled pieces exceed a limit of the time law by more
 ///   than [`CompileOptions::max_slowdown`] allows;
+/// * [`Error::PlaybackBoundExceeded`]: the error playback in `N` may add
+///   ([`playback_bound`](crate::PathHeader::playback_bound)) exceeds the tolerance (`f32`
+///   far from the origin);
 /// * [`Error::Curve`]: the time law or the curve produced a non-finite value.
 ///
 /// ```
@@ -129,7 +133,7 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///     }
 /// }
 /// let curve = Bezier::new([[0.0_f64, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 5.0]])?;
-/// let options = CompileOptions::new().with_tolerance(1e-6);
+/// let options = CompileOptions::new().with_tolerance(1e-4); // within f32 playback (2·10⁻⁵)
 /// let path: Path<f32, 3, 64> = compile(&Along::new(&curve, &Smooth), 10_000.0, &options)?;
 /// assert_eq!(path.ticks(), 2_000);
 /// assert_eq!(path.end_position(), [10.0, 10.0, 5.0]);
@@ -145,11 +149,73 @@ where
     N: Number,
     M: Trajectory + ?Sized,
 {
+    let mut path = Path::new();
+    compile_into(trajectory, rate_hz, options, &mut path)?;
+    Ok(path)
+}
+
+/// [`compile`] into caller-provided storage: the path is written in place (a `static`, or
+/// a path the caller keeps), and no path or piece array is moved by value. The fit keeps
+/// its knots in the path's own pieces until it writes them as pieces, so compiling needs
+/// only small fixed frames of stack beside `path`, whatever `P`. On an error the path is
+/// left empty ([`Path::new`]).
+///
+/// # Errors
+/// As [`compile`].
+///
+/// ```
+/// use strak_trajectory::{compile_into, Along, CompileOptions, Path, Timing};
+/// use strak_curves::Bezier;
+/// struct Smooth;
+/// impl Timing for Smooth {
+///     fn duration(&self) -> f64 { 0.2 }
+///     fn param(&self, t: f64) -> (f64, f64) {
+///         let s = t.clamp(0.0, 0.2) / 0.2;
+///         (s * s * (3.0 - 2.0 * s), 6.0 * s * (1.0 - s) / 0.2)
+///     }
+/// }
+/// static mut PATH: Path<f32, 2, 64> = Path::new(); // in firmware: a `static`
+/// let mut path: Path<f32, 2, 64> = Path::new();
+/// let curve = Bezier::new([[0.0_f64, 0.0], [10.0, 0.0], [10.0, 10.0]])?;
+/// compile_into(&Along::new(&curve, &Smooth), 1_000.0, &CompileOptions::new(), &mut path)?;
+/// assert_eq!((path.ticks(), path.end_position()), (200, [10.0, 10.0]));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn compile_into<N, const A: usize, const P: usize, M>(
+    trajectory: &M,
+    rate_hz: f64,
+    options: &CompileOptions,
+    path: &mut Path<N, A, P>,
+) -> Result<(), Error>
+where
+    N: Number,
+    M: Trajectory + ?Sized,
+{
+    path.clear();
+    let result = fit_into(trajectory, rate_hz, options, path);
+    if result.is_err() {
+        path.clear();
+    }
+    result
+}
+
+/// Steps 1–5 of [`compile`] (the fit in `path`'s pieces, slowed down until its pieces keep
+/// the law's limits), then step 6 ([`assemble`]).
+fn fit_into<N, const A: usize, const P: usize, M>(
+    trajectory: &M,
+    rate_hz: f64,
+    options: &CompileOptions,
+    path: &mut Path<N, A, P>,
+) -> Result<(), Error>
+where
+    N: Number,
+    M: Trajectory + ?Sized,
+{
     let (curve, timing) = (trajectory.curve(), trajectory.law());
     check_inputs::<A, M::Curve, M::Law>(timing, rate_hz, options)?;
     let period = 1.0 / rate_hz;
     let limits = timing.limits();
-    let mut fit = SplineFit::<A, P>::empty();
+    let mut fit = SplineFit::<A, _>::empty(PieceKnots(&mut path.pieces));
     let (mut stretch, mut min_ticks) = (1.0_f64, 0_u32);
     let (mut exceeded, mut margin) = (Quantity::Velocity, SLOWDOWN_MARGIN);
     for _ in 0..SLOWDOWN_ATTEMPTS {
@@ -161,7 +227,11 @@ where
             None => (1.0, None),
         };
         let Some(quantity) = quantity else {
-            return assemble(curve, &law, &fit, tolerance, peaks, rate_hz, options);
+            path.header.meta = path_meta(peaks, rate_hz, law.duration(), tolerance, options);
+            end_into::<N, _, _, A, _>(curve, &law, &fit, &mut path.header.end)?;
+            write_states(fit, period)?;
+            path.seal()?;
+            return check_playback_bound(&path.header);
         };
         // Slower by what the peaks ask for (and a margin), at least one tick, at most the
         // largest slow-down.
@@ -174,6 +244,22 @@ where
         margin *= 2.0;
     }
     Err(Error::LimitExceeded { quantity: exceeded })
+}
+
+/// The playback bound of a compiled path within its tolerance.
+///
+/// # Errors
+/// [`Error::PlaybackBoundExceeded`] otherwise.
+fn check_playback_bound<N: Number, const A: usize>(header: &PathHeader<N, A>) -> Result<(), Error> {
+    let (bound, tolerance) = (header.playback_bound(), header.tolerance());
+    if bound <= tolerance {
+        Ok(())
+    } else {
+        Err(Error::PlaybackBoundExceeded {
+            bound: Units(bound),
+            tolerance: Units(tolerance),
+        })
+    }
 }
 
 /// Checks the options, the rate, the axis count and the time law's duration.
@@ -208,10 +294,10 @@ where
 }
 
 /// Fits the spline to `law` (steps 2–4 of [`compile`]) in `fit`; returns the tolerance.
-fn fit_law<C, T, const A: usize, const P: usize>(
+fn fit_law<C, T, const A: usize, K: Knots<A>>(
     law: &TickLaw<'_, C, T>,
     options: &CompileOptions,
-    fit: &mut SplineFit<A, P>,
+    fit: &mut SplineFit<A, K>,
 ) -> Result<f64, Error>
 where
     C: ParamCurveDeriv + ?Sized,
@@ -237,7 +323,7 @@ where
 }
 
 /// The largest coordinate magnitude of the knot values.
-fn fit_magnitude<const A: usize, const P: usize>(fit: &SplineFit<A, P>) -> f64 {
+fn fit_magnitude<const A: usize, K: Knots<A>>(fit: &SplineFit<A, K>) -> f64 {
     (0..=fit.pieces()).fold(0.0_f64, |m, j| {
         fit.value(j).iter().fold(m, |m, v| m.max(v.abs()))
     })
@@ -245,7 +331,7 @@ fn fit_magnitude<const A: usize, const P: usize>(fit: &SplineFit<A, P>) -> f64 {
 
 /// The tolerance `r` times the extent of the knot values (at least the level of `f64`
 /// rounding, for a path that stands still).
-fn relative_tolerance<const A: usize, const P: usize>(r: f64, fit: &SplineFit<A, P>) -> f64 {
+fn relative_tolerance<const A: usize, K: Knots<A>>(r: f64, fit: &SplineFit<A, K>) -> f64 {
     let mut lo = fit.value(0);
     let mut hi = lo;
     let mut big = 0.0_f64;
@@ -261,7 +347,7 @@ fn relative_tolerance<const A: usize, const P: usize>(r: f64, fit: &SplineFit<A,
 }
 
 /// The peaks of the fitted spline's pieces.
-fn fit_peaks<const A: usize, const P: usize>(fit: &SplineFit<A, P>, period: f64) -> Peaks {
+fn fit_peaks<const A: usize, K: Knots<A>>(fit: &SplineFit<A, K>, period: f64) -> Peaks {
     (0..fit.pieces()).fold(Peaks::default(), |m, j| {
         let (coeffs, n) = fit.piece(j);
         m.max(Peaks::of_piece(&coeffs, f64::from(n), period))
@@ -284,58 +370,67 @@ fn piece_state([a, b, c, d]: [f64; 4], period: f64) -> AxisState<f64> {
     }
 }
 
-/// The path from the fitted spline (step 6 of [`compile`]): the pieces' states in `N`, the
-/// end, and the description.
-fn assemble<N, const A: usize, const P: usize, C, T>(
+/// The end of the path (step 6 of [`compile`]) into `end`: the curve's own end point,
+/// converted once, the law's end velocity and the last piece's end acceleration.
+///
+/// # Errors
+/// [`Error::OutOfRange`] for a value the sample type cannot hold; the law's errors.
+fn end_into<N, C, T, const A: usize, K: Knots<A>>(
     curve: &C,
     law: &TickLaw<'_, C, T>,
-    fit: &SplineFit<A, P>,
-    tolerance: f64,
-    peaks: Peaks,
-    rate_hz: f64,
-    options: &CompileOptions,
-) -> Result<Path<N, A, P>, Error>
+    fit: &SplineFit<A, K>,
+    end: &mut PathEnd<N::Out, A>,
+) -> Result<(), Error>
 where
     N: Number,
     C: ParamCurveDeriv + ?Sized,
     T: Timing + ?Sized,
 {
-    let period = 1.0 / rate_hz;
-    let mut pieces: Vec<Piece<N, A>, P> = Vec::new();
-    let mut last_acc = [0.0; A];
-    for j in 0..fit.pieces() {
-        let (coeffs, n) = fit.piece(j);
-        let mut axes = [AxisState::<N>::default(); A];
-        for (axis, c) in axes.iter_mut().zip(coeffs) {
-            *axis = round_state(&piece_state(c, period))?;
-        }
-        if j + 1 == fit.pieces() {
-            for (la, [_, _, c, d]) in last_acc.iter_mut().zip(coeffs) {
-                *la = (2.0 * c + 6.0 * d * f64::from(n)) / (period * period);
-            }
-        }
-        let piece = Piece {
-            start: fit.knot(j),
-            ticks: n,
-            axes,
-        };
-        pieces.push(piece).map_err(|_| Error::CapacityExceeded {
-            capacity: P,
-            required: fit.pieces(),
-        })?;
-    }
+    let period = law.period;
+    let (coeffs, n) = fit.piece(fit.pieces().saturating_sub(1));
     let duration = law.duration();
     let final_slope: [f64; A] = law.slope(duration)?;
-    // The end: the curve's own end point, converted once.
     let end_point = curve.eval(law.param(duration)?.0);
     let out = |v: f64| N::out_from_f64(v).ok_or(Error::OutOfRange);
-    let end = PathEnd {
-        position: array_try(|i| out(end_point.coord(i).to_f64()))?,
-        velocity: array_try(|i| out(final_slope.get(i).copied().unwrap_or(0.0) / period))?,
-        acceleration: array_try(|i| out(last_acc.get(i).copied().unwrap_or(0.0)))?,
-    };
-    let meta = path_meta(peaks, rate_hz, duration, tolerance, options);
-    Path::from_parts(pieces, meta, end)
+    for (a, [_, _, c, d]) in coeffs.into_iter().enumerate() {
+        let acceleration = (2.0 * c + 6.0 * d * f64::from(n)) / (period * period);
+        if let (Some(x), Some(v), Some(acc), Some(s)) = (
+            end.position.get_mut(a),
+            end.velocity.get_mut(a),
+            end.acceleration.get_mut(a),
+            final_slope.get(a),
+        ) {
+            *x = out(end_point.coord(a).to_f64())?;
+            *v = out(s / period)?;
+            *acc = out(acceleration)?;
+        }
+    }
+    Ok(())
+}
+
+/// The pieces' forward-difference states in `N` (step 6 of [`compile`]), written over the
+/// fit's knots in the path's own pieces.
+///
+/// # Errors
+/// [`Error::OutOfRange`] for a value that does not fit `N`.
+fn write_states<N: Number, const A: usize, const P: usize>(
+    fit: SplineFit<A, PieceKnots<'_, N, A, P>>,
+    period: f64,
+) -> Result<(), Error> {
+    fit.write_pieces(|knots, j, coeffs, start, ticks| {
+        let Some(piece) = knots.0.get_mut(j) else {
+            return Err(Error::CapacityExceeded {
+                capacity: P,
+                required: j + 1,
+            });
+        };
+        piece.start = start;
+        piece.ticks = ticks;
+        for (axis, c) in piece.axes.iter_mut().zip(coeffs) {
+            *axis = round_state(&piece_state(c, period))?;
+        }
+        Ok(())
+    })
 }
 
 /// The path's description: its peaks, and the limits of feed changes (given, or derived
@@ -377,17 +472,6 @@ fn path_meta(
     }
 }
 
-/// `[f(0), …, f(A−1)]`, or the first error.
-fn array_try<T: Copy + Default, const A: usize>(
-    mut f: impl FnMut(usize) -> Result<T, Error>,
-) -> Result<[T; A], Error> {
-    let mut out = [T::default(); A];
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = f(i)?;
-    }
-    Ok(out)
-}
-
 /// The state rounded into `N` ([`Error::OutOfRange`] if a value does not fit).
 fn round_state<N: Number>(s: &AxisState<f64>) -> Result<AxisState<N>, Error> {
     let r = |v: f64| N::from_f64(v).ok_or(Error::OutOfRange);
@@ -415,6 +499,31 @@ mod tests {
 
     fn line() -> Bezier<[f64; 2], 2> {
         Bezier::new([[0.0, 0.0], [3.0, 4.0]]).unwrap()
+    }
+
+    /// An `f32` path 4.5·10⁶ units from the origin: the spacing of `f32` there (0.5) puts
+    /// the playback bound far above a tolerance of 0.001, which the compiler reports with
+    /// both figures; `f64` and a wide enough tolerance compile.
+    #[test]
+    fn playback_bound_above_the_tolerance_is_an_error() {
+        use std::string::ToString;
+        let far = Bezier::new([[4.5e6, 0.0, 0.0], [4.5e6 + 20.0, 10.0, 0.0]]).unwrap();
+        let law = Smoothstep::new(0.5);
+        let trajectory = Along::new(&far, &law);
+        let options = CompileOptions::new().with_tolerance(1e-3);
+        let r: Result<Path<f32, 3, 64>, _> = compile(&trajectory, 1_000.0, &options);
+        let Err(Error::PlaybackBoundExceeded { bound, tolerance }) = r else {
+            panic!("{r:?}");
+        };
+        assert_eq!(tolerance, Units(1e-3));
+        assert!(bound.0 > 0.1 && bound.0 < 100.0, "{bound}");
+        let message = Error::PlaybackBoundExceeded { bound, tolerance }.to_string();
+        assert!(message.contains(&bound.to_string()) && message.contains("0.001"));
+        let wide: Path<f64, 3, 64> = compile(&trajectory, 1_000.0, &options).unwrap();
+        assert!(wide.playback_bound() <= 1e-3);
+        let loose = CompileOptions::new().with_tolerance(2.0 * bound.0);
+        let coarse: Path<f32, 3, 64> = compile(&trajectory, 1_000.0, &loose).unwrap();
+        assert!(coarse.playback_bound() <= coarse.tolerance());
     }
 
     #[test]

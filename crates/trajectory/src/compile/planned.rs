@@ -3,7 +3,7 @@
 
 use strak_curves::ParamCurveDeriv;
 
-use super::{CompileOptions, compile};
+use super::{CompileOptions, compile, compile_into};
 use crate::error::Error;
 use crate::num::Number;
 use crate::path::Path;
@@ -62,5 +62,30 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z>
         options: &CompileOptions,
     ) -> Result<Path<Num, A, P>, Error> {
         compile(self, self.rate(), &self.compile_options(options))
+    }
+
+    /// [`compile`](Self::compile) into caller-provided storage, in place: see
+    /// [`compile_into`](crate::compile_into()). On an error the path is left empty.
+    ///
+    /// # Errors
+    /// As [`compile`](crate::compile()).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{CompileOptions, Limits, Path, PathTiming};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
+    /// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?;
+    /// let timing = PathTiming::<_, 16, 4>::scurve(&line, &limits)?;
+    /// let mut path: Path<f32, 2, 64> = Path::new();
+    /// timing.compile_into(&CompileOptions::new(), &mut path)?;
+    /// assert_eq!(path.end_position(), [30.0, 40.0]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn compile_into<Num: Number, const A: usize, const P: usize>(
+        &self,
+        options: &CompileOptions,
+        path: &mut Path<Num, A, P>,
+    ) -> Result<(), Error> {
+        compile_into(self, self.rate(), &self.compile_options(options), path)
     }
 }

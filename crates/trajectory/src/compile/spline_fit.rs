@@ -13,28 +13,25 @@
 //! (elimination without pivoting, `O(m)`) is stable; its pivots are at least
 //! `h_{j−1} + h_j ≥ 2`.
 
+use super::knots::Knots;
 use crate::error::Error;
 
-/// A clamped cubic spline on the tick grid with up to `P` pieces and `A` axes, in `f64`.
+/// A clamped cubic spline on the tick grid with up to `K::capacity()` pieces and `A` axes,
+/// in `f64`, its knots kept in `K` ([`PieceKnots`](super::knots::PieceKnots): the pieces of
+/// the path being compiled).
 ///
-/// Knot `j` (`0 ..= m`) is at tick `knot(j)`; knot 0 is tick 0. Storage is for the knots
-/// `1 ..= m` (`P` entries each), so nothing is sized `P + 1`.
-pub(crate) struct SplineFit<const A: usize, const P: usize> {
-    /// Number of pieces `m` (1 ..= P).
+/// Knot `j` (`0 ..= m`) is at tick `knot(j)`; knot 0 is tick 0 and kept here; the knots
+/// `1 ..= m` are kept in `K`, so nothing is sized `capacity + 1`.
+pub(crate) struct SplineFit<const A: usize, K> {
+    /// Number of pieces `m` (1 ..= capacity).
     m: usize,
-    /// `ends[j]` = tick of knot `j + 1`.
-    ends: [u32; P],
-    /// `values[j]` = position at knot `j + 1`.
-    values: [[f64; A]; P],
-    /// `slopes[j]` = slope (units/tick) at knot `j + 1`; `slopes[m − 1]` is the clamped end.
-    slopes: [[f64; A]; P],
+    /// Knot `j + 1` in slot `j`: its tick, position, slope (units/tick; slot `m − 1` holds
+    /// the clamped end), the Thomas algorithm's modified super-diagonal, the split mark of
+    /// the piece ending there.
+    knots: K,
     start_value: [f64; A],
     start_slope: [f64; A],
     end_slope: [f64; A],
-    /// Thomas algorithm: the modified super-diagonal.
-    scratch: [f64; P],
-    /// Pieces that failed the tolerance check in the current round.
-    split: [bool; P],
 }
 
 /// The local tick offsets at which a piece of `n` ticks is checked: the quarter points
@@ -61,19 +58,16 @@ pub(crate) fn hermite_coefficients(y0: f64, y1: f64, s0: f64, s1: f64, n: f64) -
     [y0, s0, c, d]
 }
 
-impl<const A: usize, const P: usize> SplineFit<A, P> {
-    /// A spline without knots; [`SplineFit::init`] lays out its grid.
-    pub(crate) const fn empty() -> Self {
+impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
+    /// A spline without knots over the storage `knots`; [`SplineFit::init`] lays out its
+    /// grid.
+    pub(crate) fn empty(knots: K) -> Self {
         SplineFit {
             m: 0,
-            ends: [0; P],
-            values: [[0.0; A]; P],
-            slopes: [[0.0; A]; P],
+            knots,
             start_value: [0.0; A],
             start_slope: [0.0; A],
             end_slope: [0.0; A],
-            scratch: [0.0; P],
-            split: [false; P],
         }
     }
 
@@ -81,25 +75,44 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     /// ticks, with the positions from `exact`.
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the grid needs more than `P` pieces; errors of `exact`.
+    /// [`Error::CapacityExceeded`] when the grid needs more pieces than `knots` holds; errors
+    /// of `exact`.
     #[cfg(test)]
     pub(crate) fn new(
+        knots: K,
         ticks: u32,
         max_len: u32,
         start_slope: [f64; A],
         end_slope: [f64; A],
         exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
     ) -> Result<Self, Error> {
-        let mut fit = Self::empty();
+        let mut fit = Self::empty(knots);
         fit.init(ticks, max_len, start_slope, end_slope, exact)?;
         Ok(fit)
+    }
+
+    /// The storage's capacity error for `required` pieces, if it has less room.
+    fn room(&self, required: usize) -> Result<(), Error> {
+        let capacity = self.knots.capacity();
+        if required > capacity {
+            Err(Error::CapacityExceeded { capacity, required })
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Sets the number of pieces (making room in the storage).
+    fn set_pieces(&mut self, m: usize) {
+        self.knots.set_len(m);
+        self.m = m;
     }
 
     /// Lays out the uniform initial grid of [`SplineFit::new`] in place, over whatever the
     /// spline holds.
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the grid needs more than `P` pieces; errors of `exact`.
+    /// [`Error::CapacityExceeded`] when the grid needs more pieces than the storage holds;
+    /// errors of `exact`.
     pub(crate) fn init(
         &mut self,
         ticks: u32,
@@ -109,23 +122,18 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
         exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
     ) -> Result<(), Error> {
         let m = ticks.div_ceil(max_len.max(1)).max(1) as usize;
-        if m > P {
-            return Err(Error::CapacityExceeded {
-                capacity: P,
-                required: m,
-            });
-        }
-        self.m = m;
+        self.room(m)?;
+        self.set_pieces(m);
         self.start_value = exact(0)?;
         self.start_slope = start_slope;
         self.end_slope = end_slope;
-        self.split = [false; P];
         for j in 0..m {
             // ⌊(j+1)·N/m⌋: strictly increasing (N ≥ m), steps of at most ⌈N/m⌉ ≤ max_len.
             #[allow(clippy::cast_possible_truncation)]
             let k = ((j as u64 + 1) * u64::from(ticks) / m as u64) as u32;
-            self.ends[j] = k;
-            self.values[j] = exact(k)?;
+            self.knots.set_end(j, k);
+            self.knots.set_value(j, exact(k)?);
+            self.knots.set_split(j, false);
         }
         Ok(())
     }
@@ -135,33 +143,39 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     /// sorted (`O(m)` shifting); the slopes are solved later.
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the spline already has `P` pieces; errors of `exact`.
+    /// [`Error::CapacityExceeded`] when the storage holds no further piece; errors of `exact`.
     pub(crate) fn insert_knot(
         &mut self,
         k: u32,
         exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
     ) -> Result<(), Error> {
         let m = self.m;
-        let ends = self.ends.get(..m).unwrap_or(&[]);
-        let last = ends.last().copied().unwrap_or(0);
-        let at = ends.partition_point(|&e| e < k);
-        if k == 0 || k >= last || ends.get(at) == Some(&k) {
+        let last = self.knot(m);
+        // The first slot whose tick is ≥ k (binary search).
+        let (mut lo, mut hi) = (0, m);
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if self.knots.end(mid) < k {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        let at = lo;
+        if k == 0 || k >= last || (at < m && self.knots.end(at) == k) {
             return Ok(());
         }
-        if m >= P {
-            return Err(Error::CapacityExceeded {
-                capacity: P,
-                required: m + 1,
-            });
-        }
+        self.room(m + 1)?;
         let value = exact(k)?;
+        self.set_pieces(m + 1);
         for i in (at..m).rev() {
-            self.ends[i + 1] = self.ends[i];
-            self.values[i + 1] = self.values[i];
+            self.knots.set_end(i + 1, self.knots.end(i));
+            self.knots.set_value(i + 1, self.knots.value(i));
+            self.knots.set_split(i + 1, false);
         }
-        self.ends[at] = k;
-        self.values[at] = value;
-        self.m = m + 1;
+        self.knots.set_end(at, k);
+        self.knots.set_value(at, value);
+        self.knots.set_split(at, false);
         Ok(())
     }
 
@@ -169,7 +183,7 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     /// length (within a tick), keeping the existing knots.
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the result would exceed `P` pieces; errors of `exact`.
+    /// [`Error::CapacityExceeded`] when the result would not fit the storage; errors of `exact`.
     pub(crate) fn subdivide(
         &mut self,
         max_len: u32,
@@ -180,30 +194,28 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
         let m: usize = (0..self.m)
             .map(|j| parts(self.knot(j + 1) - self.knot(j)))
             .sum();
-        if m > P {
-            return Err(Error::CapacityExceeded {
-                capacity: P,
-                required: m,
-            });
-        }
+        self.room(m)?;
+        let old = self.m;
+        self.set_pieces(m);
         // Backwards, so that every entry is read before its slot is overwritten.
         let mut w = m;
-        for j in (0..self.m).rev() {
-            let (k0, k1) = (self.knot(j), self.knot(j + 1));
-            let value = self.values[j];
+        for j in (0..old).rev() {
+            let (k0, k1) = (self.knot(j), self.knots.end(j));
+            let value = self.knots.value(j);
             let q = parts(k1 - k0);
             w -= 1;
-            self.ends[w] = k1;
-            self.values[w] = value;
+            self.knots.set_end(w, k1);
+            self.knots.set_value(w, value);
+            self.knots.set_split(w, false);
             for i in (1..q).rev() {
                 #[allow(clippy::cast_possible_truncation)]
                 let k = k0 + (u64::from(k1 - k0) * i as u64 / q as u64) as u32;
                 w -= 1;
-                self.ends[w] = k;
-                self.values[w] = exact(k)?;
+                self.knots.set_end(w, k);
+                self.knots.set_value(w, exact(k)?);
+                self.knots.set_split(w, false);
             }
         }
-        self.m = m;
         Ok(())
     }
 
@@ -216,7 +228,7 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     pub(crate) fn knot(&self, j: usize) -> u32 {
         match j.checked_sub(1) {
             None => 0,
-            Some(i) => self.ends.get(i).copied().unwrap_or(0),
+            Some(i) => self.knots.end(i),
         }
     }
 
@@ -224,7 +236,7 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     pub(crate) fn value(&self, j: usize) -> [f64; A] {
         match j.checked_sub(1) {
             None => self.start_value,
-            Some(i) => self.values.get(i).copied().unwrap_or([0.0; A]),
+            Some(i) => self.knots.value(i),
         }
     }
 
@@ -233,15 +245,15 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
         match j.checked_sub(1) {
             None => self.start_slope,
             Some(i) if i + 1 == self.m => self.end_slope,
-            Some(i) => self.slopes.get(i).copied().unwrap_or([0.0; A]),
+            Some(i) => self.knots.slope(i),
         }
     }
 
     /// Solves for the inner knot slopes (Thomas algorithm, `O(m)`).
     pub(crate) fn solve(&mut self) {
         let m = self.m;
-        if let Some(last) = self.slopes.get_mut(m.wrapping_sub(1)) {
-            *last = self.end_slope;
+        if m >= 1 {
+            self.knots.set_slope(m - 1, self.end_slope);
         }
         if m < 2 {
             return;
@@ -274,18 +286,20 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
             for a in 0..A {
                 d[a] = (rhs[a] - sub_eff * prev_d[a]) / pivot;
             }
-            self.scratch[r] = c;
-            self.slopes[r] = d;
+            self.knots.set_scratch(r, c);
+            self.knots.set_slope(r, d);
             prev_c = c;
             prev_d = d;
         }
         // Back substitution; the row m−2 is complete.
         for r in (0..m - 2).rev() {
-            let c = self.scratch[r];
-            let next = self.slopes[r + 1];
-            for (x, n) in self.slopes[r].iter_mut().zip(next) {
+            let c = self.knots.scratch(r);
+            let next = self.knots.slope(r + 1);
+            let mut slope = self.knots.slope(r);
+            for (x, n) in slope.iter_mut().zip(next) {
                 *x -= c * n;
             }
+            self.knots.set_slope(r, slope);
         }
     }
 
@@ -330,7 +344,7 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
                     break;
                 }
             }
-            self.split[j] = bad;
+            self.knots.set_split(j, bad);
             count += usize::from(bad);
         }
         Ok(count)
@@ -339,41 +353,39 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
     /// Splits every marked piece at its middle tick (`count` pieces are marked).
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the result would exceed `P` pieces; errors of `exact`.
+    /// [`Error::CapacityExceeded`] when the result would not fit the storage; errors of `exact`.
     pub(crate) fn split_marked(
         &mut self,
         count: usize,
         exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
     ) -> Result<(), Error> {
         let m = self.m + count;
-        if m > P {
-            return Err(Error::CapacityExceeded {
-                capacity: P,
-                required: m,
-            });
-        }
+        self.room(m)?;
+        let old = self.m;
+        self.set_pieces(m);
         // Backwards, so that every entry is read before its slot is overwritten: piece j is
         // written at slot ≥ j, its start knot (slot j − 1) is still unread.
         let mut w = m;
-        for j in (0..self.m).rev() {
+        for j in (0..old).rev() {
+            let (end, value, split) = (self.knots.end(j), self.knots.value(j), self.knots.split(j));
             w -= 1;
-            self.ends[w] = self.ends[j];
-            self.values[w] = self.values[j];
-            if self.split[j] {
+            self.knots.set_end(w, end);
+            self.knots.set_value(w, value);
+            self.knots.set_split(w, false);
+            if split {
                 let k0 = self.knot(j);
-                let mid = k0 + (self.ends[j] - k0) / 2;
+                let mid = k0 + (end - k0) / 2;
                 w -= 1;
-                self.ends[w] = mid;
-                self.values[w] = exact(mid)?;
-                self.split[j] = false;
+                self.knots.set_end(w, mid);
+                self.knots.set_value(w, exact(mid)?);
+                self.knots.set_split(w, false);
             }
         }
-        self.m = m;
         Ok(())
     }
 
     /// Fits: solve, check, split, until every piece passes (each round adds at least one
-    /// piece, so this ends after at most `P` rounds).
+    /// piece, so this ends after at most `capacity` rounds).
     pub(crate) fn refine(
         &mut self,
         tol: f64,
@@ -388,12 +400,38 @@ impl<const A: usize, const P: usize> SplineFit<A, P> {
             self.split_marked(count, exact)?;
         }
     }
+
+    /// Hands every piece in order to `write` (the storage, the piece's index `j`, its
+    /// coefficients per axis, its first tick and its length), consuming the fit: the knot
+    /// data of slot `j` is read before `write` is called for piece `j`, so `write` may
+    /// overwrite slot `j` with the piece (the pieces of [`PieceKnots`](super::knots::PieceKnots)
+    /// become the path's).
+    ///
+    /// # Errors
+    /// The first error of `write`.
+    pub(crate) fn write_pieces(
+        mut self,
+        mut write: impl FnMut(&mut K, usize, [[f64; 4]; A], u32, u32) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        let (mut k0, mut y0, mut s0) = (0, self.start_value, self.start_slope);
+        for j in 0..self.m {
+            let (k1, y1, s1) = (self.knot(j + 1), self.value(j + 1), self.slope(j + 1));
+            let n = k1 - k0;
+            let nf = f64::from(n);
+            let coeffs =
+                core::array::from_fn(|a| hermite_coefficients(y0[a], y1[a], s0[a], s1[a], nf));
+            write(&mut self.knots, j, coeffs, k0, n)?;
+            (k0, y0, s0) = (k1, y1, s1);
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::*;
+    use crate::compile::knots::ArrayKnots;
     use std::vec::Vec;
 
     #[test]
@@ -424,7 +462,8 @@ mod tests {
         let x = |k: f64| 2.0 - 0.3 * k + 0.01 * k * k - 2e-5 * k * k * k;
         let dx = |k: f64| -0.3 + 0.02 * k - 6e-5 * k * k;
         let mut exact = |k: u32| Ok([x(f64::from(k)), -x(f64::from(k))]);
-        let mut fit: SplineFit<2, 16> = SplineFit::new(
+        let mut fit: SplineFit<2, ArrayKnots<2, 16>> = SplineFit::new(
+            ArrayKnots::new(),
             1000,
             90,
             [dx(0.0), -dx(0.0)],
@@ -453,7 +492,8 @@ mod tests {
     #[test]
     fn three_knot_system() {
         let mut exact = |k: u32| Ok([f64::from(k * k)]);
-        let mut fit: SplineFit<1, 4> = SplineFit::new(2, 1, [0.0], [4.0], &mut exact).unwrap();
+        let mut fit: SplineFit<1, ArrayKnots<1, 4>> =
+            SplineFit::new(ArrayKnots::new(), 2, 1, [0.0], [4.0], &mut exact).unwrap();
         fit.solve();
         assert_eq!(fit.slope(1), [2.0]);
     }
@@ -463,8 +503,8 @@ mod tests {
         // A step-like function: only the pieces near k = 500 need refining.
         let f = |k: f64| libm::tanh((k - 500.0) / 20.0);
         let mut exact = |k: u32| Ok([f(f64::from(k))]);
-        let mut fit: SplineFit<1, 256> =
-            SplineFit::new(1000, 256, [0.0], [0.0], &mut exact).unwrap();
+        let mut fit: SplineFit<1, ArrayKnots<1, 256>> =
+            SplineFit::new(ArrayKnots::new(), 1000, 256, [0.0], [0.0], &mut exact).unwrap();
         fit.refine(1e-6, &mut exact).unwrap();
         let mut short = 0;
         assert!(fit.pieces() > 50);
@@ -494,7 +534,8 @@ mod tests {
     #[test]
     fn knots_are_inserted_in_order() {
         let mut exact = |k: u32| Ok([f64::from(k) * 0.5]);
-        let mut fit: SplineFit<1, 6> = SplineFit::new(1000, 256, [0.5], [0.5], &mut exact).unwrap();
+        let mut fit: SplineFit<1, ArrayKnots<1, 6>> =
+            SplineFit::new(ArrayKnots::new(), 1000, 256, [0.5], [0.5], &mut exact).unwrap();
         assert_eq!(fit.pieces(), 4); // knots 0, 250, 500, 750, 1000
         for k in [0, 1000, 2000, 250, 600, 10, 600] {
             fit.insert_knot(k, &mut exact).unwrap();
@@ -520,8 +561,8 @@ mod tests {
     #[test]
     fn subdivision_keeps_the_knots() {
         let mut exact = |k: u32| Ok([f64::from(k)]);
-        let mut fit: SplineFit<1, 16> =
-            SplineFit::new(1000, 1000, [1.0], [1.0], &mut exact).unwrap();
+        let mut fit: SplineFit<1, ArrayKnots<1, 16>> =
+            SplineFit::new(ArrayKnots::new(), 1000, 1000, [1.0], [1.0], &mut exact).unwrap();
         fit.insert_knot(150, &mut exact).unwrap();
         fit.subdivide(100, &mut exact).unwrap();
         let knots: Vec<u32> = (0..=fit.pieces()).map(|j| fit.knot(j)).collect();
@@ -530,8 +571,8 @@ mod tests {
             [0, 75, 150, 244, 338, 433, 527, 622, 716, 811, 905, 1000]
         );
         assert!((0..=fit.pieces()).all(|j| fit.value(j) == [f64::from(fit.knot(j))]));
-        let mut small: SplineFit<1, 3> =
-            SplineFit::new(1000, 1000, [1.0], [1.0], &mut exact).unwrap();
+        let mut small: SplineFit<1, ArrayKnots<1, 3>> =
+            SplineFit::new(ArrayKnots::new(), 1000, 1000, [1.0], [1.0], &mut exact).unwrap();
         assert_eq!(
             small.subdivide(256, &mut exact),
             Err(Error::CapacityExceeded {
@@ -544,7 +585,14 @@ mod tests {
     #[test]
     fn capacity_is_reported() {
         let mut exact = |k: u32| Ok([f64::from(k)]);
-        let fit = SplineFit::<1, 3>::new(1000, 256, [1.0], [1.0], &mut exact);
+        let fit = SplineFit::new(
+            ArrayKnots::<1, 3>::new(),
+            1000,
+            256,
+            [1.0],
+            [1.0],
+            &mut exact,
+        );
         assert_eq!(
             fit.err(),
             Some(Error::CapacityExceeded {
@@ -554,8 +602,15 @@ mod tests {
         );
         let f = |k: f64| libm::sin(k / 10.0);
         let mut exact = |k: u32| Ok([f(f64::from(k))]);
-        let mut fit =
-            SplineFit::<1, 8>::new(1000, 256, [0.1], [0.1 * libm::cos(100.0)], &mut exact).unwrap();
+        let mut fit = SplineFit::new(
+            ArrayKnots::<1, 8>::new(),
+            1000,
+            256,
+            [0.1],
+            [0.1 * libm::cos(100.0)],
+            &mut exact,
+        )
+        .unwrap();
         assert!(matches!(
             fit.refine(1e-9, &mut exact),
             Err(Error::CapacityExceeded { capacity: 8, .. })

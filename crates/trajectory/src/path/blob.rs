@@ -4,10 +4,10 @@
 
 use core::ops::Deref;
 
-use super::header::{PathEnd, PathHeader, PathMeta, Validator};
+use super::header::{PathHeader, Validator};
 use super::owned::Path;
 use super::state::{AxisState, Piece};
-use super::view::{PathView, decode_states, piece_record_len};
+use super::view::{PathView, decode_into, decode_states, piece_record_len};
 use crate::error::{BlobFormat, Error};
 use crate::num::{Number, NumberFormat};
 
@@ -257,8 +257,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     }
 
     fn decode(&mut self, bytes: &[u8]) -> Result<(), Error> {
-        let parsed = Parsed::<N, A>::read(bytes)?;
-        let m = parsed.count();
+        let (ticks, records) = read_fixed(bytes, &mut self.header)?;
+        let m = records.len() / piece_record_len::<N>(A);
         if m > P {
             return Err(Error::CapacityExceeded {
                 capacity: P,
@@ -266,127 +266,126 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
             });
         }
         let pieces = &mut self.pieces;
-        self.header = parsed.validate(|start, ticks, axes| {
+        validate_records(&mut self.header, records, ticks, |start, ticks, values| {
             let piece = Piece {
                 start,
                 ticks,
-                axes: *axes,
+                axes: [AxisState::ZERO; A],
             };
             pieces.push(piece).map_err(|_| Error::CapacityExceeded {
                 capacity: P,
                 required: m,
-            })
-        })?;
-        Ok(())
-    }
-}
-
-/// A blob's header and piece records, checked up to the pieces: the structure (magic,
-/// version, CRC, format, count, length) and the description; the pieces and the end are
-/// checked by [`Validator`].
-struct Parsed<'b, N: Number, const A: usize> {
-    ticks: u32,
-    meta: PathMeta,
-    end: PathEnd<N::Out, A>,
-    records: &'b [u8],
-}
-
-impl<'b, N: Number, const A: usize> Parsed<'b, N, A> {
-    /// Reads the fixed part of a blob (see [`Path::to_bytes`] for the layout and the order
-    /// of the checks).
-    fn read(bytes: &'b [u8]) -> Result<Self, Error> {
-        if bytes.len() < HEADER + 4 || bytes.get(..4) != Some(&BLOB_MAGIC[..]) {
-            return Err(Error::CorruptBlob);
-        }
-        let mut r = Reader { bytes, pos: 4 };
-        let version = u16::from_le_bytes(r.take());
-        if version != BLOB_VERSION {
-            return Err(Error::UnsupportedVersion { found: version });
-        }
-        let (body, tail) = bytes.split_at(bytes.len() - 4);
-        let mut stored = [0_u8; 4];
-        stored.copy_from_slice(tail);
-        if crc32(body) != u32::from_le_bytes(stored) {
-            return Err(Error::CorruptBlob);
-        }
-        let [id, axes] = r.take();
-        let number = NumberFormat::from_id(id).ok_or(Error::UnknownNumberFormat { id })?;
-        if number != N::FORMAT || usize::from(axes) != A {
-            return Err(Error::FormatMismatch {
-                expected: BlobFormat::of::<N>(A),
-                found: BlobFormat {
-                    number,
-                    axes: usize::from(axes),
-                },
-            });
-        }
-        let m = r.u32() as usize;
-        if m == 0 || blob_len(m, A, N::BYTES) != Some(bytes.len()) {
-            return Err(Error::CorruptBlob);
-        }
-        let ticks = r.u32();
-        let meta = PathMeta {
-            rate: r.f64(),
-            plan_duration: r.f64(),
-            tolerance: r.f64(),
-            peak_velocity: r.f64(),
-            peak_acceleration: r.f64(),
-            peak_jerk: r.f64(),
-            acceleration_limit: r.f64(),
-            jerk_limit: r.f64(),
-            feed_share: r.f64(),
-        };
-        let mut end_values = [[N::Out::default(); A]; 3];
-        for values in &mut end_values {
-            for v in values.iter_mut() {
-                *v = r.out::<N>();
+            })?;
+            if let Some(last) = pieces.last_mut() {
+                decode_states(values, &mut last.axes);
             }
-        }
-        let [position, velocity, acceleration] = end_values;
-        let records = body.get(records_at(A, N::BYTES)..).unwrap_or(&[]);
-        Ok(Parsed {
-            ticks,
-            meta,
-            end: PathEnd {
-                position,
-                velocity,
-                acceleration,
-            },
-            records,
+            Ok(())
         })
     }
+}
 
-    /// The number of piece records.
-    fn count(&self) -> usize {
-        self.records.len() / piece_record_len::<N>(A)
+/// Reads the fixed part of a blob into `header` (its description and end; see
+/// [`Path::to_bytes`] for the layout and the order of the checks): the structure (magic,
+/// version, CRC, format, count, length). Returns the stored tick count and the piece
+/// records, which [`validate_records`] checks.
+#[inline(never)] // its frame is gone before playing starts
+fn read_fixed<'b, N: Number, const A: usize>(
+    bytes: &'b [u8],
+    header: &mut PathHeader<N, A>,
+) -> Result<(u32, &'b [u8]), Error> {
+    if bytes.len() < HEADER + 4 || bytes.get(..4) != Some(&BLOB_MAGIC[..]) {
+        return Err(Error::CorruptBlob);
     }
+    let mut r = Reader { bytes, pos: 4 };
+    let version = u16::from_le_bytes(r.take());
+    if version != BLOB_VERSION {
+        return Err(Error::UnsupportedVersion { found: version });
+    }
+    let (body, tail) = bytes.split_at(bytes.len() - 4);
+    let mut stored = [0_u8; 4];
+    stored.copy_from_slice(tail);
+    if crc32(body) != u32::from_le_bytes(stored) {
+        return Err(Error::CorruptBlob);
+    }
+    let [id, axes] = r.take();
+    let number = NumberFormat::from_id(id).ok_or(Error::UnknownNumberFormat { id })?;
+    if number != N::FORMAT || usize::from(axes) != A {
+        return Err(Error::FormatMismatch {
+            expected: BlobFormat::of::<N>(A),
+            found: BlobFormat {
+                number,
+                axes: usize::from(axes),
+            },
+        });
+    }
+    let m = r.u32() as usize;
+    if m == 0 || blob_len(m, A, N::BYTES) != Some(bytes.len()) {
+        return Err(Error::CorruptBlob);
+    }
+    let ticks = r.u32();
+    let meta = &mut header.meta;
+    for field in [
+        &mut meta.rate,
+        &mut meta.plan_duration,
+        &mut meta.tolerance,
+        &mut meta.peak_velocity,
+        &mut meta.peak_acceleration,
+        &mut meta.peak_jerk,
+        &mut meta.acceleration_limit,
+        &mut meta.jerk_limit,
+        &mut meta.feed_share,
+    ] {
+        *field = r.f64();
+    }
+    let end = &mut header.end;
+    for values in [&mut end.position, &mut end.velocity, &mut end.acceleration] {
+        for v in values.iter_mut() {
+            *v = r.out::<N>();
+        }
+    }
+    Ok((ticks, body.get(records_at(A, N::BYTES)..).unwrap_or(&[])))
+}
 
-    /// Validates every piece (as [`Validator::piece`]), calling `each` with each one, then
-    /// the end and the tick count, and returns the header.
-    fn validate(
-        &self,
-        mut each: impl FnMut(u32, u32, &[AxisState<N>; A]) -> Result<(), Error>,
-    ) -> Result<PathHeader<N, A>, Error> {
-        let mut check = Validator::<N>::begin(self.meta)?;
-        let mut state = [AxisState::ZERO; A];
-        let mut last = 0;
-        for rec in self.records.chunks_exact(piece_record_len::<N>(A)) {
-            let (ticks, values) = rec.split_at(4);
-            let mut t = [0_u8; 4];
-            t.copy_from_slice(ticks);
-            let ticks = u32::from_le_bytes(t);
-            decode_states(values, &mut state);
-            let start = check.next_start();
-            check.piece(start, ticks, &state)?;
-            each(start, ticks, &state)?;
-            last = ticks;
+/// Validates every piece record (as [`Validator::piece`], one axis at a time), calling
+/// `each` with each piece's start, length and value bytes, then the end and the tick count
+/// `ticks`, completing `header` (whose description and end [`read_fixed`] wrote).
+#[inline(never)] // its frame is gone before playing starts
+fn validate_records<N: Number, const A: usize>(
+    header: &mut PathHeader<N, A>,
+    records: &[u8],
+    ticks: u32,
+    mut each: impl FnMut(u32, u32, &[u8]) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let mut check = Validator::begin(header)?;
+    let mut last = None;
+    for rec in records.chunks_exact(piece_record_len::<N>(A)) {
+        let (length, values) = rec.split_at(4);
+        let mut t = [0_u8; 4];
+        t.copy_from_slice(length);
+        let length = u32::from_le_bytes(t);
+        let start = check.next_start();
+        check.piece_start(start, length)?;
+        let mut state = AxisState::ZERO;
+        for axis in values.chunks_exact(9 * N::BYTES) {
+            decode_into(axis, &mut state);
+            check.axis(length, &state)?;
         }
-        let header = check.finish(self.end, Some((last, &state)))?;
-        if header.ticks != self.ticks {
-            return Err(Error::CorruptBlob);
-        }
-        Ok(header)
+        each(start, length, values)?;
+        last = Some((length, values));
     }
+    let last = last.map(|(length, values)| {
+        let axis = move |a: usize| {
+            let mut state = AxisState::ZERO;
+            decode_into(values.get(a * 9 * N::BYTES..).unwrap_or(&[]), &mut state);
+            state
+        };
+        (length, axis)
+    });
+    check.finish(last)?;
+    if header.ticks != ticks {
+        return Err(Error::CorruptBlob);
+    }
+    Ok(())
 }
 
 /// A serialized path validated in place: its header decoded into RAM, its pieces left where
@@ -435,6 +434,12 @@ pub struct PathBlob<'a, N: Number, const A: usize> {
     records: &'a [u8],
 }
 
+impl<N: Number, const A: usize> Default for PathBlob<'_, N, A> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<N: Number, const A: usize> Deref for PathBlob<'_, N, A> {
     type Target = PathHeader<N, A>;
 
@@ -457,12 +462,56 @@ impl<'a, N: Number, const A: usize> PathBlob<'a, N, A> {
     /// assert_eq!(PathBlob::<f32, 2>::from_bytes(b"STRK").err(), Some(Error::CorruptBlob));
     /// ```
     pub fn from_bytes(bytes: &'a [u8]) -> Result<Self, Error> {
-        let parsed = Parsed::<N, A>::read(bytes)?;
-        let header = parsed.validate(|_, _, _| Ok(()))?;
-        Ok(PathBlob {
-            header,
-            records: parsed.records,
-        })
+        let mut blob = PathBlob::new();
+        blob.read_bytes(bytes)?;
+        Ok(blob)
+    }
+
+    /// A blob without pieces (no ticks, at rest at the origin): storage that can sit in a
+    /// `static` or in the caller's frame, filled in place by [`PathBlob::read_bytes`].
+    ///
+    /// ```
+    /// use strak_trajectory::PathBlob;
+    /// let blob = PathBlob::<f32, 3>::new();
+    /// assert_eq!((blob.ticks(), blob.view().piece_count()), (0, 0));
+    /// ```
+    pub const fn new() -> Self {
+        PathBlob {
+            header: PathHeader::EMPTY,
+            records: &[],
+        }
+    }
+
+    /// [`PathBlob::from_bytes`] into this blob, in place: the header is decoded and
+    /// completed where it lies (no value larger than one axis state is returned or passed
+    /// by value), so the stack this needs is the validation's frames alone. On an error the
+    /// blob is left empty ([`PathBlob::new`]).
+    ///
+    /// # Errors
+    /// As [`PathBlob::from_bytes`].
+    ///
+    /// ```
+    /// use strak_trajectory::{Error, PathBlob};
+    /// let mut blob = PathBlob::<f32, 2>::new();
+    /// assert_eq!(blob.read_bytes(b"STRK"), Err(Error::CorruptBlob));
+    /// assert_eq!(blob.ticks(), 0);
+    /// ```
+    pub fn read_bytes(&mut self, bytes: &'a [u8]) -> Result<(), Error> {
+        let result = read_fixed(bytes, &mut self.header).and_then(|(ticks, records)| {
+            validate_records(&mut self.header, records, ticks, |_, _, _| Ok(()))?;
+            Ok(records)
+        });
+        match result {
+            Ok(records) => {
+                self.records = records;
+                Ok(())
+            }
+            Err(e) => {
+                self.header = PathHeader::EMPTY;
+                self.records = &[];
+                Err(e)
+            }
+        }
     }
 
     /// The view the sampler plays: the pieces read from the blob's bytes.
@@ -752,6 +801,19 @@ mod tests {
         assert_eq!(path, sample_path::<Q40>());
         assert_eq!(path.read_bytes(&b[..10]), Err(Error::CorruptBlob));
         assert_eq!((path.ticks(), path.pieces().len()), (0, 0));
+        // a blob read in place: the header as the path's, emptied again by a bad blob
+        let want = sample_path::<Q40>();
+        let mut blob = PathBlob::<Q40, 3>::new();
+        blob.read_bytes(&b).unwrap();
+        assert_eq!(*blob, *want);
+        assert_eq!(blob.view().piece_count(), want.pieces().len());
+        let mut bad = b.clone();
+        let last = bad.len() - 12;
+        bad[last] ^= 0x40;
+        reseal(&mut bad);
+        assert!(blob.read_bytes(&bad).is_err());
+        assert_eq!(*blob, PathHeader::EMPTY);
+        assert_eq!(blob.view().piece_count(), 0);
     }
 
     /// The offset of the end position in a blob, and of the last piece's first value.

@@ -155,14 +155,11 @@ pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     (omega, alpha)
 }
 
-/// [`PathHeader::end_states`] from the end's sample values.
+/// Writes [`PathHeader::end_states`] from the header's end, in place.
 ///
 /// # Errors
 /// [`Error::OutOfRange`] when a sample value has no exact accumulator value.
-#[allow(clippy::type_complexity)]
-fn end_states<N: Number, const A: usize>(
-    end: &PathEnd<N::Out, A>,
-) -> Result<[[AxisState<N>; A]; 2], Error> {
+fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) -> Result<(), Error> {
     let exact = |v: N::Out| {
         let n = N::from_out(v);
         if n.to_out() == v {
@@ -171,9 +168,11 @@ fn end_states<N: Number, const A: usize>(
             Err(Error::OutOfRange)
         }
     };
-    let mut sample = [AxisState::default(); A];
-    let mut rest = [AxisState::default(); A];
+    let end = &header.end;
+    let [sample, rest] = &mut header.end_states;
     for (a, (e, r)) in sample.iter_mut().zip(rest.iter_mut()).enumerate() {
+        *e = AxisState::ZERO;
+        *r = AxisState::ZERO;
         if let (Some(&x), Some(&v), Some(&acc)) = (
             end.position.get(a),
             end.velocity.get(a),
@@ -185,7 +184,7 @@ fn end_states<N: Number, const A: usize>(
             r.position = e.position;
         }
     }
-    Ok([sample, rest])
+    Ok(())
 }
 
 fn positive(x: f64) -> bool {
@@ -364,25 +363,27 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
     }
 }
 
-/// Checks a path piece by piece, the same way for a freshly compiled path and a loaded blob:
-/// [`begin`](Self::begin) with the path's description, [`piece`](Self::piece) for every piece
-/// in order, [`finish`](Self::finish) with the end.
-pub(crate) struct Validator<N: Number> {
-    meta: PathMeta,
-    ramp: FeedRampLimits<N>,
+/// Checks a path piece by piece, the same way for a freshly compiled path and a loaded blob,
+/// and completes its header in place: [`begin`](Self::begin) with the header's description
+/// and end already written, [`piece`](Self::piece) (or [`piece_start`](Self::piece_start)
+/// and [`axis`](Self::axis) for each axis) for every piece in order, [`finish`](Self::finish)
+/// with the last piece. Nothing larger than one axis state is passed by value.
+pub(crate) struct Validator<'h, N: Number, const A: usize> {
+    header: &'h mut PathHeader<N, A>,
     /// `φ̇ = ω·f` never exceeds this; the acceleration output adds `φ̇·v`.
     phi_dot_max: f64,
     next_start: u32,
     playback_bound: f64,
 }
 
-impl<N: Number> Validator<N> {
-    /// Checks the path's description and derives the feed-ramp constants.
+impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
+    /// Checks the header's description (`meta`) and writes the feed-ramp constants into it.
     ///
     /// # Errors
     /// [`Error::InvalidRate`] for a rate outside 100 Hz ..= 100 kHz; [`Error::InvalidLimit`]
     /// for bad kinematic data; [`Error::OutOfRange`] when the ramp constants do not fit `N`.
-    pub(crate) fn begin(meta: PathMeta) -> Result<Self, Error> {
+    pub(crate) fn begin(header: &'h mut PathHeader<N, A>) -> Result<Self, Error> {
+        let meta = &header.meta;
         if !(meta.rate >= RATE_RANGE.0 && meta.rate <= RATE_RANGE.1) {
             return Err(Error::InvalidRate);
         }
@@ -399,27 +400,27 @@ impl<N: Number> Validator<N> {
         {
             return Err(Error::InvalidLimit);
         }
-        let (omega, alpha) = feed_ramp_f64(&meta);
+        let (omega, alpha) = feed_ramp_f64(meta);
         let alpha = N::from_f64(alpha).ok_or(Error::OutOfRange)?;
         // ω_max a whole multiple of α, so that ω stays one and the ramp's braking distance is
         // exact: at most 2²⁰ steps, as ω_max ≤ √α and α ≥ 2⁻⁴⁰.
         #[allow(clippy::cast_possible_truncation)]
         let k_max = libm::floor(omega / alpha.to_f64()).clamp(1.0, f64::from(1_u32 << 20)) as i64;
-        let ramp = FeedRampLimits {
+        let rate = N::from_f64(meta.rate).ok_or(Error::OutOfRange)?;
+        #[allow(clippy::cast_precision_loss)]
+        let phi_dot_max = alpha.to_f64() * (k_max as f64) * meta.rate;
+        header.ramp = FeedRampLimits {
             alpha,
             k_max,
-            rate: N::from_f64(meta.rate).ok_or(Error::OutOfRange)?,
+            rate,
             snap: if alpha > N::EPSILON {
                 alpha
             } else {
                 N::EPSILON
             },
         };
-        #[allow(clippy::cast_precision_loss)]
-        let phi_dot_max = ramp.alpha.to_f64() * (ramp.k_max as f64) * meta.rate;
         Ok(Validator {
-            meta,
-            ramp,
+            header,
             phi_dot_max,
             next_start: 0,
             playback_bound: 0.0,
@@ -431,56 +432,74 @@ impl<N: Number> Validator<N> {
         self.next_start
     }
 
-    /// Checks the next piece: its start and length, finite values, and the range of every
-    /// value and partial sum playback forms.
+    /// Checks the next piece: its start and length, and for each axis what
+    /// [`axis`](Self::axis) checks.
     ///
     /// # Errors
-    /// [`Error::CorruptBlob`] for a piece that does not follow on, has no ticks or holds a
-    /// non-finite value; [`Error::OutOfRange`] when a value could exceed [`Number::LIMIT`].
-    pub(crate) fn piece<const A: usize>(
+    /// As [`piece_start`](Self::piece_start) and [`axis`](Self::axis).
+    pub(crate) fn piece(
         &mut self,
         start: u32,
         ticks: u32,
         axes: &[AxisState<N>; A],
     ) -> Result<(), Error> {
+        self.piece_start(start, ticks)?;
+        axes.iter().try_for_each(|axis| self.axis(ticks, axis))
+    }
+
+    /// Checks that the next piece starts where the last one ended and has ticks.
+    ///
+    /// # Errors
+    /// [`Error::CorruptBlob`] for a piece that does not follow on or has no ticks.
+    pub(crate) fn piece_start(&mut self, start: u32, ticks: u32) -> Result<(), Error> {
         if start != self.next_start || ticks == 0 {
             return Err(Error::CorruptBlob);
         }
         self.next_start = start.checked_add(ticks).ok_or(Error::CorruptBlob)?;
-        for axis in axes {
-            if !axis.values().iter().all(|v| v.is_finite()) {
-                return Err(Error::CorruptBlob);
-            }
-            let b = piece_bounds(axis, ticks);
-            // Margin: the accumulated rounding error on top of the exact values.
-            let margin = 2.0 * b.playback_error;
-            let fits = |x: f64| x.is_finite() && x * (1.0 + 1e-9) + margin <= N::LIMIT;
-            if !(fits(b.position_sum)
-                && fits(b.velocity_sum)
-                && fits(b.acceleration_sum + self.phi_dot_max * b.velocity_sum))
-            {
-                return Err(Error::OutOfRange);
-            }
-            self.playback_bound = self.playback_bound.max(b.playback_error);
-        }
         Ok(())
     }
 
-    /// Checks the end (finite, in range, exactly representable by the accumulator, and
-    /// continuing the last piece within the path's bounds) and returns the header.
+    /// Checks one axis of the current piece of `ticks` ticks: finite values, and the range
+    /// of every value and partial sum playback forms.
+    ///
+    /// # Errors
+    /// [`Error::CorruptBlob`] for a non-finite value; [`Error::OutOfRange`] when a value
+    /// could exceed [`Number::LIMIT`].
+    pub(crate) fn axis(&mut self, ticks: u32, axis: &AxisState<N>) -> Result<(), Error> {
+        if !axis.values().iter().all(|v| v.is_finite()) {
+            return Err(Error::CorruptBlob);
+        }
+        let b = piece_bounds(axis, ticks);
+        // Margin: the accumulated rounding error on top of the exact values.
+        let margin = 2.0 * b.playback_error;
+        let fits = |x: f64| x.is_finite() && x * (1.0 + 1e-9) + margin <= N::LIMIT;
+        if !(fits(b.position_sum)
+            && fits(b.velocity_sum)
+            && fits(b.acceleration_sum + self.phi_dot_max * b.velocity_sum))
+        {
+            return Err(Error::OutOfRange);
+        }
+        self.playback_bound = self.playback_bound.max(b.playback_error);
+        Ok(())
+    }
+
+    /// Checks the header's end (finite, in range, exactly representable by the
+    /// accumulator, and continuing the last piece within the path's bounds) and completes
+    /// the header: tick count, end states, playback bound. `last` is the last piece's
+    /// length and the state of its axis `a` for each `a`.
     ///
     /// # Errors
     /// [`Error::EmptyPath`] without pieces; [`Error::CorruptBlob`] for a non-finite end or
     /// one that does not continue the last piece; [`Error::OutOfRange`] for an end outside
     /// the format's range.
-    pub(crate) fn finish<const A: usize>(
+    pub(crate) fn finish(
         self,
-        end: PathEnd<N::Out, A>,
-        last: Option<(u32, &[AxisState<N>; A])>,
-    ) -> Result<PathHeader<N, A>, Error> {
+        last: Option<(u32, impl Fn(usize) -> AxisState<N>)>,
+    ) -> Result<(), Error> {
         let Some((ticks, last)) = last else {
             return Err(Error::EmptyPath);
         };
+        let end = &self.header.end;
         let values = || {
             end.position
                 .iter()
@@ -493,65 +512,61 @@ impl<N: Number> Validator<N> {
         if !values().all(|x| x.to_f64().abs() <= N::LIMIT) {
             return Err(Error::OutOfRange);
         }
-        self.check_continuation(&end, ticks, last)?;
-        let end_states = end_states(&end)?;
-        Ok(PathHeader {
-            ticks: self.next_start,
-            meta: self.meta,
-            end,
-            end_states,
-            ramp: self.ramp,
-            playback_bound: self.playback_bound,
-        })
-    }
-
-    /// The end continues the last piece: its position, velocity and acceleration at the
-    /// piece's last tick, evaluated in `f64` from the stored state (Newton's formula), agree
-    /// with the end within the rounding the stored values carry (the bound of
-    /// [`piece_bounds`] for each chain, doubled) plus the fit's position tolerance.
-    fn check_continuation<const A: usize>(
-        &self,
-        end: &PathEnd<N::Out, A>,
-        ticks: u32,
-        last: &[AxisState<N>; A],
-    ) -> Result<(), Error> {
-        let n = f64::from(ticks);
-        let c = Newton::at(n);
-        let r = N::rounding_error;
-        for (a, state) in last.iter().enumerate() {
-            let s = state.to_f64();
-            let at_end = s.shifted(&c);
-            let b = piece_bounds(state, ticks);
-            let (Some(x), Some(v), Some(acc)) = (
-                end.position.get(a),
-                end.velocity.get(a),
-                end.acceleration.get(a),
-            ) else {
-                return Err(Error::CorruptBlob);
-            };
-            let slack = |m: f64| 1e-12 * (1.0 + m);
-            let v_bound = r(s.velocity.abs())
-                + n * r(s.velocity_delta1.abs())
-                + binomial(n, 2) * r(s.velocity_delta2.abs())
-                + N::OUT_ERROR;
-            let a_bound =
-                r(s.acceleration.abs()) + n * r(s.acceleration_delta.abs()) + N::OUT_ERROR;
-            let near = |got: f64, want: f64, bound: f64| {
-                (got - want).abs() <= 2.0 * bound + slack(got.abs().max(want.abs()))
-            };
-            if !(near(
-                at_end.position,
-                x.to_f64(),
-                b.playback_error + self.meta.tolerance,
-            ) && near(at_end.velocity, v.to_f64(), v_bound)
-                && near(at_end.acceleration, acc.to_f64(), a_bound))
-            {
-                return Err(Error::CorruptBlob);
-            }
+        for a in 0..A {
+            check_continuation(&self.header.meta, end, a, ticks, &last(a))?;
         }
+        write_end_states(self.header)?;
+        self.header.ticks = self.next_start;
+        self.header.playback_bound = self.playback_bound;
         Ok(())
     }
 }
+
+/// Axis `a` of the end continues the last piece (`state`, `ticks` long): its position,
+/// velocity and acceleration at the piece's last tick, evaluated in `f64` from the stored
+/// state (Newton's formula), agree with the end within the rounding the stored values carry
+/// (the bound of [`piece_bounds`] for each chain, doubled) plus the fit's position tolerance.
+fn check_continuation<N: Number, const A: usize>(
+    meta: &PathMeta,
+    end: &PathEnd<N::Out, A>,
+    a: usize,
+    ticks: u32,
+    state: &AxisState<N>,
+) -> Result<(), Error> {
+    let n = f64::from(ticks);
+    let r = N::rounding_error;
+    let s = state.to_f64();
+    let at_end = s.shifted(&Newton::at(n));
+    let b = piece_bounds(state, ticks);
+    let (Some(x), Some(v), Some(acc)) = (
+        end.position.get(a),
+        end.velocity.get(a),
+        end.acceleration.get(a),
+    ) else {
+        return Err(Error::CorruptBlob);
+    };
+    let slack = |m: f64| 1e-12 * (1.0 + m);
+    let v_bound = r(s.velocity.abs())
+        + n * r(s.velocity_delta1.abs())
+        + binomial(n, 2) * r(s.velocity_delta2.abs())
+        + N::OUT_ERROR;
+    let a_bound = r(s.acceleration.abs()) + n * r(s.acceleration_delta.abs()) + N::OUT_ERROR;
+    let near = |got: f64, want: f64, bound: f64| {
+        (got - want).abs() <= 2.0 * bound + slack(got.abs().max(want.abs()))
+    };
+    if near(
+        at_end.position,
+        x.to_f64(),
+        b.playback_error + meta.tolerance,
+    ) && near(at_end.velocity, v.to_f64(), v_bound)
+        && near(at_end.acceleration, acc.to_f64(), a_bound)
+    {
+        Ok(())
+    } else {
+        Err(Error::CorruptBlob)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,9 +4,9 @@ use core::ops::Deref;
 
 use heapless::Vec;
 
-use super::header::{PathEnd, PathHeader, PathMeta, Validator};
+use super::header::{PathHeader, Validator};
 use super::sample::Sample;
-use super::state::Piece;
+use super::state::{AxisState, Piece};
 use super::view::PathView;
 use crate::error::Error;
 use crate::num::Number;
@@ -88,48 +88,32 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
         }
     }
 
-    /// Validates the pieces in `self.pieces` with the path's description and end (the checks
-    /// of [`Validator`]) and sets the header; on an error the path is left empty.
+    /// Validates the pieces in `self.pieces` with the description and end already in the
+    /// header (the checks of [`Validator`]) and completes the header in place; on an error
+    /// the path is left empty.
     ///
     /// # Errors
     /// See [`Validator`]: [`Error::InvalidRate`], [`Error::InvalidLimit`],
     /// [`Error::CorruptBlob`], [`Error::OutOfRange`], [`Error::EmptyPath`].
-    pub(crate) fn seal(&mut self, meta: PathMeta, end: PathEnd<N::Out, A>) -> Result<(), Error> {
-        match self.validate(meta, end) {
-            Ok(header) => {
-                self.header = header;
-                Ok(())
-            }
-            Err(e) => {
-                self.clear();
-                Err(e)
-            }
+    pub(crate) fn seal(&mut self) -> Result<(), Error> {
+        let result = self.validate();
+        if result.is_err() {
+            self.clear();
         }
+        result
     }
 
-    fn validate(&self, meta: PathMeta, end: PathEnd<N::Out, A>) -> Result<PathHeader<N, A>, Error> {
-        let mut check = Validator::<N>::begin(meta)?;
+    fn validate(&mut self) -> Result<(), Error> {
+        let mut check = Validator::begin(&mut self.header)?;
         for piece in &self.pieces {
             check.piece(piece.start, piece.ticks, &piece.axes)?;
         }
-        check.finish(end, self.pieces.last().map(|p| (p.ticks, &p.axes)))
-    }
-
-    /// A path from its parts, validated (see [`Path::seal`]).
-    ///
-    /// # Errors
-    /// As [`Path::seal`].
-    pub(crate) fn from_parts(
-        pieces: Vec<Piece<N, A>, P>,
-        meta: PathMeta,
-        end: PathEnd<N::Out, A>,
-    ) -> Result<Self, Error> {
-        let mut path = Path {
-            pieces,
-            header: PathHeader::EMPTY,
-        };
-        path.seal(meta, end)?;
-        Ok(path)
+        let last = self.pieces.last().map(|p| {
+            (p.ticks, |a: usize| {
+                p.axes.get(a).copied().unwrap_or(AxisState::ZERO)
+            })
+        });
+        check.finish(last)
     }
 
     /// Empties the path (no pieces, the header of [`Path::new`]).

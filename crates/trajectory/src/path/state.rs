@@ -164,32 +164,6 @@ impl<N: Number> AxisState<N> {
             self.acceleration_delta,
         ]
     }
-
-    /// The state from the nine values in storage order.
-    pub(crate) fn from_values(v: [N; 9]) -> Self {
-        let [
-            position,
-            delta1,
-            delta2,
-            delta3,
-            velocity,
-            velocity_delta1,
-            velocity_delta2,
-            acceleration,
-            acceleration_delta,
-        ] = v;
-        AxisState {
-            position,
-            delta1,
-            delta2,
-            delta3,
-            velocity,
-            velocity_delta1,
-            velocity_delta2,
-            acceleration,
-            acceleration_delta,
-        }
-    }
 }
 
 /// One piece of a path: its first tick, its length in ticks and the forward-difference

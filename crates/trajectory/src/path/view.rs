@@ -209,17 +209,32 @@ fn record<N: Number>(bytes: &[u8], j: usize, axes: usize) -> Option<(u32, &[u8])
     Some((ticks, values))
 }
 
-/// Decodes `9·A` little-endian values into the states (in the order of [`AxisState`]).
+/// Decodes `9·A` little-endian values into the states (in the order of [`AxisState`]);
+/// missing bytes read as 0. Each value is written where it lies (no state is returned by
+/// value: this runs at a piece switch, below the sampler's frames).
 pub(crate) fn decode_states<N: Number, const A: usize>(
     bytes: &[u8],
     state: &mut [AxisState<N>; A],
 ) {
-    let mut chunks = bytes.chunks_exact(N::BYTES);
+    let mut chunks = bytes.chunks(9 * N::BYTES);
     for axis in state.iter_mut() {
-        let mut v = [N::ZERO; 9];
-        for x in &mut v {
-            *x = chunks.next().map_or(N::ZERO, N::read_le);
-        }
-        *axis = AxisState::from_values(v);
+        decode_into(chunks.next().unwrap_or(&[]), axis);
     }
+}
+
+/// Decodes one axis's 9 little-endian values (in the order of [`AxisState`]) into `axis`;
+/// missing bytes read as 0.
+#[inline]
+pub(crate) fn decode_into<N: Number>(bytes: &[u8], axis: &mut AxisState<N>) {
+    let mut values = bytes.chunks_exact(N::BYTES);
+    let mut next = || values.next().map_or(N::ZERO, N::read_le);
+    axis.position = next();
+    axis.delta1 = next();
+    axis.delta2 = next();
+    axis.delta3 = next();
+    axis.velocity = next();
+    axis.velocity_delta1 = next();
+    axis.velocity_delta2 = next();
+    axis.acceleration = next();
+    axis.acceleration_delta = next();
 }

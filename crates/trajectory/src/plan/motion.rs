@@ -275,22 +275,37 @@ pub struct MotionProfile<const Z: usize> {
 }
 
 impl<const Z: usize> MotionProfile<Z> {
+    /// A profile without zones (no motion): storage that planning in place fills.
+    pub(super) const EMPTY: Self = MotionProfile {
+        zones: Vec::new(),
+        length: 0.0,
+        duration: 0.0,
+    };
+
     /// Builds the profile from zones whose phases are set, in order; checks that the
     /// duration is positive and fits `u32::MAX` ticks at the slowest control rate (100 Hz,
     /// about 497 days; [`Error::TooLong`] otherwise, an infinite duration included).
     pub(super) fn from_zones(zones: Vec<ProfileZone, Z>, length: f64) -> Result<Self, Error> {
-        let duration = zones.last().map_or(0.0, ProfileZone::t_end);
+        let mut profile = MotionProfile {
+            zones,
+            ..Self::EMPTY
+        };
+        profile.seal(length)?;
+        Ok(profile)
+    }
+
+    /// [`from_zones`](Self::from_zones) in place, for the zones already in `self.zones`.
+    pub(super) fn seal(&mut self, length: f64) -> Result<(), Error> {
+        let duration = self.zones.last().map_or(0.0, ProfileZone::t_end);
         if greater(duration, MAX_DURATION) {
             return Err(Error::TooLong);
         }
         if !greater(duration, 0.0) {
             return Err(Error::EmptyPath);
         }
-        Ok(MotionProfile {
-            zones,
-            length,
-            duration,
-        })
+        self.length = length;
+        self.duration = duration;
+        Ok(())
     }
 
     /// The duration in seconds.

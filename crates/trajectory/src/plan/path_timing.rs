@@ -5,7 +5,7 @@ use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, S
 use super::limits::Limits;
 use super::motion::{MotionProfile, Phase};
 use super::options::{PlanOptions, ProfileShape};
-use super::planner::plan_motion;
+use super::planner::plan_motion_into;
 use super::timing::{MotionLimits, Timing};
 use super::trajectory::Trajectory;
 use super::{greater, norm64, to_param};
@@ -84,6 +84,16 @@ fn param_on_side<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
 fn arc_table<C: ParamCurveDeriv, const N: usize>(
     curve: &C,
 ) -> Result<ArcLengthTable<f64, N>, Error> {
+    let mut table = ArcLengthTable::EMPTY;
+    arc_table_into(curve, &mut table)?;
+    Ok(table)
+}
+
+/// [`arc_table`] into `table`, in place.
+fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
+    curve: &C,
+    table: &mut ArcLengthTable<f64, N>,
+) -> Result<(), Error> {
     let (a, b) = curve.domain();
     let (a, b) = (a.to_f64(), b.to_f64());
     let at = |k: usize| {
@@ -108,11 +118,11 @@ fn arc_table<C: ParamCurveDeriv, const N: usize>(
     }
     let floor = 32.0 * ScalarOf::<C>::EPSILON * (b - a) * max_speed.max(1.0);
     let accuracy = (RELATIVE_ACCURACY * estimate).max(floor);
-    let table = ArcLengthTable::<f64, N>::new(&SpeedCurve(curve), accuracy)?;
+    table.rebuild(&SpeedCurve(curve), accuracy)?;
     if !greater(table.length(), 0.0) {
         return Err(Error::EmptyPath);
     }
-    Ok(table)
+    Ok(())
 }
 
 /// A motion along the arc length of a curve ([`MotionProfile`], at most `Z` zones) mapped
@@ -341,6 +351,73 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         limits: &Limits<A>,
         options: &PlanOptions,
     ) -> Result<Self, Error> {
+        let mut timing = Self::empty(curve);
+        timing.plan_into(limits, options)?;
+        Ok(timing)
+    }
+
+    /// A plan along `curve` without motion (zero length and duration): storage that
+    /// [`plan_into`](Self::plan_into) fills in place, for example a `static` on a device
+    /// (with a `'static` curve).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{PathTiming, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [3.0, 4.0]])?;
+    /// let empty = PathTiming::<_, 16, 4>::empty(&line);
+    /// assert_eq!((empty.duration(), empty.length()), (0.0, 0.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub const fn empty(curve: &'a C) -> Self {
+        PathTiming {
+            curve,
+            table: ArcLengthTable::EMPTY,
+            motion: MotionProfile::EMPTY,
+            rate: PlanOptions::DEFAULT_RATE,
+            feed: None,
+            limits: None,
+        }
+    }
+
+    /// [`plan`](Self::plan) along this plan's curve, in place: the arc-length table and the
+    /// zones are written where this value lies, so that planning needs no stack frame the
+    /// size of the plan (the largest frames hold one zone or one sample of the speed
+    /// limit). On an error the plan is left [`empty`](Self::empty).
+    ///
+    /// # Errors
+    /// As [`plan`](Self::plan).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{Limits, PathTiming, PlanOptions, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?; // length 50
+    /// let limits = Limits::<2>::new(10.0, 20.0, 1000.0)?;
+    /// let mut timing = PathTiming::<_, 16, 4>::empty(&line);
+    /// timing.plan_into(&limits, &PlanOptions::new())?;
+    /// assert!((timing.length() - 50.0).abs() < 1e-9 && timing.duration() > 5.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn plan_into<const A: usize>(
+        &mut self,
+        limits: &Limits<A>,
+        options: &PlanOptions,
+    ) -> Result<(), Error> {
+        let result = self.plan_in_place(limits, options);
+        if result.is_err() {
+            self.table = ArcLengthTable::EMPTY;
+            self.motion = MotionProfile::EMPTY;
+            (self.rate, self.feed, self.limits) = (PlanOptions::DEFAULT_RATE, None, None);
+        }
+        result
+    }
+
+    /// The body of [`plan_into`](Self::plan_into).
+    fn plan_in_place<const A: usize>(
+        &mut self,
+        limits: &Limits<A>,
+        options: &PlanOptions,
+    ) -> Result<(), Error> {
+        let curve = self.curve;
         let dim = <C::Point as Point>::DIM;
         if dim != A {
             return Err(Error::AxisMismatch {
@@ -349,8 +426,8 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             });
         }
         options.validate()?;
-        let table = arc_table(curve)?;
-        let motion = plan_motion(curve, &table, limits, options)?;
+        arc_table_into(curve, &mut self.table)?;
+        plan_motion_into(curve, &self.table, limits, options, &mut self.motion)?;
         // What holds at feed 1: the plan leaves the feed share of the acceleration and jerk
         // free for feed ramps.
         let keep = 1.0 - options.feed_share();
@@ -358,23 +435,18 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             ProfileShape::SCurve => keep * limits.jerk(),
             ProfileShape::Trapezoid => f64::INFINITY,
         };
-        let promise = Some(MotionLimits {
+        self.limits = Some(MotionLimits {
             velocity: limits.velocity(),
             acceleration: keep * limits.acceleration(),
             jerk,
         });
-        Ok(PathTiming {
-            curve,
-            table,
-            motion,
-            rate: options.rate(),
-            feed: Some(FeedReserve {
-                acceleration: limits.ramp_acceleration(),
-                jerk: limits.jerk(),
-                share: options.feed_share(),
-            }),
-            limits: promise,
-        })
+        self.rate = options.rate();
+        self.feed = Some(FeedReserve {
+            acceleration: limits.ramp_acceleration(),
+            jerk: limits.jerk(),
+            share: options.feed_share(),
+        });
+        Ok(())
     }
 
     /// The control rate in Hz the motion was planned for ([`PlanOptions::with_rate`];

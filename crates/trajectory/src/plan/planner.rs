@@ -2,14 +2,13 @@
 //! zones, the forward/backward pass over the zone boundaries, and a profile per zone (the
 //! algorithm is described on [`PlanOptions`]).
 
-use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv};
 
 use super::limits::Limits;
 use super::motion::{MotionProfile, ProfileZone};
 use super::options::PlanOptions;
 use super::scurve::{fill_zone, reach};
-use super::speed_limit::zones;
+use super::speed_limit::zones_into;
 use crate::error::Error;
 
 /// The forward/backward pass over the zone boundaries: sets `v_start`, `v_end` of every
@@ -35,36 +34,37 @@ fn boundary_speeds(zones: &mut [ProfileZone]) {
 }
 
 /// Plans the motion along `curve` (whose arc-length table is `table`) under `limits` less
-/// the feed reserve: zones of the speed limit, boundary speeds, and a profile per zone.
-/// `options` must be valid and the axis count checked.
+/// the feed reserve into `motion`, in place: zones of the speed limit, boundary speeds, and
+/// a profile per zone. `options` must be valid and the axis count checked.
 ///
 /// # Errors
-/// As [`zones`]; [`Error::TooLong`] when the motion takes more ticks at the plan's rate
+/// As [`zones_into`]; [`Error::TooLong`] when the motion takes more ticks at the plan's rate
 /// than a `u32` counts.
-pub(super) fn plan_motion<C, const A: usize, const N: usize, const Z: usize>(
+pub(super) fn plan_motion_into<C, const A: usize, const N: usize, const Z: usize>(
     curve: &C,
     table: &ArcLengthTable<f64, N>,
     limits: &Limits<A>,
     options: &PlanOptions,
-) -> Result<MotionProfile<Z>, Error>
+    motion: &mut MotionProfile<Z>,
+) -> Result<(), Error>
 where
     C: ParamCurveDeriv,
 {
     let planned = limits.without_reserve(options.feed_share());
-    let mut zones: Vec<ProfileZone, Z> = zones(curve, table, &planned, options)?;
-    boundary_speeds(&mut zones);
+    zones_into(curve, table, &planned, options, &mut motion.zones)?;
+    boundary_speeds(&mut motion.zones);
     let (mut t, mut s) = (0.0, 0.0);
-    for z in zones.iter_mut() {
+    for z in motion.zones.iter_mut() {
         z.t_start = t;
         fill_zone(z, s);
         t = z.t_end();
         s = z.end_state().s;
     }
-    let motion = MotionProfile::from_zones(zones, table.length())?;
+    motion.seal(table.length())?;
     if motion.duration() * options.rate() > f64::from(u32::MAX) {
         return Err(Error::TooLong);
     }
-    Ok(motion)
+    Ok(())
 }
 
 #[cfg(test)]

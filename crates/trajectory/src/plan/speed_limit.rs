@@ -316,7 +316,8 @@ struct ZoneBuilder<'a, const A: usize, const Z: usize> {
     /// Arc lengths closer than this are the same point.
     same: f64,
     open: Option<Open<A>>,
-    out: Vec<ProfileZone, Z>,
+    /// The zones closed so far, in the plan's own storage.
+    out: &'a mut Vec<ProfileZone, Z>,
     /// Zones closed so far (beyond the capacity only the count goes on).
     required: usize,
 }
@@ -387,7 +388,7 @@ impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
     ///
     /// # Errors
     /// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed `Z`.
-    fn finish(mut self, length: f64) -> Result<Vec<ProfileZone, Z>, Error> {
+    fn finish(mut self, length: f64) -> Result<(), Error> {
         self.close(length, f64::INFINITY);
         if self.required > Z {
             return Err(Error::ZoneCapacityExceeded {
@@ -395,7 +396,7 @@ impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
                 required: self.required,
             });
         }
-        Ok(self.out)
+        Ok(())
     }
 }
 
@@ -489,18 +490,19 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usiz
 /// interval at its ends and midpoint, taking the worst), groups consecutive intervals into
 /// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
 /// smallest, and ends a zone at every join and cusp whose speed cap binds (see
-/// [`PlanOptions`] and `plan/joins.rs`). Returns the zones (arc lengths from `table`,
-/// limits and exit caps set, no phases).
+/// [`PlanOptions`] and `plan/joins.rs`). Writes the zones into `out`, in place (arc
+/// lengths from `table`, limits and exit caps set, no phases).
 ///
 /// # Errors
 /// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed `Z`;
 /// [`Error::Curve`] for non-finite derivatives.
-pub(super) fn zones<C, const A: usize, const N: usize, const Z: usize>(
+pub(super) fn zones_into<C, const A: usize, const N: usize, const Z: usize>(
     curve: &C,
     table: &ArcLengthTable<f64, N>,
     limits: &Limits<A>,
     options: &PlanOptions,
-) -> Result<Vec<ProfileZone, Z>, Error>
+    out: &mut Vec<ProfileZone, Z>,
+) -> Result<(), Error>
 where
     C: ParamCurveDeriv,
 {
@@ -509,6 +511,7 @@ where
         ProfileShape::SCurve => limits.jerk(),
         ProfileShape::Trapezoid => f64::INFINITY,
     };
+    out.clear();
     let (u0, u1) = table.domain();
     let grid = Grid {
         u0,
@@ -529,7 +532,7 @@ where
         ratio: 1.0 + options.zone_tolerance(),
         same: 1e-12 * table.length(),
         open: None,
-        out: Vec::new(),
+        out,
         required: 0,
     };
     let mut prev = sample(0)?;

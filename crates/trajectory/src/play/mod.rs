@@ -632,7 +632,12 @@ mod tests {
             cycles: 50.0,
         };
         let timing = Smoothstep::new(10.0);
-        let tol = 1e-6;
+        // Within what playback in `N` can hold (its bound: 1.6·10⁻⁴ in f32, 1.3·10⁻⁶ in Q40).
+        let tol = match N::FORMAT {
+            crate::NumberFormat::F32 => 2e-4,
+            crate::NumberFormat::Q40 => 2e-6,
+            crate::NumberFormat::F64 => 1e-6,
+        };
         let path: Path<N, 1, 16384> = compile(
             &Along::new(&curve, &timing),
             100_000.0,
@@ -642,7 +647,13 @@ mod tests {
         assert_eq!(path.ticks(), 1_000_000);
         let n_max = path.pieces().iter().map(|p| p.ticks()).max().unwrap();
         assert_eq!(n_max, 256);
-        assert!(path.pieces().len() > 6000, "{}", path.pieces().len());
+        // refined beyond the uniform grid of 3907 pieces where the tolerance is tight
+        let refined = if N::FORMAT == crate::NumberFormat::F64 {
+            6000
+        } else {
+            3907
+        };
+        assert!(path.pieces().len() >= refined, "{}", path.pieces().len());
         let bound = path.playback_bound();
         let (v_peak, a_peak) = (path.peak_velocity(), path.peak_acceleration());
         let n = f64::from(n_max);
@@ -680,7 +691,16 @@ mod tests {
         assert!(ee <= bound, "format error {ee} > {bound}");
         assert!(ep <= tol + bound, "position error {ep}");
         assert!(ev <= 1e-5 * v_peak + v_format, "velocity error {ev}");
-        assert!(ea <= 1e-3 * a_peak + a_format, "acceleration error {ea}");
+        // the fit's acceleration error grows with its tolerance (200 times wider in f32)
+        let fit_share = if N::FORMAT == crate::NumberFormat::F32 {
+            2e-3
+        } else {
+            1e-3
+        };
+        assert!(
+            ea <= fit_share * a_peak + a_format,
+            "acceleration error {ea}"
+        );
     }
 
     #[test]
@@ -702,7 +722,8 @@ mod tests {
         compile(
             &Along::new(&helix(2.0, 2.0, 1.0), &Quintic(0.5)),
             10_000.0,
-            &CompileOptions::new().with_tolerance(1e-6),
+            // within f32's playback bound (3.9·10⁻⁶ here)
+            &CompileOptions::new().with_tolerance(1e-5),
         )
         .unwrap()
     }

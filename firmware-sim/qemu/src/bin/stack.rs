@@ -34,7 +34,7 @@ use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::{BSpline, I32F32, Point, Scalar};
 use strak_qemu::counter::{Calibration, WideCounter};
 use strak_qemu::jobs::{NumberFormat, find_blob};
-use strak_qemu::planning::{self, Curve};
+use strak_qemu::planning::{self, Curve, Plan};
 use strak_qemu::play::{OutBits, Played, play_blob};
 use strak_qemu::stack;
 use strak_qemu::{PIECES, STACK_JOB, exit_failure, exit_success};
@@ -145,18 +145,22 @@ where
 }
 
 /// Plans and compiles the job with the curve in `S` and the path in `N`, logging the stack of
-/// each stage (`names`: plan, compile, and a third unused here).
+/// each stage (`names`: plan, compile, and a third unused here). The plan and the path are
+/// values of this frame, written in place by each stage: what a stage's stack counts is its
+/// own work beyond the values it writes.
 #[inline(never)]
 fn plan_compile<N: Number, S: Scalar>(names: [&str; 3], lines: &mut Lines)
 where
     [S; 3]: Point<Scalar = S>,
 {
     let curve = ok_or_fail(names[0], planning::curve::<S>());
-    let (plan, used) = stack::usage(|| planning::plan(&curve));
-    let plan = ok_or_fail(names[0], plan.as_ref());
+    let mut plan = Plan::<S>::empty(&curve);
+    let (planned, used) = stack::usage(|| planning::plan(&mut plan));
+    ok_or_fail(names[0], planned);
     stack::log(names[0], used);
-    let (path, used) = stack::usage(|| planning::compile_plan::<N, S>(plan));
-    let path = ok_or_fail(names[1], path.as_ref());
+    let mut path = Path::<N, 3, PIECES>::new();
+    let (compiled, used) = stack::usage(|| planning::compile_plan::<N, S>(&plan, &mut path));
+    ok_or_fail(names[1], compiled);
     stack::log(names[1], used);
     lines.stacks += 2;
     defmt::println!(
@@ -179,12 +183,14 @@ fn count_plan_compile<N: Number, S: Scalar>(
     [S; 3]: Point<Scalar = S>,
 {
     let curve = ok_or_fail(names[0], planning::curve::<S>());
-    let (c, plan) = counter.counts(|| planning::plan(&curve));
+    let mut plan = Plan::<S>::empty(&curve);
+    let (c, planned) = counter.counts(|| planning::plan(&mut plan));
     let plan_instructions = cal.instructions_wide(c);
-    let plan = ok_or_fail(names[0], plan.as_ref());
-    let (c, path) = counter.counts(|| planning::compile_plan::<N, S>(plan));
+    ok_or_fail(names[0], planned);
+    let mut path = Path::<N, 3, PIECES>::new();
+    let (c, compiled) = counter.counts(|| planning::compile_plan::<N, S>(&plan, &mut path));
     let compile_instructions = cal.instructions_wide(c);
-    ok_or_fail(names[1], path.as_ref());
+    ok_or_fail(names[1], compiled);
     instructions(names[0], plan_instructions);
     instructions(names[1], compile_instructions);
     instructions(names[2], plan_instructions + compile_instructions);

@@ -1,0 +1,307 @@
+//! Where the spline fit keeps its knots: [`Knots`], implemented by the pieces of the path
+//! being compiled ([`PieceKnots`]), so that compiling needs no storage beside the path's own.
+
+use heapless::Vec;
+
+use crate::num::Number;
+use crate::path::{AxisState, Piece};
+
+/// The storage of a spline fit's knots `1 ..= m` (knot `i + 1` in slot `i`): per knot its
+/// tick, its position and slope per axis, one value of the elimination's scratch and a
+/// split mark. Reading a slot that was never written gives some value, never a panic.
+pub(crate) trait Knots<const A: usize> {
+    /// How many knots fit.
+    fn capacity(&self) -> usize;
+    /// Makes room for `m ≤ capacity()` knots; the slots below the old length keep their
+    /// contents.
+    fn set_len(&mut self, m: usize);
+    /// The tick of the knot in slot `i`.
+    fn end(&self, i: usize) -> u32;
+    /// Sets the tick of slot `i`.
+    fn set_end(&mut self, i: usize, k: u32);
+    /// The position at the knot in slot `i`.
+    fn value(&self, i: usize) -> [f64; A];
+    /// Sets the position of slot `i`.
+    fn set_value(&mut self, i: usize, v: [f64; A]);
+    /// The slope at the knot in slot `i`.
+    fn slope(&self, i: usize) -> [f64; A];
+    /// Sets the slope of slot `i`.
+    fn set_slope(&mut self, i: usize, s: [f64; A]);
+    /// The scratch value of slot `i`.
+    fn scratch(&self, i: usize) -> f64;
+    /// Sets the scratch value of slot `i`.
+    fn set_scratch(&mut self, i: usize, c: f64);
+    /// The split mark of slot `i`.
+    fn split(&self, i: usize) -> bool;
+    /// Sets the split mark of slot `i`.
+    fn set_split(&mut self, i: usize, s: bool);
+}
+
+/// The knots of a fit kept in the piece storage of the path it is compiled into: knot
+/// `i + 1` in piece slot `i`, its tick in the piece's `start`, its split mark in `ticks`,
+/// and its `2A + 1` `f64` values (position and slope per axis, then the scratch value) bit
+/// for bit in the piece's `9·A` state values: one `f64` in one 8-byte value (`f64`, `Q40`)
+/// or in two 4-byte values (`f32`), through the values' little-endian bytes. `2·(2A + 1) ≤
+/// 9A` for every `A ≥ 1`, so a piece always has room for a knot. When the fit is done,
+/// [`SplineFit::write_pieces`](super::spline_fit::SplineFit::write_pieces) overwrites each
+/// slot with its piece.
+#[derive(Debug)]
+pub(crate) struct PieceKnots<'p, N: Number, const A: usize, const P: usize>(
+    pub(crate) &'p mut Vec<Piece<N, A>, P>,
+);
+
+/// Values of `N` per `f64`: 1 or 2.
+const fn words<N: Number>() -> usize {
+    8 / N::BYTES
+}
+
+/// Value `i` of the flat sequence of a piece's state values (axis `i / 9`, field `i % 9`
+/// in the order of [`AxisState`]).
+fn slot<N, const A: usize>(axes: &mut [AxisState<N>; A], i: usize) -> Option<&mut N> {
+    let s = axes.get_mut(i / 9)?;
+    Some(match i % 9 {
+        0 => &mut s.position,
+        1 => &mut s.delta1,
+        2 => &mut s.delta2,
+        3 => &mut s.delta3,
+        4 => &mut s.velocity,
+        5 => &mut s.velocity_delta1,
+        6 => &mut s.velocity_delta2,
+        7 => &mut s.acceleration,
+        _ => &mut s.acceleration_delta,
+    })
+}
+
+/// Value `i` of the flat sequence, read.
+fn slot_value<N: Copy, const A: usize>(axes: &[AxisState<N>; A], i: usize) -> Option<N> {
+    let s = axes.get(i / 9)?;
+    Some(match i % 9 {
+        0 => s.position,
+        1 => s.delta1,
+        2 => s.delta2,
+        3 => s.delta3,
+        4 => s.velocity,
+        5 => s.velocity_delta1,
+        6 => s.velocity_delta2,
+        7 => s.acceleration,
+        _ => s.acceleration_delta,
+    })
+}
+
+/// Stores `x` as the `k`-th `f64` of the state values.
+fn put<N: Number, const A: usize>(axes: &mut [AxisState<N>; A], k: usize, x: f64) {
+    let bytes = x.to_le_bytes();
+    for (h, chunk) in bytes.chunks_exact(N::BYTES).enumerate() {
+        if let Some(v) = slot(axes, k * words::<N>() + h) {
+            *v = N::read_le(chunk);
+        }
+    }
+}
+
+/// The `k`-th `f64` of the state values (as [`put`] stored it).
+fn get<N: Number, const A: usize>(axes: &[AxisState<N>; A], k: usize) -> f64 {
+    let mut bytes = [0_u8; 8];
+    for (h, chunk) in bytes.chunks_exact_mut(N::BYTES).enumerate() {
+        if let Some(v) = slot_value(axes, k * words::<N>() + h) {
+            v.write_le(chunk);
+        }
+    }
+    f64::from_le_bytes(bytes)
+}
+
+impl<N: Number, const A: usize, const P: usize> PieceKnots<'_, N, A, P> {
+    fn axes(&self, i: usize) -> Option<&[AxisState<N>; A]> {
+        self.0.get(i).map(|p| &p.axes)
+    }
+
+    fn axes_mut(&mut self, i: usize) -> Option<&mut [AxisState<N>; A]> {
+        self.0.get_mut(i).map(|p| &mut p.axes)
+    }
+
+    /// The `f64`s `first .. first + A` of slot `i`.
+    fn row(&self, i: usize, first: usize) -> [f64; A] {
+        match self.axes(i) {
+            Some(axes) => core::array::from_fn(|a| get(axes, first + a)),
+            None => [0.0; A],
+        }
+    }
+
+    fn set_row(&mut self, i: usize, first: usize, x: [f64; A]) {
+        if let Some(axes) = self.axes_mut(i) {
+            for (a, v) in x.into_iter().enumerate() {
+                put(axes, first + a, v);
+            }
+        }
+    }
+}
+
+impl<N: Number, const A: usize, const P: usize> Knots<A> for PieceKnots<'_, N, A, P> {
+    fn capacity(&self) -> usize {
+        P
+    }
+    fn set_len(&mut self, m: usize) {
+        let empty = Piece {
+            start: 0,
+            ticks: 0,
+            axes: [AxisState::ZERO; A],
+        };
+        if m <= self.0.len() {
+            self.0.truncate(m);
+        } else {
+            while self.0.len() < m && self.0.push(empty).is_ok() {}
+        }
+    }
+    fn end(&self, i: usize) -> u32 {
+        self.0.get(i).map_or(0, |p| p.start)
+    }
+    fn set_end(&mut self, i: usize, k: u32) {
+        if let Some(p) = self.0.get_mut(i) {
+            p.start = k;
+        }
+    }
+    fn value(&self, i: usize) -> [f64; A] {
+        self.row(i, 0)
+    }
+    fn set_value(&mut self, i: usize, v: [f64; A]) {
+        self.set_row(i, 0, v);
+    }
+    fn slope(&self, i: usize) -> [f64; A] {
+        self.row(i, A)
+    }
+    fn set_slope(&mut self, i: usize, s: [f64; A]) {
+        self.set_row(i, A, s);
+    }
+    fn scratch(&self, i: usize) -> f64 {
+        self.axes(i).map_or(0.0, |axes| get(axes, 2 * A))
+    }
+    fn set_scratch(&mut self, i: usize, c: f64) {
+        if let Some(axes) = self.axes_mut(i) {
+            put(axes, 2 * A, c);
+        }
+    }
+    fn split(&self, i: usize) -> bool {
+        self.0.get(i).is_some_and(|p| p.ticks != 0)
+    }
+    fn set_split(&mut self, i: usize, s: bool) {
+        if let Some(p) = self.0.get_mut(i) {
+            p.ticks = u32::from(s);
+        }
+    }
+}
+
+/// Knots in arrays of their own (the fit's tests).
+#[cfg(test)]
+#[derive(Debug)]
+pub(crate) struct ArrayKnots<const A: usize, const P: usize> {
+    ends: [u32; P],
+    values: [[f64; A]; P],
+    slopes: [[f64; A]; P],
+    scratch: [f64; P],
+    split: [bool; P],
+}
+
+#[cfg(test)]
+impl<const A: usize, const P: usize> ArrayKnots<A, P> {
+    pub(crate) const fn new() -> Self {
+        ArrayKnots {
+            ends: [0; P],
+            values: [[0.0; A]; P],
+            slopes: [[0.0; A]; P],
+            scratch: [0.0; P],
+            split: [false; P],
+        }
+    }
+}
+
+#[cfg(test)]
+impl<const A: usize, const P: usize> Knots<A> for ArrayKnots<A, P> {
+    fn capacity(&self) -> usize {
+        P
+    }
+    fn set_len(&mut self, _m: usize) {}
+    fn end(&self, i: usize) -> u32 {
+        self.ends.get(i).copied().unwrap_or(0)
+    }
+    fn set_end(&mut self, i: usize, k: u32) {
+        if let Some(e) = self.ends.get_mut(i) {
+            *e = k;
+        }
+    }
+    fn value(&self, i: usize) -> [f64; A] {
+        self.values.get(i).copied().unwrap_or([0.0; A])
+    }
+    fn set_value(&mut self, i: usize, v: [f64; A]) {
+        if let Some(x) = self.values.get_mut(i) {
+            *x = v;
+        }
+    }
+    fn slope(&self, i: usize) -> [f64; A] {
+        self.slopes.get(i).copied().unwrap_or([0.0; A])
+    }
+    fn set_slope(&mut self, i: usize, s: [f64; A]) {
+        if let Some(x) = self.slopes.get_mut(i) {
+            *x = s;
+        }
+    }
+    fn scratch(&self, i: usize) -> f64 {
+        self.scratch.get(i).copied().unwrap_or(0.0)
+    }
+    fn set_scratch(&mut self, i: usize, c: f64) {
+        if let Some(x) = self.scratch.get_mut(i) {
+            *x = c;
+        }
+    }
+    fn split(&self, i: usize) -> bool {
+        self.split.get(i).copied().unwrap_or(false)
+    }
+    fn set_split(&mut self, i: usize, s: bool) {
+        if let Some(x) = self.split.get_mut(i) {
+            *x = s;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::Q40;
+
+    /// Every `f64` bit pattern round-trips through the piece values of every format, and the
+    /// rows of one slot do not overlap.
+    fn round_trip<N: Number>() {
+        let mut pieces: Vec<Piece<N, 1>, 2> = Vec::new();
+        let mut knots = PieceKnots(&mut pieces);
+        knots.set_len(2);
+        let patterns = [
+            0.1_f64,
+            -3.5e300,
+            f64::from_bits(0x7FF8_0000_0000_0001),
+            f64::from_bits(0xFFF0_0000_0000_0001),
+            f64::MIN_POSITIVE / 3.0,
+        ];
+        for (i, &x) in patterns.iter().enumerate() {
+            let (v, s, c) = (x, -x * 0.5, f64::from_bits(x.to_bits() ^ 0x55));
+            knots.set_value(1, [v]);
+            knots.set_slope(1, [s]);
+            knots.set_scratch(1, c);
+            knots.set_end(1, 7 + i as u32);
+            knots.set_split(1, i % 2 == 0);
+            assert_eq!(knots.value(1)[0].to_bits(), v.to_bits());
+            assert_eq!(knots.slope(1)[0].to_bits(), s.to_bits());
+            assert_eq!(knots.scratch(1).to_bits(), c.to_bits());
+            assert_eq!(knots.end(1), 7 + i as u32);
+            assert_eq!(knots.split(1), i % 2 == 0);
+            assert_eq!(knots.value(0), [0.0]); // the other slot untouched
+        }
+        assert_eq!(knots.value(2), [0.0]); // past the end: a value, no panic
+        knots.set_len(1);
+        assert_eq!(pieces.len(), 1);
+    }
+
+    #[test]
+    fn knots_round_trip_bit_for_bit_in_every_format() {
+        round_trip::<f32>();
+        round_trip::<f64>();
+        round_trip::<Q40>();
+    }
+}
