@@ -10,6 +10,10 @@
 //! B-spline of 10 de Boor points under a quintic rest-to-rest time law, 0.25 s at 10 kHz
 //! (2 501 samples, several pieces each).
 //!
+//! Before measuring, it checks every tick kernel entry point against the portable kernel, bit
+//! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`): a difference is
+//! logged and fails the run.
+//!
 //! # Output protocol (defmt, read by `cargo xtask qemu`)
 //! ```text
 //! CAL <empty> <nops> <nop64>                     calibration: SysTick counts of an empty
@@ -232,6 +236,16 @@ fn main() -> ! {
     let Some(p) = cortex_m::Peripherals::take() else {
         exit_failure()
     };
+    if let Err(m) = strak_qemu::kernel_check::check() {
+        defmt::error!(
+            "the {=str} tick kernels differ from the portable kernel: {=usize} axes, {=str}, random state {=u32}",
+            m.format,
+            m.axes,
+            m.entry,
+            m.state
+        );
+        exit_failure()
+    }
     let counter = Counter::start(p.SYST);
     let cal = Calibration::measure(&counter);
     let check = cal.check_nop64(&counter);

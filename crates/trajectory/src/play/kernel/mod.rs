@@ -40,6 +40,7 @@ macro_rules! each_axis {
     };
 }
 
+mod check;
 pub(crate) mod portable;
 #[cfg(strak_thumb2)]
 pub(crate) mod thumb2;
@@ -98,6 +99,25 @@ pub trait Kernel: Number {
     /// gives it back).
     #[doc(hidden)]
     fn native_from_out(v: Self::Out) -> Self::Native;
+
+    /// Crate-internal: the value of the same bits as `v`.
+    #[doc(hidden)]
+    fn from_native(v: Self::Native) -> Self;
+
+    /// Not part of the API: the check that firmware makes on its target. Runs every entry
+    /// point of this format's tick kernels (a tick with the full sample, positions only and
+    /// in [`Kernel::Native`]; a piece switch of each, from RAM and from a blob record at an
+    /// aligned and at an odd address) and of the portable kernel on `state` (`next`: the
+    /// next piece) and names the first entry point whose output or resulting state
+    /// differs, bit for bit (`A` ≤ 8).
+    #[doc(hidden)]
+    fn check_kernels<const A: usize>(
+        state: &[AxisState<Self>; A],
+        next: &[AxisState<Self>; A],
+        tick: u64,
+    ) -> Result<(), &'static str> {
+        check::run(state, next, tick)
+    }
 
     /// Crate-internal: the sample of `state` at `tick`, then one forward-differencing step
     /// of every axis.
@@ -213,6 +233,10 @@ impl Kernel for f64 {
     fn native_from_out(v: f64) -> f64 {
         v
     }
+    #[inline(always)]
+    fn from_native(v: f64) -> f64 {
+        v
+    }
 }
 
 impl Kernel for f32 {
@@ -228,6 +252,10 @@ impl Kernel for f32 {
     }
     #[inline(always)]
     fn native_from_out(v: f32) -> f32 {
+        v
+    }
+    #[inline(always)]
+    fn from_native(v: f32) -> f32 {
         v
     }
     #[cfg(strak_vfp)]
@@ -319,6 +347,10 @@ impl Kernel for Q40 {
     #[inline(always)]
     fn native_from_out(v: Self::Out) -> I24F40 {
         I24F40::from_bits(Q40::from_out(v).to_bits())
+    }
+    #[inline(always)]
+    fn from_native(v: I24F40) -> Q40 {
+        Q40::from_bits(v.to_bits())
     }
     #[cfg(strak_thumb2)]
     #[inline(always)]
