@@ -40,9 +40,7 @@ impl<N: Kernel, const A: usize> Sampler<'_, N, A> {
             if self.on_fast_path() {
                 // `left − 1` plain ticks before the switch tick.
                 let run = usize::try_from(self.left - 1).map_or(all.len(), |r| r.min(all.len()));
-                let tick = self
-                    .tick
-                    .wrapping_add(u64::from(self.synced.wrapping_sub(self.left)));
+                let tick = self.end.wrapping_sub(u64::from(self.left));
                 let (now, later) = all.split_at_mut(run);
                 run_ticks(&mut self.state, tick, now);
                 // `run < left`, so the count fits.

@@ -11,11 +11,11 @@ use crate::path::{Newton, Sample};
 
 impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// A tick of [`next`](Self::next) off the fast path: the last tick of a piece at full
-    /// feed ([`switch`](Self::switch)), or [`next_other`](Self::next_other).
+    /// feed ([`switch`](Self::switch)), or [`next_other`](Self::next_other). Out of line
+    /// and with a small frame: the switch is the costliest tick at full feed.
     #[inline(never)]
     pub(super) fn next_edge(&mut self) -> Sample<N::Out, A> {
-        self.catch_up();
-        if self.left == 1 && self.shift == N::ZERO {
+        if self.switches() {
             let (tick, source) = self.switch();
             return match source {
                 Source::State(next) => N::switch_sample(&mut self.state, next, tick),
@@ -29,8 +29,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// writes `out` in place.
     #[inline(never)]
     pub(super) fn next_edge_into(&mut self, out: &mut Sample<N::Native, A>) {
-        self.catch_up();
-        if self.left == 1 && self.shift == N::ZERO {
+        if self.switches() {
             let (tick, source) = self.switch();
             match source {
                 Source::State(next) => N::switch_native(&mut self.state, next, tick, out),
@@ -38,9 +37,9 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
                     N::switch_native_bytes(&mut self.state, bytes, tick, out);
                 }
             }
-            return;
+        } else {
+            self.next_other_into(out);
         }
-        *out = self.next_other::<Native>();
     }
 
     /// [`next_edge`](Self::next_edge) for [`next_position`](Self::next_position): a piece
@@ -48,13 +47,35 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// the positions only.
     #[inline(never)]
     pub(super) fn next_edge_position(&mut self) -> [N::Out; A] {
-        if self.left == 1 && self.shift == N::ZERO {
+        if self.left == 1 && self.on_grid {
             let (_, source) = self.switch();
             return match source {
                 Source::State(next) => N::switch_position(&mut self.state, next),
                 Source::Record(bytes) => N::switch_position_bytes(&mut self.state, bytes),
             };
         }
+        self.next_other_position()
+    }
+
+    /// `true` when this tick is a piece switch at full feed (the last tick of a piece, on
+    /// the tick grid), after catching the chains up.
+    #[inline(always)]
+    fn switches(&mut self) -> bool {
+        if self.chains != self.left {
+            self.catch_up();
+        }
+        self.left == 1 && self.on_grid
+    }
+
+    /// [`next_other`](Self::next_other) in the accumulator's format, copied to `out`.
+    #[inline(never)]
+    fn next_other_into(&mut self, out: &mut Sample<N::Native, A>) {
+        *out = self.next_other::<Native>();
+    }
+
+    /// [`next_other`](Self::next_other)'s positions (the chains caught up first).
+    #[inline(never)]
+    fn next_other_position(&mut self) -> [N::Out; A] {
         self.catch_up();
         self.next_other::<Rounded>().position
     }
@@ -90,26 +111,22 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// full feed, the final one included, takes this path or the fast one.
     #[inline(always)]
     fn switch(&mut self) -> (u64, Source<'a, N, A>) {
-        // `left == 1`: `synced − 1` ticks since the last sync.
-        let tick = self
-            .tick
-            .wrapping_add(u64::from(self.synced.wrapping_sub(1)));
-        let next = self.piece.saturating_add(1);
+        // `left == 1`.
+        let tick = self.end.wrapping_sub(1);
+        let next = self.piece.wrapping_add(1);
         let (source, ticks) = self.path.source(next).unwrap_or_else(|| {
-            let end = &self.path.header().end_states;
-            if next == self.path.piece_count() {
-                (Source::State(&end[0]), 1)
-            } else {
-                (Source::State(&end[1]), u32::MAX)
-            }
+            // The end sample (one tick), or the standstill after it (`u32::MAX` ticks).
+            let past = next != self.path.piece_count();
+            let ends = &self.path.header().end_states;
+            let end = if past { &ends[1] } else { &ends[0] };
+            (Source::State(end), if past { u32::MAX } else { 1 })
         });
-        self.tick = tick.wrapping_add(1);
+        // The next sample is tick `end`; `left` counts the new piece's ticks down (`local`
+        // and `piece_ticks` are derived from it when next needed).
+        self.end = self.end.wrapping_add(u64::from(ticks));
         self.piece = next;
-        self.local = 0;
-        self.piece_ticks = ticks;
         self.left = ticks;
         self.chains = ticks;
-        self.synced = ticks;
         (tick, source)
     }
 
@@ -128,9 +145,9 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// The tick by the full case analysis (it does not rely on [`left`](Self::left)).
     #[inline(always)]
     fn next_checked<F: Form<N>>(&mut self) -> Sample<F::T, A> {
-        let tick = self.tick;
+        let tick = self.end;
         if self.mode == SamplerState::Finished {
-            self.tick = tick.wrapping_add(1);
+            self.end = tick.wrapping_add(1);
             return Sample {
                 tick,
                 position: self.rest.map(F::of_out),
@@ -139,7 +156,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             };
         }
         if self.at_end() {
-            self.tick = tick.wrapping_add(1);
+            self.end = tick.wrapping_add(1);
             self.mode = SamplerState::Finished;
             let end = &self.path.header().end;
             self.rest = end.position;
@@ -159,7 +176,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
                 acceleration: acceleration.map(F::of_out),
             };
         }
-        self.tick = tick.wrapping_add(1);
+        self.end = tick.wrapping_add(1);
         let tick_grid = self.feed.phi == N::ONE && self.theta == N::ZERO && self.feed.is_idle();
         if tick_grid {
             let sample = F::tick(&mut self.state, tick);
@@ -225,6 +242,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
                 *s = s.shifted(&c);
             }
             self.shift = self.shift + self.theta;
+            self.on_grid = self.shift == N::ZERO;
             self.theta = N::ZERO;
         }
     }

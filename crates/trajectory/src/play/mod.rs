@@ -117,13 +117,18 @@ pub enum SamplerState {
 #[derive(Clone, Debug)]
 pub struct Sampler<'a, N: Kernel, const A: usize> {
     path: PathView<'a, N, A>,
-    /// Current piece and tick within it; the state is at `local + shift` of that piece.
+    /// Current piece. The state is at tick `local + shift` of that piece, `piece_ticks`
+    /// long: as of the last [`sync`](Self::sync) while [`left`](Self::left) is 0; while the
+    /// fast path runs they are derived from `left` ([`sync`](Self::sync)).
     piece: usize,
     local: u32,
     piece_ticks: u32,
     state: [AxisState<N>; A],
     /// Fraction by which the state (and every later load) is shifted off the tick grid.
     shift: N,
+    /// `shift == 0` (tested by the piece switch: a flag costs fewer instructions than a
+    /// comparison in the number format).
+    on_grid: bool,
     /// Fractional playback offset after the state (interpolation mode), with
     /// `shift + theta ∈ [0, 1)`.
     theta: N,
@@ -133,9 +138,9 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     /// What the sampler is doing, as of the last [`sync`](Self::sync) (the fast path may
     /// have entered the standstill since: [`current_mode`](Self::current_mode)).
     mode: SamplerState,
-    /// Wall-clock tick of the next sample as of the last [`sync`](Self::sync) (the fast path
-    /// counts only `left`: the next sample's tick is `tick + synced − left`).
-    tick: u64,
+    /// The wall-clock tick of the next sample plus `left` (the fast path counts only
+    /// `left` down: the next sample's tick is `end − left`).
+    end: u64,
     /// The position after finishing.
     rest: [N::Out; A],
     /// Ticks [`next`](Sampler::next) may still take on its fast path: while running at full
@@ -147,10 +152,6 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     /// ticks ([`Sampler::next_position`]) count down `left` alone, so the chains lag the
     /// position by `chains − left` ticks until [`catch_up`](Sampler::catch_up).
     chains: u32,
-    /// `left` when `local` was last brought up to date: the fast path counts down `left`
-    /// only, so the tick within the piece is `local + synced − left` (see
-    /// [`Sampler::sync`]).
-    synced: u32,
 }
 
 impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
@@ -165,15 +166,15 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             piece_ticks: 0,
             state: [AxisState::default(); A],
             shift: N::ZERO,
+            on_grid: true,
             theta: N::ZERO,
             feed: FeedRamp::full(),
             feed_override: N::ONE,
             mode: SamplerState::Running,
-            tick: 0,
+            end: 0,
             rest: path.end_position(),
             left: 0,
             chains: 0,
-            synced: 0,
         };
         s.load(0);
         s.refresh();
@@ -220,10 +221,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
                     }
                 }
             }
-            None => {
-                self.set_left(0);
-                self.synced = 0;
-            }
+            None => self.set_left(0),
         }
     }
 
@@ -244,15 +242,29 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         self.chains = left.wrapping_add(lag);
     }
 
-    /// Brings `local`, `tick` and `mode` up to date with the ticks the fast path has counted
-    /// down in `left` (and the standstill it may have entered).
+    /// Leaves the fast path: brings `local`, `piece_ticks` and `mode` up to date with the
+    /// ticks the fast path has counted down in `left` (and the standstill it may have
+    /// entered), then sets `left` to 0 (`end` is the next sample's tick). Every change other
+    /// than a fast tick starts with it and ends with [`refresh`](Self::refresh).
     #[inline]
     fn sync(&mut self) {
-        let done = self.synced.wrapping_sub(self.left);
-        self.local = self.local.wrapping_add(done);
-        self.tick = self.tick.wrapping_add(u64::from(done));
-        self.synced = self.left;
+        if self.left > 0 {
+            self.piece_ticks = self.ticks_of(self.piece);
+            self.local = self.piece_ticks.wrapping_sub(self.left);
+            self.end = self.end.wrapping_sub(u64::from(self.left));
+            self.set_left(0);
+        }
         self.mode = self.current_mode();
+    }
+
+    /// The length in ticks of piece `j`, the end states included (the end sample: 1, the
+    /// standstill: `u32::MAX`).
+    fn ticks_of(&self, j: usize) -> u32 {
+        match self.path.source(j) {
+            Some((_, ticks)) => ticks,
+            None if j == self.path.piece_count() => 1,
+            None => u32::MAX,
+        }
     }
 
     /// Sets [`left`](Self::left) from the state (after [`sync`](Self::sync)): called after
@@ -264,12 +276,13 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             && self.feed.phi == N::ONE
             && self.theta == N::ZERO
             && self.feed.is_idle();
-        self.set_left(if fast {
+        let left = if fast {
             self.piece_ticks.saturating_sub(self.local)
         } else {
             0
-        });
-        self.synced = self.left;
+        };
+        self.set_left(left);
+        self.end = self.end.wrapping_add(u64::from(left));
     }
 
     /// `true` when the next tick is a plain forward-differencing step inside a piece.
@@ -281,9 +294,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// The fast path's bookkeeping: counts one tick down and returns its number.
     #[inline(always)]
     fn count_tick(&mut self) -> u64 {
-        let tick = self
-            .tick
-            .wrapping_add(u64::from(self.synced.wrapping_sub(self.left)));
+        let tick = self.end.wrapping_sub(u64::from(self.left));
         self.left -= 1;
         self.chains = self.left;
         tick
@@ -466,7 +477,11 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             return f64::from(self.path.ticks());
         }
         let start = f64::from(self.path.piece_start(self.piece));
-        let local = self.local.wrapping_add(self.synced.wrapping_sub(self.left));
+        let local = if self.left > 0 {
+            self.ticks_of(self.piece).wrapping_sub(self.left)
+        } else {
+            self.local
+        };
         start + f64::from(local) + self.shift.to_f64() + self.theta.to_f64()
     }
 }

@@ -44,6 +44,8 @@ mod check;
 pub(crate) mod portable;
 #[cfg(strak_thumb2)]
 pub(crate) mod thumb2;
+#[cfg(strak_thumb2)]
+mod unaligned;
 #[cfg(strak_vfp)]
 pub(crate) mod vfp;
 

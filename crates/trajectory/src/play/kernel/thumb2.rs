@@ -19,7 +19,7 @@ use core::mem::{MaybeUninit, align_of, offset_of, size_of};
 use strak_curves::I32F32;
 use strak_curves::fixed::types::I24F40;
 
-use super::{UNROLLED, portable};
+use super::{UNROLLED, portable, unaligned};
 use crate::num::{Number, Q40};
 use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
@@ -362,7 +362,7 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
     tick: u64,
 ) -> Sample<I32F32, A> {
     if !aligned_record::<A>(next) {
-        return portable::switch_sample_bytes(state, next, tick);
+        return unaligned::switch_sample_bytes(state, next, tick);
     }
     let mut s = blank(tick);
     let mut st = state.as_mut_ptr();
@@ -572,7 +572,7 @@ pub(crate) fn switch_native_bytes<const A: usize>(
     out: &mut Sample<I24F40, A>,
 ) {
     if !aligned_record::<A>(next) {
-        return portable::switch_native_bytes(state, next, tick, out);
+        return unaligned::switch_native_bytes(state, next, tick, out);
     }
     out.tick = tick;
     let o: *mut Sample<I24F40, A> = out;
@@ -614,7 +614,7 @@ pub(crate) fn switch_position_bytes<const A: usize>(
     next: &[u8],
 ) -> [I32F32; A] {
     if !aligned_record::<A>(next) {
-        return portable::switch_position_bytes(state, next);
+        return unaligned::switch_position_bytes(state, next);
     }
     let mut out = MaybeUninit::<[I32F32; A]>::uninit();
     let o = out.as_mut_ptr();

@@ -18,7 +18,7 @@
 use core::arch::asm;
 use core::mem::{MaybeUninit, align_of, offset_of, size_of};
 
-use super::{UNROLLED, portable};
+use super::{UNROLLED, portable, unaligned};
 use crate::num::Number;
 use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
@@ -231,7 +231,7 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
     tick: u64,
 ) -> Sample<f32, A> {
     if !aligned_record::<A>(next) {
-        return portable::switch_sample_bytes(state, next, tick);
+        return unaligned::switch_sample_bytes(state, next, tick);
     }
     let mut out = MaybeUninit::<Sample<f32, A>>::uninit();
     let o = out.as_mut_ptr();
@@ -336,7 +336,7 @@ pub(crate) fn switch_bytes_into<const A: usize>(
     out: &mut Sample<f32, A>,
 ) {
     if !aligned_record::<A>(next) {
-        return portable::switch_native_bytes(state, next, tick, out);
+        return unaligned::switch_native_bytes(state, next, tick, out);
     }
     out.tick = tick;
     let o: *mut Sample<f32, A> = out;
@@ -377,7 +377,7 @@ pub(crate) fn switch_position_bytes<const A: usize>(
     next: &[u8],
 ) -> [f32; A] {
     if !aligned_record::<A>(next) {
-        return portable::switch_position_bytes(state, next);
+        return unaligned::switch_position_bytes(state, next);
     }
     let mut out = MaybeUninit::<[f32; A]>::uninit();
     let o = out.as_mut_ptr();
