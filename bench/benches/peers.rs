@@ -8,6 +8,8 @@
 //!   `strak_power_<format>` the power-basis pieces (`PowerSpline::eval`, Horner).
 //! - `playback`: one `Sampler::next()` per iteration over the whole compiled path (the sampler
 //!   restarts when finished), f32, f64 and Q40, per `n`.
+//! - `fill`: batch playback, one `Sampler::fill` of 1024 samples per iteration over the whole
+//!   path (the sampler restarts when finished), f32, f64 and Q40, per `n`; time per sample.
 //! - `flatness_<format>`: one `next()` at chosen ticks of the 1024-point path, on a clone of a
 //!   sampler advanced to just before that tick (`iter_batched_ref`), and the same harness with
 //!   an empty routine (`baseline`) to subtract.
@@ -24,7 +26,7 @@ use strak_bench::fixture::{
     random_params, sampler_at, strak_curve, strak_paths, strak_power,
 };
 use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar, ScalarOf};
-use strak_trajectory::{Kernel, Path, Sampler};
+use strak_trajectory::{Kernel, Path, Sample, Sampler};
 
 /// A 3-D point for the peers (they take any type with `+` and `* scalar`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -445,6 +447,38 @@ fn playback(c: &mut Criterion) {
     g.finish();
 }
 
+/// Samples per `Sampler::fill` call in the `fill` group.
+const BATCH: usize = 1024;
+
+fn fill_one<N: Kernel>(g: &mut BenchmarkGroup<'_, WallTime>, n: usize, path: &Path<N, 3, PIECES>) {
+    let mut s = Sampler::new(path);
+    let mut buf = vec![Sample::splat(<N::Out as Scalar>::ZERO); BATCH];
+    g.bench_function(format!("strak_{}/{n}", N::NAME.to_lowercase()), |b| {
+        b.iter(|| {
+            if s.is_finished() {
+                s = Sampler::new(path);
+            }
+            s.fill(black_box(&mut buf));
+            black_box(&buf);
+        });
+    });
+}
+
+/// Batch playback: `Sampler::fill` of [`BATCH`] samples per iteration over the whole path
+/// (restarting at the end, as `playback` does); the time is per sample.
+fn fill(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fill");
+    configure(&mut g);
+    g.throughput(Throughput::Elements(BATCH as u64));
+    for n in SIZES {
+        let paths = strak_paths(n);
+        fill_one(&mut g, n, &*paths.f32);
+        fill_one(&mut g, n, &*paths.f64);
+        fill_one(&mut g, n, &*paths.q40);
+    }
+    g.finish();
+}
+
 /// The floor of any forward-differencing tick that keeps its state in memory between calls
 /// (as a sampler must: an interrupt handler returns between ticks): the six additions per
 /// axis of `AxisState::step` on the three states of the path's first piece, the state passed
@@ -528,6 +562,7 @@ fn main() {
     let mut c = Criterion::default().without_plots().configure_from_args();
     evaluation(&mut c);
     playback(&mut c);
+    fill(&mut c);
     floor(&mut c);
     let paths = strak_paths(FLATNESS_N);
     flatness_one(&mut c, &*paths.f32);

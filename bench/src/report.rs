@@ -251,6 +251,11 @@ impl Results {
     pub fn playback(&self, format: &str, n: usize) -> Option<f64> {
         self.get("playback", &format!("strak_{format}"), &n.to_string())
     }
+
+    /// ns per sample of batch playback (`Sampler::fill`) in `format`.
+    pub fn fill(&self, format: &str, n: usize) -> Option<f64> {
+        self.get("fill", &format!("strak_{format}"), &n.to_string())
+    }
 }
 
 /// Why the host speed targets are missed: the analysis behind the numbers (disassembly of
@@ -285,8 +290,17 @@ target/release/deps/peers-*`) and from the flatness benches above:
   evaluation has no dependency between samples and overlaps consecutive calls. Meeting 20×
   would need a tick without that chain (e.g. evaluating each tick's polynomial from a tick
   counter, which costs more instructions on the Cortex-M, where the instruction targets are
-  met) or a batch interface that keeps the state in registers over many ticks — neither is
-  the per-interrupt `next()` the issue measures.
+  met) or a batch interface that keeps the state in registers over many ticks.
+- **Batch playback (`Sampler::fill`, the `fill` rows).** The batch call keeps the state of a
+  piece in a local copy across its ticks, with the same additions in the same order (the
+  samples are `next()`'s, bit for bit). Instructions per sample under
+  `valgrind --tool=callgrind` (`src/bin/ticks.rs`, n = 1024, 3 axes, whole path 20 times;
+  repeatable, unlike the times on a shared machine): f64 81.5 with `next()` against 40.9
+  with `fill`, f32 76.4 against 35.8, Q40 99.7 against 94.8. At ≈ 3 instructions per cycle
+  on a 2.6 GHz core, 36–41 instructions are ≈ 5 ns per sample, several times the ≈ 1.6 ns
+  that 20× needs: the 18 additions and the 10 stores of each sample are a floor of their own.
+  Why Q40 gains so little (27 `i64` state values against 16 general registers on x86-64 is
+  the suspect) is not yet read from the listing.
 - **Flatness across n**: the work of a tick does not depend on n (no search; the same
   additions; one piece load per at most 256 ticks, and the piece density along the path is
   the same for every n). The spread over n measured in one run is therefore timing noise
@@ -471,11 +485,21 @@ pub fn eval_checks(r: &Results) -> Vec<Check> {
 /// peer (enterpolation, bspline; either pattern), per precision and `n`; met when playback
 /// is at least [`PLAYBACK_TARGET`]× faster.
 pub fn playback_checks(r: &Results) -> Vec<Check> {
+    speed_checks(r, Results::playback)
+}
+
+/// Batch playback (`Sampler::fill`): as [`playback_checks`], per sample.
+pub fn fill_checks(r: &Results) -> Vec<Check> {
+    speed_checks(r, Results::fill)
+}
+
+/// `time(r, precision, n)` against the fastest same-curve peer, per precision and `n`.
+fn speed_checks(r: &Results, time: fn(&Results, &str, usize) -> Option<f64>) -> Vec<Check> {
     let mut out = Vec::new();
     for precision in ["f32", "f64"] {
         for n in SIZES {
             let (Some(s), Some((p, id))) = (
-                r.playback(precision, n),
+                time(r, precision, n),
                 fastest_peer(r, &Pattern::ALL, precision, n, |p| p.same_curve),
             ) else {
                 continue;
@@ -661,6 +685,7 @@ pub fn render(
     let mut o = String::new();
     let eval = eval_checks(r);
     let play = playback_checks(r);
+    let fill = fill_checks(r);
     let flat = flatness_checks(r);
     let _ = writeln!(o, "# Benchmarks\n");
     let _ = writeln!(
@@ -677,6 +702,15 @@ pub fn render(
         verdict(&play),
         worst(&play, false)
     );
+    if !fill.is_empty() {
+        let _ = writeln!(
+            o,
+            "| batch playback (`Sampler::fill`) ≥ {PLAYBACK_TARGET}× faster per sample than the \
+             fastest peer's evaluation of the same curve (f32 and f64, every n) | {} | {} |",
+            verdict(&fill),
+            worst(&fill, false)
+        );
+    }
     let _ = writeln!(
         o,
         "| random-access evaluation ≥ {EVAL_TARGET}× faster than the fastest peer \
@@ -983,6 +1017,7 @@ pub fn render(
     let _ = writeln!(o, "## Target checks in detail\n");
     for (title, checks, unit) in [
         ("Playback vs the fastest same-curve peer", &play, "×"),
+        ("Batch playback vs the fastest same-curve peer", &fill, "×"),
         (
             "Random-access evaluation vs the fastest same-job peer",
             &eval,

@@ -1,7 +1,8 @@
 //! strak's example firmware, shared by its binaries: the jobs embedded in flash, the
 //! tick handler that plays a path through [`Sampler`], on-device compiling, the output
 //! protocol, the panic handler and the exit to QEMU; for the measuring firmware the
-//! instruction counter ([`counter`]), the stack measurement ([`stack`]), the MPU set-up that
+//! instruction counter ([`counter`]), the check of the tick kernels against the portable
+//! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
 //! confines a firmware to the memories of a real part ([`mpu`]) and the planning job
 //! ([`planning`]).
 //!
@@ -31,6 +32,7 @@
 pub mod counter;
 pub mod device;
 pub mod jobs;
+pub mod kernel_check;
 #[allow(unsafe_code)]
 pub mod mpu;
 pub mod planning;

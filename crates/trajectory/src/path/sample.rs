@@ -20,3 +20,23 @@ pub struct Sample<T, const A: usize> {
     /// Acceleration of each axis.
     pub acceleration: [T; A],
 }
+
+impl<T: Copy, const A: usize> Sample<T, A> {
+    /// A sample at tick 0 with every value `v`: for example the buffer that
+    /// [`Sampler::next_into`](crate::Sampler::next_into) and
+    /// [`Sampler::fill`](crate::Sampler::fill) overwrite.
+    ///
+    /// ```
+    /// use strak_trajectory::{Kernel, Q40, Sample};
+    /// let s: Sample<_, 3> = Sample::splat(Q40::NATIVE_ZERO);
+    /// assert_eq!((s.tick, s.position), (0, [Q40::NATIVE_ZERO; 3]));
+    /// ```
+    pub const fn splat(v: T) -> Self {
+        Sample {
+            tick: 0,
+            position: [v; A],
+            velocity: [v; A],
+            acceleration: [v; A],
+        }
+    }
+}

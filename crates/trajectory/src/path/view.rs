@@ -158,6 +158,10 @@ impl<'a, N: Number, const A: usize> PathView<'a, N, A> {
         if let Some(p) = self.ram.get(j) {
             return Some((Source::State(&p.axes), p.ticks));
         }
+        if self.records.is_empty() {
+            // Past the end of a path in RAM: no record arithmetic at the path's last switches.
+            return None;
+        }
         let (ticks, values) = record::<N>(self.records, j, A)?;
         Some((Source::Record(values), ticks))
     }

@@ -1,13 +1,13 @@
 //! Playing a compiled [`Path`] back at its control rate: one [`Sample`] per tick, in constant
 //! time, with feed override, feed hold, resume and abort.
 
+mod batch;
+mod edge;
 pub(crate) mod events;
 mod feed;
+mod form;
 pub(crate) mod kernel;
 
-use strak_curves::Scalar;
-
-use crate::path::view::Source;
 use crate::path::{AxisState, Newton, PathView, Sample};
 use feed::FeedRamp;
 pub use kernel::Kernel;
@@ -118,25 +118,30 @@ pub enum SamplerState {
 #[derive(Clone, Debug)]
 pub struct Sampler<'a, N: Kernel, const A: usize> {
     path: PathView<'a, N, A>,
-    /// Current piece and tick within it; the state is at `local + shift` of that piece.
+    /// Current piece. The state is at tick `local + shift` of that piece, `piece_ticks`
+    /// long: as of the last [`sync`](Self::sync) while [`left`](Self::left) is 0; while the
+    /// fast path runs they are derived from `left` ([`sync`](Self::sync)).
     piece: usize,
     local: u32,
     piece_ticks: u32,
     state: [AxisState<N>; A],
     /// Fraction by which the state (and every later load) is shifted off the tick grid.
     shift: N,
+    /// `shift == 0` (tested by the piece switch: a flag costs fewer instructions than a
+    /// comparison in the number format).
+    on_grid: bool,
     /// Fractional playback offset after the state (interpolation mode), with
     /// `shift + theta ∈ [0, 1)`.
     theta: N,
     feed: FeedRamp<N>,
     /// The override set by [`Sampler::set_feed`].
     feed_override: N,
+    /// What the sampler is doing, as of the last [`sync`](Self::sync) (the fast path may
+    /// have entered the standstill since: [`current_mode`](Self::current_mode)).
     mode: SamplerState,
-    /// The path's end has been reached; the next sample is the end sample.
-    at_end: bool,
-    /// Wall-clock tick of the next sample as of the last [`sync`](Self::sync) (the fast path
-    /// counts only `left`: the next sample's tick is `tick + synced − left`).
-    tick: u64,
+    /// The wall-clock tick of the next sample plus `left` (the fast path counts only
+    /// `left` down: the next sample's tick is `end − left`).
+    end: u64,
     /// The position after finishing.
     rest: [N::Out; A],
     /// Ticks [`next`](Sampler::next) may still take on its fast path: while running at full
@@ -148,10 +153,6 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     /// ticks ([`Sampler::next_position`]) count down `left` alone, so the chains lag the
     /// position by `chains − left` ticks until [`catch_up`](Sampler::catch_up).
     chains: u32,
-    /// `left` when `local` was last brought up to date: the fast path counts down `left`
-    /// only, so the tick within the piece is `local + synced − left` (see
-    /// [`Sampler::sync`]).
-    synced: u32,
 }
 
 impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
@@ -166,16 +167,15 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             piece_ticks: 0,
             state: [AxisState::default(); A],
             shift: N::ZERO,
+            on_grid: true,
             theta: N::ZERO,
             feed: FeedRamp::full(),
             feed_override: N::ONE,
             mode: SamplerState::Running,
-            at_end: false,
-            tick: 0,
+            end: 0,
             rest: path.end_position(),
             left: 0,
             chains: 0,
-            synced: 0,
         };
         s.load(0);
         s.refresh();
@@ -185,6 +185,25 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// The path played.
     pub fn path(&self) -> PathView<'a, N, A> {
         self.path
+    }
+
+    /// `true` once the current piece is past the path's pieces: the end sample (piece
+    /// `count`) or the standstill after it.
+    #[inline]
+    fn at_end(&self) -> bool {
+        self.piece >= self.path.piece_count()
+    }
+
+    /// The mode, the standstill after the end included: the fast path switches into it
+    /// (piece `count + 1`) without touching [`mode`](Self::mode); [`sync`](Self::sync)
+    /// writes it back.
+    #[inline]
+    fn current_mode(&self) -> SamplerState {
+        if self.piece > self.path.piece_count() {
+            SamplerState::Finished
+        } else {
+            self.mode
+        }
     }
 
     /// Loads piece `j` (shifted by `shift`), or marks the end.
@@ -203,11 +222,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
                     }
                 }
             }
-            None => {
-                self.at_end = true;
-                self.set_left(0);
-                self.synced = 0;
-            }
+            None => self.set_left(0),
         }
     }
 
@@ -228,14 +243,29 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         self.chains = left.wrapping_add(lag);
     }
 
-    /// Brings `local` and `tick` up to date with the ticks the fast path has counted down in
-    /// `left`.
+    /// Leaves the fast path: brings `local`, `piece_ticks` and `mode` up to date with the
+    /// ticks the fast path has counted down in `left` (and the standstill it may have
+    /// entered), then sets `left` to 0 (`end` is the next sample's tick). Every change other
+    /// than a fast tick starts with it and ends with [`refresh`](Self::refresh).
     #[inline]
     fn sync(&mut self) {
-        let done = self.synced.wrapping_sub(self.left);
-        self.local = self.local.wrapping_add(done);
-        self.tick = self.tick.wrapping_add(u64::from(done));
-        self.synced = self.left;
+        if self.left > 0 {
+            self.piece_ticks = self.ticks_of(self.piece);
+            self.local = self.piece_ticks.wrapping_sub(self.left);
+            self.end = self.end.wrapping_sub(u64::from(self.left));
+            self.set_left(0);
+        }
+        self.mode = self.current_mode();
+    }
+
+    /// The length in ticks of piece `j`, the end states included (the end sample: 1, the
+    /// standstill: `u32::MAX`).
+    fn ticks_of(&self, j: usize) -> u32 {
+        match self.path.source(j) {
+            Some((_, ticks)) => ticks,
+            None if j == self.path.piece_count() => 1,
+            None => u32::MAX,
+        }
     }
 
     /// Sets [`left`](Self::left) from the state (after [`sync`](Self::sync)): called after
@@ -243,16 +273,32 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     #[inline]
     fn refresh(&mut self) {
         let fast = self.mode != SamplerState::Finished
-            && !self.at_end
+            && !self.at_end()
             && self.feed.phi == N::ONE
             && self.theta == N::ZERO
             && self.feed.is_idle();
-        self.set_left(if fast {
+        let left = if fast {
             self.piece_ticks.saturating_sub(self.local)
         } else {
             0
-        });
-        self.synced = self.left;
+        };
+        self.set_left(left);
+        self.end = self.end.wrapping_add(u64::from(left));
+    }
+
+    /// `true` when the next tick is a plain forward-differencing step inside a piece.
+    #[inline(always)]
+    fn on_fast_path(&self) -> bool {
+        self.left > 1 && self.chains == self.left
+    }
+
+    /// The fast path's bookkeeping: counts one tick down and returns its number.
+    #[inline(always)]
+    fn count_tick(&mut self) -> u64 {
+        let tick = self.end.wrapping_sub(u64::from(self.left));
+        self.left -= 1;
+        self.chains = self.left;
+        tick
     }
 
     /// The next setpoint; call once per tick.
@@ -262,171 +308,56 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     #[allow(clippy::should_implement_trait)]
     #[inline]
     pub fn next(&mut self) -> Sample<N::Out, A> {
-        if self.left > 1 && self.chains == self.left {
+        if self.on_fast_path() {
             // A plain forward-differencing tick inside a piece: one counter and the format's
             // tick kernel.
-            let tick = self
-                .tick
-                .wrapping_add(u64::from(self.synced.wrapping_sub(self.left)));
-            self.left -= 1;
-            self.chains = self.left;
+            let tick = self.count_tick();
             N::tick_sample(&mut self.state, tick)
         } else {
             self.next_edge()
         }
     }
 
-    /// A tick off the fast path: the last tick of a piece at full feed
-    /// ([`switch`](Self::switch)), or [`next_other`](Self::next_other).
-    #[inline(never)]
-    fn next_edge(&mut self) -> Sample<N::Out, A> {
-        self.catch_up();
-        if self.left == 1 && self.shift == N::ZERO {
-            return self.switch();
-        }
-        self.next_other()
-    }
-
-    /// [`next_edge`](Self::next_edge) for [`next_position`](Self::next_position): a piece
-    /// switch loads fresh chains, so the lagging ones need no catching up.
-    #[inline(never)]
-    fn next_edge_position(&mut self) -> [N::Out; A] {
-        if self.left == 1 && self.shift == N::ZERO {
-            return self.switch().position;
-        }
-        self.catch_up();
-        self.next_other().position
-    }
-
-    /// Steps the velocity and acceleration chains over the `chains − left` ticks that
-    /// position-only ticks left out, in closed form (Newton's forward formula at the integer
-    /// offset `m`: `v += m·Δv¹ + C(m,2)·Δv²`, `Δv¹ += m·Δv²`, `a += m·Δa`): exact in `Q40`
-    /// (integer products, the same bits as `m` steps), within rounding in floats. Constant
-    /// time.
+    /// [`next`](Self::next) in the accumulator's own format ([`Kernel::Native`]: `f32`,
+    /// `f64`, or [`I24F40`](strak_curves::fixed::types::I24F40) for `Q40`), written in
+    /// place: `Kernel::native_to_out` of every value of `out` is [`next`](Self::next)'s
+    /// value, bit for bit, and the sampler advances as with [`next`](Self::next) (the
+    /// entry points may be mixed freely).
+    ///
+    /// For firmware that wants the full setpoint at the least cost per tick: no rounding
+    /// into the sample type, and no sample returned by value (the tick kernel stores each
+    /// value straight into `out`). Constant time and no panic path, like
+    /// [`next`](Self::next).
+    ///
+    /// ```
+    /// use strak_trajectory::{compile, Along, CompileOptions, Kernel, Path, Q40, Sample, Sampler, Timing};
+    /// use strak_curves::Bezier;
+    ///
+    /// struct Linear;
+    /// impl Timing for Linear {
+    ///     fn duration(&self) -> f64 { 0.01 }
+    ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 0.01) / 0.01, 100.0) }
+    /// }
+    /// let line = Bezier::new([[0.0_f64], [2.0]])?;
+    /// let path: Path<Q40, 1, 8> = compile(&Along::new(&line, &Linear), 1_000.0, &CompileOptions::new())?;
+    /// let (mut a, mut b) = (Sampler::new(&path), Sampler::new(&path));
+    /// let mut s = Sample::splat(Q40::NATIVE_ZERO); // Sample<I24F40, 1>
+    /// while !a.is_finished() {
+    ///     a.next_into(&mut s);
+    ///     let want = b.next();
+    ///     assert_eq!((s.tick, Q40::native_to_out(s.position[0])), (want.tick, want.position[0]));
+    /// }
+    /// assert_eq!(s.position[0].to_num::<f64>(), 2.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     #[inline]
-    fn catch_up(&mut self) {
-        let lag = self.chains.wrapping_sub(self.left);
-        self.chains = self.left;
-        if lag == 0 {
-            return;
-        }
-        let m = i64::from(lag);
-        let pairs = m.wrapping_mul(m - 1) / 2;
-        for s in &mut self.state {
-            s.velocity =
-                s.velocity + s.velocity_delta1.mul_int(m) + s.velocity_delta2.mul_int(pairs);
-            s.velocity_delta1 = s.velocity_delta1 + s.velocity_delta2.mul_int(m);
-            s.acceleration = s.acceleration + s.acceleration_delta.mul_int(m);
-        }
-    }
-
-    /// The last tick of a piece at full feed: its sample, then the next piece's state in
-    /// place of the step. After the last piece come the path's two end states
-    /// ([`Path`]'s `end_states`): the end sample (one tick; the sampler is at the end) and
-    /// the standstill (finished), so that every tick at full feed, the final one included,
-    /// stays on the fast path.
-    #[inline(always)]
-    fn switch(&mut self) -> Sample<N::Out, A> {
-        let path = &self.path;
-        // `left == 1`: `synced − 1` ticks since the last sync.
-        let tick = self
-            .tick
-            .wrapping_add(u64::from(self.synced.wrapping_sub(1)));
-        let next = self.piece.saturating_add(1);
-        let count = path.piece_count();
-        // Past the last piece no lookup is made (a path in RAM has no records to look in).
-        let found = if next < count {
-            path.source(next)
+    pub fn next_into(&mut self, out: &mut Sample<N::Native, A>) {
+        if self.on_fast_path() {
+            let tick = self.count_tick();
+            N::tick_native(&mut self.state, tick, out);
         } else {
-            None
-        };
-        let (src, ticks) = match found {
-            Some(source) => source,
-            None if next == count => {
-                self.at_end = true;
-                (Source::State(&path.header().end_states[0]), 1)
-            }
-            None => {
-                self.mode = SamplerState::Finished;
-                (Source::State(&path.header().end_states[1]), u32::MAX)
-            }
-        };
-        let sample = match src {
-            Source::State(next) => N::switch_sample(&mut self.state, next, tick),
-            Source::Record(bytes) => N::switch_sample_bytes(&mut self.state, bytes, tick),
-        };
-        if self.mode == SamplerState::Finished {
-            // The end position, copied from the sample (a copy from the path would be a
-            // `memmove` call: the compiler cannot tell that path and sampler do not overlap).
-            self.rest = sample.position;
+            self.next_edge_into(out);
         }
-        self.tick = tick.wrapping_add(1);
-        self.piece = next;
-        self.local = 0;
-        self.piece_ticks = ticks;
-        self.left = ticks;
-        self.chains = ticks;
-        self.synced = ticks;
-        sample
-    }
-
-    /// Every tick that is not a plain forward-differencing step: the end sample, standing
-    /// at the end, interpolation (feed override, ramps). Out of line, so that the common
-    /// tick in [`next`](Self::next) carries none of its code or register saves.
-    #[inline(never)]
-    fn next_other(&mut self) -> Sample<N::Out, A> {
-        self.sync();
-        let sample = self.next_checked();
-        self.refresh();
-        sample
-    }
-
-    /// The tick by the full case analysis (it does not rely on [`left`](Self::left)).
-    #[inline(always)]
-    fn next_checked(&mut self) -> Sample<N::Out, A> {
-        if self.mode == SamplerState::Finished {
-            let tick = self.tick;
-            self.tick = self.tick.wrapping_add(1);
-            return Sample {
-                tick,
-                position: self.rest,
-                velocity: [N::Out::ZERO; A],
-                acceleration: [N::Out::ZERO; A],
-            };
-        }
-        if self.at_end {
-            let tick = self.tick;
-            self.tick = self.tick.wrapping_add(1);
-            self.mode = SamplerState::Finished;
-            let end = &self.path.header().end;
-            self.rest = end.position;
-            let (velocity, acceleration) = if self.feed.phi == N::ONE {
-                (end.velocity, end.acceleration)
-            } else {
-                let phi = self.feed.phi.to_out();
-                (
-                    end.velocity.map(|v| v * phi),
-                    end.acceleration.map(|a| a * phi * phi),
-                )
-            };
-            return Sample {
-                tick,
-                position: end.position,
-                velocity,
-                acceleration,
-            };
-        }
-        let tick_grid = self.feed.phi == N::ONE && self.theta == N::ZERO && self.feed.is_idle();
-        if tick_grid {
-            let tick = self.tick;
-            self.tick = tick.wrapping_add(1);
-            let sample = N::tick_sample(&mut self.state, tick);
-            self.advance_index();
-            return sample;
-        }
-        let tick = self.tick;
-        self.tick = self.tick.wrapping_add(1);
-        self.interpolate(tick)
     }
 
     /// The next setpoint's positions only: exactly [`next`](Self::next)`().position`, bit for
@@ -471,70 +402,14 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         }
     }
 
-    /// A tick in interpolation mode.
-    fn interpolate(&mut self, tick: u64) -> Sample<N::Out, A> {
-        let c = Newton::at(self.theta);
-        let phi = self.feed.phi;
-        let phi2 = phi * phi;
-        let phi_dot = self.feed.omega * self.path.header().ramp.rate;
-        let mut sample = Sample {
-            tick,
-            position: [N::Out::ZERO; A],
-            velocity: [N::Out::ZERO; A],
-            acceleration: [N::Out::ZERO; A],
-        };
-        for (a, s) in self.state.iter().enumerate() {
-            let p = s.position + c.c1 * s.delta1 + c.c2 * s.delta2 + c.c3 * s.delta3;
-            let v = s.velocity + c.c1 * s.velocity_delta1 + c.c2 * s.velocity_delta2;
-            let acc = s.acceleration + c.c1 * s.acceleration_delta;
-            if let (Some(x), Some(y), Some(z)) = (
-                sample.position.get_mut(a),
-                sample.velocity.get_mut(a),
-                sample.acceleration.get_mut(a),
-            ) {
-                *x = p.to_out();
-                *y = (phi * v).to_out();
-                *z = (phi2 * acc + phi_dot * v).to_out();
-            }
-        }
-        if self.mode == SamplerState::Aborting && self.feed.is_idle() && phi == N::ZERO {
-            // Stopped: this is the final sample.
-            self.mode = SamplerState::Finished;
-            self.rest = sample.position;
-            return sample;
-        }
-        // Advance: the ramp, then the playback point by φ.
-        self.feed.step(&self.path.header().ramp);
-        // Invariant: shift + θ ∈ [0, 1), so the playback point stays inside the current
-        // tick interval of the current piece (θ may be negative after a step).
-        self.theta = self.theta + self.feed.phi;
-        if self.shift + self.theta >= N::ONE {
-            self.theta = self.theta - N::ONE;
-            for s in &mut self.state {
-                s.step();
-            }
-            self.advance_index();
-        }
-        // Back at full feed: shift the state onto the playback point, resume differencing.
-        if self.feed.phi == N::ONE && self.feed.is_idle() && self.theta != N::ZERO && !self.at_end {
-            let c = Newton::at(self.theta);
-            for s in &mut self.state {
-                *s = s.shifted(&c);
-            }
-            self.shift = self.shift + self.theta;
-            self.theta = N::ZERO;
-        }
-        sample
-    }
-
     /// `true` after the end sample (or the stop after an abort) has been returned.
     pub fn is_finished(&self) -> bool {
-        self.mode == SamplerState::Finished
+        self.current_mode() == SamplerState::Finished
     }
 
     /// What the sampler is doing.
     pub fn state(&self) -> SamplerState {
-        self.mode
+        self.current_mode()
     }
 
     /// Sets the feed override `f`, clamped to `[0, 1]` (NaN is ignored). Takes effect
@@ -544,6 +419,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         if f.is_nan() {
             return;
         }
+        self.sync();
         let f = f64::from(f.clamp(0.0, 1.0));
         if let Some(v) = N::from_f64(f) {
             self.feed_override = v;
@@ -551,7 +427,6 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
                 self.feed.target = v;
             }
         }
-        self.sync();
         self.refresh();
     }
 
@@ -567,43 +442,47 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
 
     /// Feed hold: ramp down to feed 0 and stand still on the path (ignored after an abort).
     pub fn hold(&mut self) {
+        self.sync();
         if self.mode == SamplerState::Running {
             self.mode = SamplerState::Holding;
             self.feed.target = N::ZERO;
         }
-        self.sync();
         self.refresh();
     }
 
     /// Resume after a hold: ramp back up to the override (ignored unless holding).
     pub fn resume(&mut self) {
+        self.sync();
         if self.mode == SamplerState::Holding {
             self.mode = SamplerState::Running;
             self.feed.target = self.feed_override;
         }
-        self.sync();
         self.refresh();
     }
 
     /// Abort: ramp down to feed 0, then finish where the motion stopped (on the path, not at
     /// its end).
     pub fn abort(&mut self) {
+        self.sync();
         if matches!(self.mode, SamplerState::Running | SamplerState::Holding) {
             self.mode = SamplerState::Aborting;
             self.feed.target = N::ZERO;
         }
-        self.sync();
         self.refresh();
     }
 
     /// The playback point in (fractional) path ticks: where the next sample is taken
     /// (`Path::eval(progress())` is that sample's exact position). For tests and simulation.
     pub fn progress(&self) -> f64 {
-        if self.at_end || self.piece >= self.path.piece_count() {
+        if self.at_end() {
             return f64::from(self.path.ticks());
         }
         let start = f64::from(self.path.piece_start(self.piece));
-        let local = self.local.wrapping_add(self.synced.wrapping_sub(self.left));
+        let local = if self.left > 0 {
+            self.ticks_of(self.piece).wrapping_sub(self.left)
+        } else {
+            self.local
+        };
         start + f64::from(local) + self.shift.to_f64() + self.theta.to_f64()
     }
 }
@@ -618,6 +497,7 @@ mod tests {
     use crate::path::Path;
     use crate::plan::Along;
     use strak_curves::ParamCurveDeriv;
+    use strak_curves::Scalar;
 
     fn f<T: Scalar, const A: usize>(x: [T; A]) -> [f64; A] {
         x.map(Scalar::to_f64)
@@ -813,6 +693,124 @@ mod tests {
         big_stack(position_only::<f32>);
         big_stack(position_only::<f64>);
         big_stack(position_only::<Q40>);
+    }
+
+    /// The control events of the entry-point comparisons: a feed override, a hold, a
+    /// resume, back to full feed (then piece switches at full feed and the end).
+    fn events<N: Kernel>(k: u64, s: &mut Sampler<'_, N, 3>) {
+        match k {
+            300 => s.set_feed(0.6),
+            700 => s.hold(),
+            2300 => s.resume(),
+            2800 => s.set_feed(1.0),
+            _ => {}
+        }
+    }
+
+    /// `next_into` against `next`, bit for bit (`native_to_out` of every value), over a path
+    /// in RAM and the same path read from a blob (aligned and at an odd address), with
+    /// `next_position` and `next` mixed in on a third sampler.
+    fn native_samples<N: Kernel>() {
+        let path = helix_path::<N>();
+        let mut bytes = std::vec![0_u8; 1 << 16];
+        let len = path.to_bytes(&mut bytes[1..]).unwrap();
+        bytes.copy_within(1..=len, 0);
+        let aligned = crate::PathBlob::<N, 3>::from_bytes(&bytes[..len]).unwrap();
+        let mut odd = std::vec![0_u8; len + 1];
+        odd[1..].copy_from_slice(&bytes[..len]);
+        let unaligned = crate::PathBlob::<N, 3>::from_bytes(&odd[1..]).unwrap();
+        for view in [path.view(), aligned.view(), unaligned.view()] {
+            let mut full = Sampler::new(view);
+            let mut native = Sampler::new(view);
+            let mut mixed = Sampler::new(view);
+            let mut s = Sample::splat(N::NATIVE_ZERO);
+            let mut k = 0_u64;
+            let mut checked = 0;
+            while !full.is_finished() || k < u64::from(path.ticks()) + 3000 {
+                for t in [&mut full, &mut native, &mut mixed] {
+                    events(k, t);
+                }
+                let want = full.next();
+                native.next_into(&mut s);
+                assert_eq!(s.tick, want.tick, "tick {k}");
+                assert_eq!(s.position.map(N::native_to_out), want.position, "tick {k}");
+                assert_eq!(s.velocity.map(N::native_to_out), want.velocity, "tick {k}");
+                assert_eq!(
+                    s.acceleration.map(N::native_to_out),
+                    want.acceleration,
+                    "tick {k}"
+                );
+                match k % 5 {
+                    0 => assert_eq!(mixed.next_position(), want.position, "tick {k}"),
+                    1 | 2 => assert_eq!(mixed.next(), want, "tick {k}"),
+                    _ => {
+                        let mut m = Sample::splat(N::NATIVE_ZERO);
+                        mixed.next_into(&mut m);
+                        assert_eq!(m.velocity.map(N::native_to_out), want.velocity, "tick {k}");
+                    }
+                }
+                assert_eq!(native.state(), full.state());
+                checked += 1;
+                k += 1;
+            }
+            assert!(native.is_finished() && mixed.is_finished());
+            assert!(checked > path.ticks() + 1000, "{checked}");
+        }
+    }
+
+    #[test]
+    fn next_into_is_next_in_the_accumulators_format() {
+        big_stack(native_samples::<f32>);
+        big_stack(native_samples::<f64>);
+        big_stack(native_samples::<Q40>);
+    }
+
+    /// `fill` against as many `next` calls, bit for bit: batches of 1 to 300 samples (so
+    /// that batches start and end inside pieces, at piece switches and at the end), with the
+    /// control events between batches.
+    fn batches<N: Kernel>() {
+        let path = helix_path::<N>();
+        let mut one = Sampler::new(&path);
+        let mut batched = Sampler::new(&path);
+        let mut buf = std::vec![Sample::splat(<N::Out as Scalar>::ZERO); 300];
+        let (mut k, mut n) = (0_u64, 0_usize);
+        let end = u64::from(path.ticks()) + 4000;
+        while k < end {
+            for s in [&mut one, &mut batched] {
+                events(k, s);
+            }
+            let len = 1 + (n * 37 + n / 3) % 300;
+            // the events fall between batches: a batch never crosses one
+            let len = [300, 700, 2300, 2800]
+                .iter()
+                .filter(|&&e| e > k)
+                .map(|&e| usize::try_from(e - k).unwrap())
+                .fold(len, usize::min);
+            batched.fill(&mut buf[..len]);
+            for (i, got) in buf[..len].iter().enumerate() {
+                assert_eq!(
+                    *got,
+                    one.next(),
+                    "tick {} (batch {n}, {len} long)",
+                    k + i as u64
+                );
+            }
+            assert_eq!(batched.state(), one.state());
+            assert_eq!(batched.progress(), one.progress());
+            k += len as u64;
+            n += 1;
+        }
+        assert!(one.is_finished() && batched.is_finished());
+        let mut empty: [Sample<N::Out, 3>; 0] = [];
+        batched.fill(&mut empty);
+        assert_eq!(batched.next(), one.next());
+    }
+
+    #[test]
+    fn fill_is_next_called_as_often() {
+        big_stack(batches::<f32>);
+        big_stack(batches::<f64>);
+        big_stack(batches::<Q40>);
     }
 
     fn exact_loads<N: Kernel>() {

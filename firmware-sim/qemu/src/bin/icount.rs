@@ -1,6 +1,7 @@
 //! Instructions per tick under QEMU `-icount` (**instruction counts, not cycles**): for every
 //! tick of a whole path — piece switches and the final tick included — the instructions of
-//! one `Sampler::next()` (and of one `Sampler::next_position()`) call, and for comparison the
+//! one `Sampler::next()` (and of one `Sampler::next_position()`, and of one
+//! `Sampler::next_into()` into a sample in the accumulator's format) call, and for comparison the
 //! instructions of one direct evaluation of a cubic curve (de Boor, Horner).
 //!
 //! On the Cortex-M4F (`thumbv7em-none-eabihf`, `mps2-an386`) the cases are in `f32`; on the
@@ -8,6 +9,10 @@
 //! `I32F32`). The paths (1, 3 and 6 axes) are compiled on the device at start-up from a cubic
 //! B-spline of 10 de Boor points under a quintic rest-to-rest time law, 0.25 s at 10 kHz
 //! (2 501 samples, several pieces each).
+//!
+//! Before measuring, it checks every tick kernel entry point against the portable kernel, bit
+//! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`): a difference is
+//! logged and fails the run.
 //!
 //! # Output protocol (defmt, read by `cargo xtask qemu`)
 //! ```text
@@ -80,6 +85,12 @@ where
 #[inline(never)]
 fn tick<N: Kernel, const A: usize>(s: &mut Sampler<'_, N, A>) -> Sample<N::Out, A> {
     s.next()
+}
+
+/// One tick in the accumulator's format, written in place (`next_into`).
+#[inline(never)]
+fn tick_into<N: Kernel, const A: usize>(s: &mut Sampler<'_, N, A>, out: &mut Sample<N::Native, A>) {
+    s.next_into(out);
 }
 
 /// One tick, positions only.
@@ -225,23 +236,53 @@ fn main() -> ! {
     let Some(p) = cortex_m::Peripherals::take() else {
         exit_failure()
     };
+    if let Err(m) = strak_qemu::kernel_check::check() {
+        defmt::error!(
+            "the {=str} tick kernels differ from the portable kernel: {=usize} axes, {=str}, random state {=u32}",
+            m.format,
+            m.axes,
+            m.entry,
+            m.state
+        );
+        exit_failure()
+    }
     let counter = Counter::start(p.SYST);
     let cal = Calibration::measure(&counter);
     let check = cal.check_nop64(&counter);
     defmt::println!("CAL {=u32} {=u32} {=u32}", cal.empty, cal.nops, check);
     let mut cases: u32 = 0;
     macro_rules! play {
-        ($n:ty, $a:literal, $full:literal, $pos:literal) => {
+        ($n:ty, $a:literal, $full:literal, $pos:literal, $into:literal) => {
             playback::<$n, $a, _>($full, &counter, &cal, |s| tick(s));
             playback::<$n, $a, _>($pos, &counter, &cal, |s| tick_position(s));
-            cases += 2;
+            let mut out = Sample::splat(<$n as Kernel>::NATIVE_ZERO);
+            playback::<$n, $a, _>($into, &counter, &cal, |s| tick_into(s, &mut out));
+            cases += 3;
         };
     }
     #[cfg(target_abi = "eabihf")]
     {
-        play!(f32, 1, "playback-f32-1axis", "playback-f32-1axis-position");
-        play!(f32, 3, "playback-f32-3axis", "playback-f32-3axis-position");
-        play!(f32, 6, "playback-f32-6axis", "playback-f32-6axis-position");
+        play!(
+            f32,
+            1,
+            "playback-f32-1axis",
+            "playback-f32-1axis-position",
+            "playback-f32-1axis-into"
+        );
+        play!(
+            f32,
+            3,
+            "playback-f32-3axis",
+            "playback-f32-3axis-position",
+            "playback-f32-3axis-into"
+        );
+        play!(
+            f32,
+            6,
+            "playback-f32-6axis",
+            "playback-f32-6axis-position",
+            "playback-f32-6axis-into"
+        );
         direct_cases::<f32>(["deboor-f32-3d", "horner-f32-3d"], &counter, &cal);
         cases += 2;
     }
@@ -249,9 +290,27 @@ fn main() -> ! {
     {
         use strak_curves::I32F32;
         use strak_trajectory::Q40;
-        play!(Q40, 1, "playback-q40-1axis", "playback-q40-1axis-position");
-        play!(Q40, 3, "playback-q40-3axis", "playback-q40-3axis-position");
-        play!(Q40, 6, "playback-q40-6axis", "playback-q40-6axis-position");
+        play!(
+            Q40,
+            1,
+            "playback-q40-1axis",
+            "playback-q40-1axis-position",
+            "playback-q40-1axis-into"
+        );
+        play!(
+            Q40,
+            3,
+            "playback-q40-3axis",
+            "playback-q40-3axis-position",
+            "playback-q40-3axis-into"
+        );
+        play!(
+            Q40,
+            6,
+            "playback-q40-6axis",
+            "playback-q40-6axis-position",
+            "playback-q40-6axis-into"
+        );
         direct_cases::<I32F32>(["deboor-i32f32-3d", "horner-i32f32-3d"], &counter, &cal);
         cases += 2;
     }

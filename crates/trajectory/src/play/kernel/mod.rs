@@ -11,8 +11,11 @@
 //! `vldm`/`vstm`.
 //! Which kernel a format uses is chosen by its implementation of [`Kernel`].
 
+use core::fmt;
+
 #[cfg(strak_thumb2)]
 use strak_curves::I32F32;
+use strak_curves::fixed::types::I24F40;
 
 use crate::num::{Number, Q40};
 use crate::path::{AxisState, Sample};
@@ -37,9 +40,12 @@ macro_rules! each_axis {
     };
 }
 
+mod check;
 pub(crate) mod portable;
 #[cfg(strak_thumb2)]
 pub(crate) mod thumb2;
+#[cfg(strak_thumb2)]
+mod unaligned;
 #[cfg(strak_vfp)]
 pub(crate) mod vfp;
 
@@ -52,7 +58,8 @@ pub(crate) mod vfp;
 /// The trait is **sealed**: it is implemented for `f32`, `f64` and [`Q40`], the formats
 /// of [`Number`] (itself sealed), and cannot be implemented outside this crate. Code that
 /// is generic over the number format and plays paths bounds it by `Kernel` (which implies
-/// [`Number`]); its methods are the sampler's internals.
+/// [`Number`]); apart from [`Kernel::Native`] and [`Kernel::native_to_out`] its methods are
+/// the sampler's internals.
 ///
 /// ```
 /// use strak_trajectory::{Kernel, PathView, Q40, Sampler};
@@ -63,6 +70,57 @@ pub(crate) mod vfp;
 /// # let _ = first_position::<Q40>;
 /// ```
 pub trait Kernel: Number {
+    /// The sample type in the accumulator's own format, as
+    /// [`Sampler::next_into`](crate::Sampler::next_into) delivers it: `f32` and `f64`
+    /// themselves, [`I24F40`] for [`Q40`] (the accumulator's 64 bits, 40 of them
+    /// fractional: no rounding).
+    type Native: Copy + Default + PartialEq + fmt::Debug + Send + Sync + 'static;
+
+    /// Zero in [`Kernel::Native`].
+    const NATIVE_ZERO: Self::Native;
+
+    /// The value [`Sampler::next`](crate::Sampler::next) delivers for the value
+    /// [`Sampler::next_into`](crate::Sampler::next_into) delivers: the identity for floats,
+    /// for `Q40` the rounding of [`Number::to_out`] (`I24F40` to [`I32F32`](strak_curves::I32F32)
+    /// to nearest, raw `+ 2⁷` shifted right by 8).
+    ///
+    /// ```
+    /// use strak_curves::{I32F32, fixed::types::I24F40};
+    /// use strak_trajectory::{Kernel, Q40};
+    /// let x = I24F40::from_bits(0x180); // 1.5 · 2⁻³²
+    /// assert_eq!(Q40::native_to_out(x), I32F32::from_bits(2)); // to nearest, ties up
+    /// assert_eq!(<f32 as Kernel>::native_to_out(0.25), 0.25);
+    /// ```
+    fn native_to_out(v: Self::Native) -> Self::Out;
+
+    /// Crate-internal: the value in [`Kernel::Native`] (the same bits).
+    #[doc(hidden)]
+    fn to_native(self) -> Self::Native;
+
+    /// Crate-internal: a sample-type value in [`Kernel::Native`] (exact: `native_to_out`
+    /// gives it back).
+    #[doc(hidden)]
+    fn native_from_out(v: Self::Out) -> Self::Native;
+
+    /// Crate-internal: the value of the same bits as `v`.
+    #[doc(hidden)]
+    fn from_native(v: Self::Native) -> Self;
+
+    /// Not part of the API: the check that firmware makes on its target. Runs every entry
+    /// point of this format's tick kernels (a tick with the full sample, positions only and
+    /// in [`Kernel::Native`]; a piece switch of each, from RAM and from a blob record at an
+    /// aligned and at an odd address) and of the portable kernel on `state` (`next`: the
+    /// next piece) and names the first entry point whose output or resulting state
+    /// differs, bit for bit (`A` ≤ 8).
+    #[doc(hidden)]
+    fn check_kernels<const A: usize>(
+        state: &[AxisState<Self>; A],
+        next: &[AxisState<Self>; A],
+        tick: u64,
+    ) -> Result<(), &'static str> {
+        check::run(state, next, tick)
+    }
+
     /// Crate-internal: the sample of `state` at `tick`, then one forward-differencing step
     /// of every axis.
     #[doc(hidden)]
@@ -104,11 +162,104 @@ pub trait Kernel: Number {
     ) -> Sample<Self::Out, A> {
         portable::switch_sample_bytes(state, next, tick)
     }
+
+    /// Crate-internal: [`Kernel::switch_sample`]'s positions (the state is replaced whole).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_position<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[AxisState<Self>; A],
+    ) -> [Self::Out; A] {
+        portable::switch_position(state, next)
+    }
+
+    /// Crate-internal: [`Kernel::switch_sample_bytes`]'s positions.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_position_bytes<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[u8],
+    ) -> [Self::Out; A] {
+        portable::switch_position_bytes(state, next)
+    }
+
+    /// Crate-internal: [`Kernel::tick_sample`] in [`Kernel::Native`], written to `out`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn tick_native<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        tick: u64,
+        out: &mut Sample<Self::Native, A>,
+    ) {
+        portable::tick_native(state, tick, out);
+    }
+
+    /// Crate-internal: [`Kernel::switch_sample`] in [`Kernel::Native`], written to `out`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_native<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[AxisState<Self>; A],
+        tick: u64,
+        out: &mut Sample<Self::Native, A>,
+    ) {
+        portable::switch_native(state, next, tick, out);
+    }
+
+    /// Crate-internal: [`Kernel::switch_sample_bytes`] in [`Kernel::Native`], written to
+    /// `out`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn switch_native_bytes<const A: usize>(
+        state: &mut [AxisState<Self>; A],
+        next: &[u8],
+        tick: u64,
+        out: &mut Sample<Self::Native, A>,
+    ) {
+        portable::switch_native_bytes(state, next, tick, out);
+    }
 }
 
-impl Kernel for f64 {}
+impl Kernel for f64 {
+    type Native = f64;
+    const NATIVE_ZERO: f64 = 0.0;
+    #[inline(always)]
+    fn native_to_out(v: f64) -> f64 {
+        v
+    }
+    #[inline(always)]
+    fn to_native(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn native_from_out(v: f64) -> f64 {
+        v
+    }
+    #[inline(always)]
+    fn from_native(v: f64) -> f64 {
+        v
+    }
+}
 
 impl Kernel for f32 {
+    type Native = f32;
+    const NATIVE_ZERO: f32 = 0.0;
+    #[inline(always)]
+    fn native_to_out(v: f32) -> f32 {
+        v
+    }
+    #[inline(always)]
+    fn to_native(self) -> f32 {
+        self
+    }
+    #[inline(always)]
+    fn native_from_out(v: f32) -> f32 {
+        v
+    }
+    #[inline(always)]
+    fn from_native(v: f32) -> f32 {
+        v
+    }
     #[cfg(strak_vfp)]
     #[inline(always)]
     fn tick_sample<const A: usize>(state: &mut [AxisState<f32>; A], tick: u64) -> Sample<f32, A> {
@@ -137,9 +288,72 @@ impl Kernel for f32 {
     ) -> Sample<f32, A> {
         vfp::switch_sample_bytes(state, next, tick)
     }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_position<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[AxisState<f32>; A],
+    ) -> [f32; A] {
+        vfp::switch_position(state, next)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_position_bytes<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[u8],
+    ) -> [f32; A] {
+        vfp::switch_position_bytes(state, next)
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn tick_native<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        tick: u64,
+        out: &mut Sample<f32, A>,
+    ) {
+        vfp::tick_into(state, tick, out);
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_native<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[AxisState<f32>; A],
+        tick: u64,
+        out: &mut Sample<f32, A>,
+    ) {
+        vfp::switch_into(state, next, tick, out);
+    }
+    #[cfg(strak_vfp)]
+    #[inline(always)]
+    fn switch_native_bytes<const A: usize>(
+        state: &mut [AxisState<f32>; A],
+        next: &[u8],
+        tick: u64,
+        out: &mut Sample<f32, A>,
+    ) {
+        vfp::switch_bytes_into(state, next, tick, out);
+    }
 }
 
 impl Kernel for Q40 {
+    type Native = I24F40;
+    const NATIVE_ZERO: I24F40 = I24F40::ZERO;
+    #[inline(always)]
+    fn native_to_out(v: I24F40) -> Self::Out {
+        Q40::from_bits(v.to_bits()).to_out()
+    }
+    #[inline(always)]
+    fn to_native(self) -> I24F40 {
+        I24F40::from_bits(self.to_bits())
+    }
+    #[inline(always)]
+    fn native_from_out(v: Self::Out) -> I24F40 {
+        I24F40::from_bits(Q40::from_out(v).to_bits())
+    }
+    #[inline(always)]
+    fn from_native(v: I24F40) -> Q40 {
+        Q40::from_bits(v.to_bits())
+    }
     #[cfg(strak_thumb2)]
     #[inline(always)]
     fn tick_sample<const A: usize>(
@@ -170,5 +384,50 @@ impl Kernel for Q40 {
         tick: u64,
     ) -> Sample<I32F32, A> {
         thumb2::switch_sample_bytes(state, next, tick)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_position<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[AxisState<Q40>; A],
+    ) -> [I32F32; A] {
+        thumb2::switch_position(state, next)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_position_bytes<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[u8],
+    ) -> [I32F32; A] {
+        thumb2::switch_position_bytes(state, next)
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn tick_native<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        tick: u64,
+        out: &mut Sample<I24F40, A>,
+    ) {
+        thumb2::tick_native(state, tick, out);
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_native<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[AxisState<Q40>; A],
+        tick: u64,
+        out: &mut Sample<I24F40, A>,
+    ) {
+        thumb2::switch_native(state, next, tick, out);
+    }
+    #[cfg(strak_thumb2)]
+    #[inline(always)]
+    fn switch_native_bytes<const A: usize>(
+        state: &mut [AxisState<Q40>; A],
+        next: &[u8],
+        tick: u64,
+        out: &mut Sample<I24F40, A>,
+    ) {
+        thumb2::switch_native_bytes(state, next, tick, out);
     }
 }

@@ -2,6 +2,7 @@
 
 use strak_curves::Scalar;
 
+use super::Kernel;
 use crate::num::Number;
 use crate::path::view::decode_states;
 use crate::path::{AxisState, Sample};
@@ -110,4 +111,84 @@ fn sample_of<N: Number, const A: usize>(state: &[AxisState<N>; A], tick: u64) ->
         velocity: state.map(|s| s.velocity.to_out()),
         acceleration: state.map(|s| s.acceleration.to_out()),
     }
+}
+
+/// The positions of the current state, then the state replaced by `next`.
+#[inline(always)]
+pub(crate) fn switch_position<N: Number, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    next: &[AxisState<N>; A],
+) -> [N::Out; A] {
+    let position = state.map(|s| s.position.to_out());
+    *state = *next;
+    position
+}
+
+/// The positions of the current state, then the state replaced by the `9·A` little-endian
+/// values in `next` (as [`switch_sample_bytes`]).
+#[inline(always)]
+pub(crate) fn switch_position_bytes<N: Number, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    next: &[u8],
+) -> [N::Out; A] {
+    let position = state.map(|s| s.position.to_out());
+    decode_states(next, state);
+    position
+}
+
+/// The sample of the current state in the accumulator's format into `out`.
+#[inline(always)]
+fn native_of<N: Kernel, const A: usize>(
+    state: &[AxisState<N>; A],
+    tick: u64,
+    out: &mut Sample<N::Native, A>,
+) {
+    out.tick = tick;
+    let values = out
+        .position
+        .iter_mut()
+        .zip(out.velocity.iter_mut())
+        .zip(out.acceleration.iter_mut());
+    for (s, ((x, v), a)) in state.iter().zip(values) {
+        *x = s.position.to_native();
+        *v = s.velocity.to_native();
+        *a = s.acceleration.to_native();
+    }
+}
+
+/// [`tick_sample`] in the accumulator's format, written to `out`.
+#[inline(always)]
+pub(crate) fn tick_native<N: Kernel, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    tick: u64,
+    out: &mut Sample<N::Native, A>,
+) {
+    native_of(state, tick, out);
+    for s in state.iter_mut() {
+        step_whole(s);
+    }
+}
+
+/// [`switch_sample`] in the accumulator's format, written to `out`.
+#[inline(always)]
+pub(crate) fn switch_native<N: Kernel, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    next: &[AxisState<N>; A],
+    tick: u64,
+    out: &mut Sample<N::Native, A>,
+) {
+    native_of(state, tick, out);
+    *state = *next;
+}
+
+/// [`switch_sample_bytes`] in the accumulator's format, written to `out`.
+#[inline(always)]
+pub(crate) fn switch_native_bytes<N: Kernel, const A: usize>(
+    state: &mut [AxisState<N>; A],
+    next: &[u8],
+    tick: u64,
+    out: &mut Sample<N::Native, A>,
+) {
+    native_of(state, tick, out);
+    decode_states(next, state);
 }

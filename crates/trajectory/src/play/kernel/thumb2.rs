@@ -17,8 +17,9 @@ use core::arch::asm;
 use core::mem::{MaybeUninit, align_of, offset_of, size_of};
 
 use strak_curves::I32F32;
+use strak_curves::fixed::types::I24F40;
 
-use super::{UNROLLED, portable};
+use super::{UNROLLED, portable, unaligned};
 use crate::num::{Number, Q40};
 use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
@@ -49,6 +50,10 @@ const _: () = {
     assert!(piece_record_len::<Q40>(3) == 4 + 3 * size_of::<S>());
     assert!(cfg!(target_endian = "little"));
     assert!(size_of::<I32F32>() == 8);
+    // The native sample's values are the accumulator's 8 bytes, stored with `strd` at
+    // offsets below 1 024 (its range of immediates) and word-aligned.
+    assert!(size_of::<I24F40>() == 8 && align_of::<Sample<I24F40, UNROLLED>>() >= 4);
+    assert!(size_of::<Sample<I24F40, UNROLLED>>() < 1024);
 };
 
 /// `I32F32` from its two words (`lo`, `hi`).
@@ -356,11 +361,8 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
     next: &[u8],
     tick: u64,
 ) -> Sample<I32F32, A> {
-    if A > UNROLLED
-        || next.len() < A * size_of::<AxisState<Q40>>()
-        || !next.as_ptr().addr().is_multiple_of(4)
-    {
-        return portable::switch_sample_bytes(state, next, tick);
+    if !aligned_record::<A>(next) {
+        return unaligned::switch_sample_bytes(state, next, tick);
     }
     let mut s = blank(tick);
     let mut st = state.as_mut_ptr();
@@ -373,4 +375,254 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
         each_axis!(A, axis_switch, (&mut st, &mut nx), &mut s);
     }
     s
+}
+
+/// Byte offset of axis `K`'s value in the native sample's array at `array`.
+const fn at<const K: usize>(array: usize) -> usize {
+    array + K * size_of::<I24F40>()
+}
+
+/// Axis `K` of a full tick in the accumulator's format: the old `p`, `v` and `a` stored to
+/// `o` straight from the loaded registers (no rounding), the six additions of
+/// [`portable::step_whole`], the state written back; `*st` moves to the next axis.
+///
+/// Per axis: `ldmia` of the position chain (8 words, `st` then points to the velocity),
+/// one `strd`, three `adds`/`adc` pairs, `stmdb` of the chain back; `ldm` of the velocity
+/// chain and the acceleration (10 words), two `strd`, three pairs, `stmia` back (unchanged
+/// values rewritten): 19 instructions.
+///
+/// # Safety
+/// `*st` points to axis `K` of a readable and writable `[AxisState<Q40>; A]`, `o` to a
+/// writable `Sample<I24F40, A>`, `K < A`.
+#[inline(always)]
+unsafe fn axis_native<const A: usize, const K: usize>(
+    st: &mut *mut AxisState<Q40>,
+    o: *mut Sample<I24F40, A>,
+) {
+    // SAFETY: the caller's contract; the asm touches the 72 bytes at `*st`, axis K's three
+    // slots of `*o`, and the declared registers.
+    unsafe {
+        asm!(
+            "ldmia {st}!, {{r0, r1, r2, r3, r4, r5, r8, r9}}",
+            "strd r0, r1, [{o}, #{x}]",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "adds r2, r2, r4",
+            "adc r3, r3, r5",
+            "adds r4, r4, r8",
+            "adc r5, r5, r9",
+            "stmdb {st}, {{r0, r1, r2, r3, r4, r5, r8, r9}}",
+            "ldm {st}, {{r0, r1, r2, r3, r4, r5, r8, r9, r12, lr}}",
+            "strd r0, r1, [{o}, #{v}]",
+            "strd r8, r9, [{o}, #{a}]",
+            "adds r0, r0, r2",
+            "adc r1, r1, r3",
+            "adds r2, r2, r4",
+            "adc r3, r3, r5",
+            "adds r8, r8, r12",
+            "adc r9, r9, lr",
+            "stmia {st}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12, lr}}",
+            st = inout(reg) *st,
+            o = in(reg) o,
+            x = const at::<K>(offset_of!(Sample<I24F40, A>, position)),
+            v = const at::<K>(offset_of!(Sample<I24F40, A>, velocity)),
+            a = const at::<K>(offset_of!(Sample<I24F40, A>, acceleration)),
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _, out("r12") _, out("lr") _,
+            options(nostack),
+        );
+    }
+}
+
+/// Copies the 18 words of the axis state at `{nx}` to `{st}` in two transfers of nine
+/// (`r0`–`r5`, `r8`, `r9`, `r12`), moving both pointers to the next axis.
+macro_rules! copy_axis_asm {
+    () => {
+        concat!(
+            "ldmia {nx}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12}}\n",
+            "stmia {st}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12}}\n",
+            "ldmia {nx}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12}}\n",
+            "stmia {st}!, {{r0, r1, r2, r3, r4, r5, r8, r9, r12}}\n",
+        )
+    };
+}
+
+/// Axis `K` of a piece switch in the accumulator's format: `p`, `v` and `a` of the current
+/// state stored to `o`, then the next piece's state `*nx` copied over it; both pointers move
+/// to the next axis (10 instructions).
+///
+/// # Safety
+/// As [`axis_native`], and `*nx` points to a readable `AxisState<Q40>` (word-aligned) not
+/// overlapping `*st`.
+#[inline(always)]
+unsafe fn axis_switch_native<const A: usize, const K: usize>(
+    (st, nx): (&mut *mut AxisState<Q40>, &mut *const AxisState<Q40>),
+    o: *mut Sample<I24F40, A>,
+) {
+    // SAFETY: the caller's contract: reads 72 bytes at `*nx` and `*st`, writes 72 at `*st`
+    // and axis K's slots of `*o`.
+    unsafe {
+        asm!(
+            "ldrd r0, r1, [{st}]",
+            "ldrd r2, r3, [{st}, #32]",
+            "ldrd r4, r5, [{st}, #56]",
+            "strd r0, r1, [{o}, #{x}]",
+            "strd r2, r3, [{o}, #{v}]",
+            "strd r4, r5, [{o}, #{a}]",
+            copy_axis_asm!(),
+            st = inout(reg) *st,
+            nx = inout(reg) *nx,
+            o = in(reg) o,
+            x = const at::<K>(offset_of!(Sample<I24F40, A>, position)),
+            v = const at::<K>(offset_of!(Sample<I24F40, A>, velocity)),
+            a = const at::<K>(offset_of!(Sample<I24F40, A>, acceleration)),
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _, out("r12") _,
+            options(nostack),
+        );
+    }
+}
+
+/// Axis `K` of a position-only piece switch: the current `p` rounded to `I32F32` into `o`,
+/// then the next piece's state `*nx` copied over the state (11 instructions).
+///
+/// # Safety
+/// As [`axis_switch_native`], with `o` a writable `[I32F32; A]`.
+#[inline(always)]
+unsafe fn axis_switch_position<const A: usize, const K: usize>(
+    (st, nx): (&mut *mut AxisState<Q40>, &mut *const AxisState<Q40>),
+    o: *mut [I32F32; A],
+) {
+    // SAFETY: as in `axis_switch_native` (axis K's slot of `*o`).
+    unsafe {
+        asm!(
+            "ldrd r0, r1, [{st}]",
+            round_asm!("r0", "r1", "r0", "r1"),
+            "strd r0, r1, [{o}, #{x}]",
+            copy_axis_asm!(),
+            st = inout(reg) *st,
+            nx = inout(reg) *nx,
+            o = in(reg) o,
+            x = const K * size_of::<I32F32>(),
+            out("r0") _, out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _, out("r12") _,
+            options(nostack),
+        );
+    }
+}
+
+/// `true` when `next` holds the `A` states word-aligned, as `ldmia` reads them.
+#[inline(always)]
+fn aligned_record<const A: usize>(next: &[u8]) -> bool {
+    A <= UNROLLED
+        && next.len() >= A * size_of::<AxisState<Q40>>()
+        && next.as_ptr().addr().is_multiple_of(4)
+}
+
+/// [`portable::tick_native`] for `Q40`.
+#[inline(always)]
+pub(crate) fn tick_native<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    tick: u64,
+    out: &mut Sample<I24F40, A>,
+) {
+    if A > UNROLLED {
+        return portable::tick_native(state, tick, out);
+    }
+    out.tick = tick;
+    let o: *mut Sample<I24F40, A> = out;
+    let mut st = state.as_mut_ptr();
+    // SAFETY: `st` walks the A states of `state` (exclusive borrow), one axis per call; `o`
+    // is the exclusively borrowed `out`.
+    unsafe {
+        each_axis!(A, axis_native, &mut st, o);
+    }
+}
+
+/// [`portable::switch_native`] for `Q40`.
+#[inline(always)]
+pub(crate) fn switch_native<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    next: &[AxisState<Q40>; A],
+    tick: u64,
+    out: &mut Sample<I24F40, A>,
+) {
+    if A > UNROLLED {
+        return portable::switch_native(state, next, tick, out);
+    }
+    out.tick = tick;
+    let o: *mut Sample<I24F40, A> = out;
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr();
+    // SAFETY: as in `tick_native`; `nx` walks `next` (a shared borrow, so it cannot overlap
+    // the exclusively borrowed `state`).
+    unsafe {
+        each_axis!(A, axis_switch_native, (&mut st, &mut nx), o);
+    }
+}
+
+/// [`portable::switch_native_bytes`] for `Q40`: a word-aligned record is copied as in
+/// [`switch_native`] (see [`switch_sample_bytes`]), any other is decoded by the portable
+/// kernel.
+#[inline(always)]
+pub(crate) fn switch_native_bytes<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    next: &[u8],
+    tick: u64,
+    out: &mut Sample<I24F40, A>,
+) {
+    if !aligned_record::<A>(next) {
+        return unaligned::switch_native_bytes(state, next, tick, out);
+    }
+    out.tick = tick;
+    let o: *mut Sample<I24F40, A> = out;
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr().cast::<AxisState<Q40>>();
+    // SAFETY: as in `switch_native`; `nx` points to at least `A · 72` readable bytes,
+    // word-aligned (`aligned_record`), only read by `ldmia`/`ldrd`. Any bits are a valid
+    // `Q40`.
+    unsafe {
+        each_axis!(A, axis_switch_native, (&mut st, &mut nx), o);
+    }
+}
+
+/// [`portable::switch_position`] for `Q40`.
+#[inline(always)]
+pub(crate) fn switch_position<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    next: &[AxisState<Q40>; A],
+) -> [I32F32; A] {
+    if A > UNROLLED {
+        return portable::switch_position(state, next);
+    }
+    let mut out = MaybeUninit::<[I32F32; A]>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr();
+    // SAFETY: as in `switch_native`; the A axis kernels write all A positions of `out`.
+    unsafe {
+        each_axis!(A, axis_switch_position, (&mut st, &mut nx), o);
+        out.assume_init()
+    }
+}
+
+/// [`portable::switch_position_bytes`] for `Q40` (a word-aligned record as in
+/// [`switch_position`], any other by the portable kernel).
+#[inline(always)]
+pub(crate) fn switch_position_bytes<const A: usize>(
+    state: &mut [AxisState<Q40>; A],
+    next: &[u8],
+) -> [I32F32; A] {
+    if !aligned_record::<A>(next) {
+        return unaligned::switch_position_bytes(state, next);
+    }
+    let mut out = MaybeUninit::<[I32F32; A]>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr().cast::<AxisState<Q40>>();
+    // SAFETY: as in `switch_native_bytes`; the A axis kernels write all A positions.
+    unsafe {
+        each_axis!(A, axis_switch_position, (&mut st, &mut nx), o);
+        out.assume_init()
+    }
 }

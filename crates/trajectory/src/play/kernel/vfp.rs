@@ -18,7 +18,7 @@
 use core::arch::asm;
 use core::mem::{MaybeUninit, align_of, offset_of, size_of};
 
-use super::{UNROLLED, portable};
+use super::{UNROLLED, portable, unaligned};
 use crate::num::Number;
 use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
@@ -230,11 +230,8 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
     next: &[u8],
     tick: u64,
 ) -> Sample<f32, A> {
-    if A > UNROLLED
-        || next.len() < A * size_of::<AxisState<f32>>()
-        || !next.as_ptr().addr().is_multiple_of(4)
-    {
-        return portable::switch_sample_bytes(state, next, tick);
+    if !aligned_record::<A>(next) {
+        return unaligned::switch_sample_bytes(state, next, tick);
     }
     let mut out = MaybeUninit::<Sample<f32, A>>::uninit();
     let o = out.as_mut_ptr();
@@ -246,6 +243,149 @@ pub(crate) fn switch_sample_bytes<const A: usize>(
     unsafe {
         (&raw mut (*o).tick).write(tick);
         each_axis!(A, axis_switch, (&mut st, &mut nx), o);
+        out.assume_init()
+    }
+}
+
+/// Axis `K` of a position-only piece switch: the current position to `o`, then the next
+/// piece's state `*nx` copied over the state; both pointers move to the next axis (four
+/// instructions).
+///
+/// # Safety
+/// As [`axis_switch`], with `o` a writable `[f32; A]`.
+#[inline(always)]
+unsafe fn axis_switch_position<const A: usize, const K: usize>(
+    (st, nx): (&mut *mut AxisState<f32>, &mut *const AxisState<f32>),
+    o: *mut [f32; A],
+) {
+    // SAFETY: as in `axis_switch` (axis K's slot of `*o`).
+    unsafe {
+        asm!(
+            "vldr s0, [{st}]",
+            "vstr s0, [{o}, #{x}]",
+            "vldmia {nx}!, {{s0-s8}}",
+            "vstmia {st}!, {{s0-s8}}",
+            st = inout(reg) *st,
+            nx = inout(reg) *nx,
+            o = in(reg) o,
+            x = const at::<K>(0),
+            out("s0") _, out("s1") _, out("s2") _, out("s3") _, out("s4") _,
+            out("s5") _, out("s6") _, out("s7") _, out("s8") _,
+            options(nostack),
+        );
+    }
+}
+
+/// `true` when `next` holds the `A` states word-aligned, as `vldmia` reads them.
+#[inline(always)]
+fn aligned_record<const A: usize>(next: &[u8]) -> bool {
+    A <= UNROLLED
+        && next.len() >= A * size_of::<AxisState<f32>>()
+        && next.as_ptr().addr().is_multiple_of(4)
+}
+
+/// [`portable::tick_native`] for `f32`: [`tick_sample`] written to `out` in place.
+#[inline(always)]
+pub(crate) fn tick_into<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    tick: u64,
+    out: &mut Sample<f32, A>,
+) {
+    if A > UNROLLED {
+        return portable::tick_native(state, tick, out);
+    }
+    out.tick = tick;
+    let o: *mut Sample<f32, A> = out;
+    let mut st = state.as_mut_ptr();
+    // SAFETY: `st` walks the A states of `state` (exclusive borrow); `o` is the exclusively
+    // borrowed `out`.
+    unsafe {
+        each_axis!(A, axis_sample, &mut st, o);
+    }
+}
+
+/// [`portable::switch_native`] for `f32`: [`switch_sample`] written to `out` in place.
+#[inline(always)]
+pub(crate) fn switch_into<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    next: &[AxisState<f32>; A],
+    tick: u64,
+    out: &mut Sample<f32, A>,
+) {
+    if A > UNROLLED {
+        return portable::switch_native(state, next, tick, out);
+    }
+    out.tick = tick;
+    let o: *mut Sample<f32, A> = out;
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr();
+    // SAFETY: as in `tick_into`; `nx` walks `next` (a shared borrow, so it cannot overlap
+    // the exclusively borrowed `state`).
+    unsafe {
+        each_axis!(A, axis_switch, (&mut st, &mut nx), o);
+    }
+}
+
+/// [`portable::switch_native_bytes`] for `f32`: a word-aligned record as in
+/// [`switch_into`], any other by the portable kernel.
+#[inline(always)]
+pub(crate) fn switch_bytes_into<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    next: &[u8],
+    tick: u64,
+    out: &mut Sample<f32, A>,
+) {
+    if !aligned_record::<A>(next) {
+        return unaligned::switch_native_bytes(state, next, tick, out);
+    }
+    out.tick = tick;
+    let o: *mut Sample<f32, A> = out;
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr().cast::<AxisState<f32>>();
+    // SAFETY: as in `switch_into`; `nx` points to at least `A · 36` readable bytes,
+    // word-aligned (`aligned_record`), only read by `vldmia`. Any bits are a valid `f32`.
+    unsafe {
+        each_axis!(A, axis_switch, (&mut st, &mut nx), o);
+    }
+}
+
+/// [`portable::switch_position`] for `f32`.
+#[inline(always)]
+pub(crate) fn switch_position<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    next: &[AxisState<f32>; A],
+) -> [f32; A] {
+    if A > UNROLLED {
+        return portable::switch_position(state, next);
+    }
+    let mut out = MaybeUninit::<[f32; A]>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr();
+    // SAFETY: as in `switch_into`; the A axis kernels write all A positions of `out`.
+    unsafe {
+        each_axis!(A, axis_switch_position, (&mut st, &mut nx), o);
+        out.assume_init()
+    }
+}
+
+/// [`portable::switch_position_bytes`] for `f32` (a word-aligned record as in
+/// [`switch_position`], any other by the portable kernel).
+#[inline(always)]
+pub(crate) fn switch_position_bytes<const A: usize>(
+    state: &mut [AxisState<f32>; A],
+    next: &[u8],
+) -> [f32; A] {
+    if !aligned_record::<A>(next) {
+        return unaligned::switch_position_bytes(state, next);
+    }
+    let mut out = MaybeUninit::<[f32; A]>::uninit();
+    let o = out.as_mut_ptr();
+    let mut st = state.as_mut_ptr();
+    let mut nx = next.as_ptr().cast::<AxisState<f32>>();
+    // SAFETY: as in `switch_bytes_into`; the A axis kernels write all A positions.
+    unsafe {
+        each_axis!(A, axis_switch_position, (&mut st, &mut nx), o);
         out.assume_init()
     }
 }

@@ -1,0 +1,249 @@
+//! The ticks off the sampler's fast path: the piece switch (the last tick of a piece at full
+//! feed, which outputs its sample and loads the next piece in the same pass), the catch-up of
+//! the chains that position-only ticks leave behind, the end, the standstill, and
+//! interpolation under a feed override or a ramp.
+
+use super::form::{Form, Native, Rounded};
+use super::{Kernel, Sampler, SamplerState};
+use crate::num::Number;
+use crate::path::view::Source;
+use crate::path::{Newton, Sample};
+
+impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
+    /// A tick of [`next`](Self::next) off the fast path: the last tick of a piece at full
+    /// feed ([`switch`](Self::switch)), or [`next_other`](Self::next_other). Out of line
+    /// and with a small frame: the switch is the costliest tick at full feed.
+    #[inline(never)]
+    pub(super) fn next_edge(&mut self) -> Sample<N::Out, A> {
+        if self.switches() {
+            let (tick, source) = self.switch();
+            return match source {
+                Source::State(next) => N::switch_sample(&mut self.state, next, tick),
+                Source::Record(bytes) => N::switch_sample_bytes(&mut self.state, bytes, tick),
+            };
+        }
+        self.next_other::<Rounded>()
+    }
+
+    /// [`next_edge`](Self::next_edge) for [`next_into`](Self::next_into): the piece switch
+    /// writes `out` in place.
+    #[inline(never)]
+    pub(super) fn next_edge_into(&mut self, out: &mut Sample<N::Native, A>) {
+        if self.switches() {
+            let (tick, source) = self.switch();
+            match source {
+                Source::State(next) => N::switch_native(&mut self.state, next, tick, out),
+                Source::Record(bytes) => {
+                    N::switch_native_bytes(&mut self.state, bytes, tick, out);
+                }
+            }
+        } else {
+            self.next_other_into(out);
+        }
+    }
+
+    /// [`next_edge`](Self::next_edge) for [`next_position`](Self::next_position): a piece
+    /// switch loads fresh chains, so the lagging ones need no catching up, and it outputs
+    /// the positions only.
+    #[inline(never)]
+    pub(super) fn next_edge_position(&mut self) -> [N::Out; A] {
+        if self.left == 1 && self.on_grid {
+            let (_, source) = self.switch();
+            return match source {
+                Source::State(next) => N::switch_position(&mut self.state, next),
+                Source::Record(bytes) => N::switch_position_bytes(&mut self.state, bytes),
+            };
+        }
+        self.next_other_position()
+    }
+
+    /// `true` when this tick is a piece switch at full feed (the last tick of a piece, on
+    /// the tick grid), after catching the chains up.
+    #[inline(always)]
+    fn switches(&mut self) -> bool {
+        if self.chains != self.left {
+            self.catch_up();
+        }
+        self.left == 1 && self.on_grid
+    }
+
+    /// [`next_other`](Self::next_other) in the accumulator's format, copied to `out`.
+    #[inline(never)]
+    fn next_other_into(&mut self, out: &mut Sample<N::Native, A>) {
+        *out = self.next_other::<Native>();
+    }
+
+    /// [`next_other`](Self::next_other)'s positions (the chains caught up first).
+    #[inline(never)]
+    fn next_other_position(&mut self) -> [N::Out; A] {
+        self.catch_up();
+        self.next_other::<Rounded>().position
+    }
+
+    /// Steps the velocity and acceleration chains over the `chains − left` ticks that
+    /// position-only ticks left out, in closed form (Newton's forward formula at the integer
+    /// offset `m`: `v += m·Δv¹ + C(m,2)·Δv²`, `Δv¹ += m·Δv²`, `a += m·Δa`): exact in `Q40`
+    /// (integer products, the same bits as `m` steps), within rounding in floats. Constant
+    /// time.
+    #[inline]
+    fn catch_up(&mut self) {
+        let lag = self.chains.wrapping_sub(self.left);
+        self.chains = self.left;
+        if lag == 0 {
+            return;
+        }
+        let m = i64::from(lag);
+        let pairs = m.wrapping_mul(m - 1) / 2;
+        for s in &mut self.state {
+            s.velocity =
+                s.velocity + s.velocity_delta1.mul_int(m) + s.velocity_delta2.mul_int(pairs);
+            s.velocity_delta1 = s.velocity_delta1 + s.velocity_delta2.mul_int(m);
+            s.acceleration = s.acceleration + s.acceleration_delta.mul_int(m);
+        }
+    }
+
+    /// The bookkeeping of the last tick of a piece at full feed: returns that tick's number
+    /// and where the next piece's state is, for the format's switch kernel to output the
+    /// sample of the current state and load the next one in its place. After the last piece
+    /// come the path's two end states ([`Path`](crate::Path)'s `end_states`): the end
+    /// sample (one tick: piece `count`, [`at_end`](Self::at_end)) and the standstill (piece
+    /// `count + 1`, finished: [`current_mode`](Self::current_mode)), so that every tick at
+    /// full feed, the final one included, takes this path or the fast one.
+    #[inline(always)]
+    fn switch(&mut self) -> (u64, Source<'a, N, A>) {
+        // `left == 1`.
+        let tick = self.end.wrapping_sub(1);
+        let next = self.piece.wrapping_add(1);
+        let (source, ticks) = self.path.source(next).unwrap_or_else(|| {
+            // The end sample (one tick), or the standstill after it (`u32::MAX` ticks).
+            let past = next != self.path.piece_count();
+            let ends = &self.path.header().end_states;
+            let end = if past { &ends[1] } else { &ends[0] };
+            (Source::State(end), if past { u32::MAX } else { 1 })
+        });
+        // The next sample is tick `end`; `left` counts the new piece's ticks down (`local`
+        // and `piece_ticks` are derived from it when next needed).
+        self.end = self.end.wrapping_add(u64::from(ticks));
+        self.piece = next;
+        self.left = ticks;
+        self.chains = ticks;
+        (tick, source)
+    }
+
+    /// Every tick that is not a plain forward-differencing step or a piece switch at full
+    /// feed: the end sample after a feed change, standing at the end, interpolation (feed
+    /// override, ramps). Out of line, so that the common tick carries none of its code or
+    /// register saves.
+    #[inline(never)]
+    fn next_other<F: Form<N>>(&mut self) -> Sample<F::T, A> {
+        self.sync();
+        let sample = self.next_checked::<F>();
+        self.refresh();
+        sample
+    }
+
+    /// The tick by the full case analysis (it does not rely on [`left`](Self::left)).
+    #[inline(always)]
+    fn next_checked<F: Form<N>>(&mut self) -> Sample<F::T, A> {
+        let tick = self.end;
+        if self.mode == SamplerState::Finished {
+            self.end = tick.wrapping_add(1);
+            return Sample {
+                tick,
+                position: self.rest.map(F::of_out),
+                velocity: [F::ZERO; A],
+                acceleration: [F::ZERO; A],
+            };
+        }
+        if self.at_end() {
+            self.end = tick.wrapping_add(1);
+            self.mode = SamplerState::Finished;
+            let end = &self.path.header().end;
+            self.rest = end.position;
+            let (velocity, acceleration) = if self.feed.phi == N::ONE {
+                (end.velocity, end.acceleration)
+            } else {
+                let phi = self.feed.phi.to_out();
+                (
+                    end.velocity.map(|v| v * phi),
+                    end.acceleration.map(|a| a * phi * phi),
+                )
+            };
+            return Sample {
+                tick,
+                position: end.position.map(F::of_out),
+                velocity: velocity.map(F::of_out),
+                acceleration: acceleration.map(F::of_out),
+            };
+        }
+        self.end = tick.wrapping_add(1);
+        let tick_grid = self.feed.phi == N::ONE && self.theta == N::ZERO && self.feed.is_idle();
+        if tick_grid {
+            let sample = F::tick(&mut self.state, tick);
+            self.advance_index();
+            return sample;
+        }
+        self.interpolate::<F>(tick)
+    }
+
+    /// A tick in interpolation mode.
+    fn interpolate<F: Form<N>>(&mut self, tick: u64) -> Sample<F::T, A> {
+        let c = Newton::at(self.theta);
+        let phi = self.feed.phi;
+        let phi2 = phi * phi;
+        let phi_dot = self.feed.omega * self.path.header().ramp.rate;
+        let mut sample = Sample::splat(F::ZERO);
+        sample.tick = tick;
+        let mut positions = [N::ZERO; A];
+        let values = sample
+            .position
+            .iter_mut()
+            .zip(sample.velocity.iter_mut())
+            .zip(sample.acceleration.iter_mut())
+            .zip(positions.iter_mut());
+        for (s, (((x, y), z), q)) in self.state.iter().zip(values) {
+            let p = s.position + c.c1 * s.delta1 + c.c2 * s.delta2 + c.c3 * s.delta3;
+            let v = s.velocity + c.c1 * s.velocity_delta1 + c.c2 * s.velocity_delta2;
+            let acc = s.acceleration + c.c1 * s.acceleration_delta;
+            *q = p;
+            *x = F::of(p);
+            *y = F::of(phi * v);
+            *z = F::of(phi2 * acc + phi_dot * v);
+        }
+        if self.mode == SamplerState::Aborting && self.feed.is_idle() && phi == N::ZERO {
+            // Stopped: this is the final sample.
+            self.mode = SamplerState::Finished;
+            self.rest = positions.map(Number::to_out);
+            return sample;
+        }
+        self.advance_feed();
+        sample
+    }
+
+    /// The feed ramp's step, then the playback point by `φ` (stepping the state when it
+    /// crosses a tick), and back on the tick grid when the ramp has returned to full feed.
+    fn advance_feed(&mut self) {
+        self.feed.step(&self.path.header().ramp);
+        // Invariant: shift + θ ∈ [0, 1), so the playback point stays inside the current
+        // tick interval of the current piece (θ may be negative after a step).
+        self.theta = self.theta + self.feed.phi;
+        if self.shift + self.theta >= N::ONE {
+            self.theta = self.theta - N::ONE;
+            for s in &mut self.state {
+                s.step();
+            }
+            self.advance_index();
+        }
+        // Back at full feed: shift the state onto the playback point, resume differencing.
+        if self.feed.phi == N::ONE && self.feed.is_idle() && self.theta != N::ZERO && !self.at_end()
+        {
+            let c = Newton::at(self.theta);
+            for s in &mut self.state {
+                *s = s.shifted(&c);
+            }
+            self.shift = self.shift + self.theta;
+            self.on_grid = self.shift == N::ZERO;
+            self.theta = N::ZERO;
+        }
+    }
+}
