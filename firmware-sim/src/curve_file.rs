@@ -649,8 +649,10 @@ mod tests {
         assert!(e.message.contains("4097 points") && e.message.contains("at most 4096"));
         let six = CurveFile::parse("kind = \"bezier\"\npoints = [[1,2,3,4,5,6]]").unwrap();
         assert_eq!(six.dim(), 6);
-        let e = err("kind = \"cubic-spline\"\npoints = [[1,2,3,4,5], [2,3,4,5,6]]");
+        let five = CurveFile::parse("kind = \"cubic-spline\"\npoints = [[1,2,3,4,5], [2,3,4,5,6]]");
+        assert_eq!(five.unwrap().dim(), 5);
+        let e = err("kind = \"cubic-spline\"\npoints = [[1,2,3,4,5,6,7], [2,3,4,5,6,7,8]]");
         assert_eq!(e.field, "points[0]");
-        assert!(e.message.contains("1 to 4 coordinates, not 5"), "{e}");
+        assert!(e.message.contains("1 to 6 coordinates"), "{e}");
     }
 }
