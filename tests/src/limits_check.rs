@@ -35,8 +35,8 @@
 //! * `e_v = r(v) + n·(r(Δv¹) + add(v)) + C(n,2)·(r(Δv²) + add(Δv¹)) + out`,
 //! * `e_a = r(a) + n·(r(Δa) + add(a)) + out`,
 //!
-//! (`r`, `add`: [`Number::rounding_error`], [`Number::addition_error`]; `out`:
-//! [`Number::OUT_ERROR`]), and `e_x` = [`Path::playback_bound`](strak_trajectory::PathHeader::playback_bound). Over `A` axes a norm moves
+//! (`r`, `add`: [`Number::rounding_error`](strak_trajectory::Number::rounding_error), [`Number::addition_error`](strak_trajectory::Number::addition_error); `out`:
+//! [`Number::OUT_ERROR`](strak_trajectory::Number::OUT_ERROR)), and `e_x` = [`Path::playback_bound`](strak_trajectory::PathHeader::playback_bound). Over `A` axes a norm moves
 //! by at most `√A` times the per-axis error, a difference of two samples by twice that, so
 //!
 //! * speed: `√A·e_v` sampled, `2√A·e_x/T` by differences;
