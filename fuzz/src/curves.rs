@@ -13,15 +13,18 @@
 //!   domain ("evaluation has no error path"; constructors reject what could overflow);
 //! * arc length, arc-length tables, flattening and continuity classification return (an
 //!   error or a value) within the work bound each documents, counted in evaluations of the
-//!   curve ([`Counted`]; counts, unlike times, do not depend on the machine's load).
-
-use std::cell::Cell;
+//!   curve ([`Counted`]; counts, unlike times, do not depend on the machine's load), at
+//!   tolerances relative to the curve's size (`10⁻⁵..1` for flattening, `10⁻⁹..10⁻¹` for
+//!   arc length);
+//! * a tolerance below the curve's resolution is an error at once
+//!   (`ToleranceBelowResolution` after the resolution check's evaluations).
 
 use strak_curves::{
-    ArcLengthTable, BSpline, Bezier, BezierChain, CubicSpline, HermiteSegment, HermiteSpline,
-    I16F16, I32F32, KnotVector, LagrangeCurve, NodeSource, Nurbs, ParabolicBlend, ParamCurve,
-    ParamCurveDeriv, Parameterization, PieceDeriv, Point, PowerSpline, Scalar, ScalarOf,
-    SplineBoundary, arc_length, basis::MonomialCurve, classify_breaks, flatten, flatten_count,
+    ArcLengthTable, BSpline, Bezier, BezierChain, Counted, CubicSpline, Error, HermiteSegment,
+    HermiteSpline, I16F16, I32F32, KnotVector, LagrangeCurve, NodeSource, Nurbs, ParabolicBlend,
+    ParamCurve, Parameterization, PieceDeriv, Point, PowerSpline, Scalar, ScalarOf, SplineBoundary,
+    arc_length, basis::MonomialCurve, classify_breaks, flatten, flatten_count, length_resolution,
+    resolution,
 };
 
 use crate::decode::Bytes;
@@ -544,90 +547,125 @@ where
     analysis(what, c, b)
 }
 
-/// A curve that counts its evaluations (points and derivatives of any order).
-#[derive(Debug)]
-pub struct Counted<'a, C> {
-    curve: &'a C,
-    calls: Cell<u64>,
+/// Runs `f` on the counted curve and fails when it evaluates the curve more than `bound`
+/// times.
+fn bounded<C, T>(
+    counted: &Counted<'_, C>,
+    what: &str,
+    call: &str,
+    bound: u64,
+    f: impl FnOnce(&Counted<'_, C>) -> T,
+) -> Result<T, Violation> {
+    counted.take();
+    let v = f(counted);
+    let calls = counted.take();
+    if calls > bound {
+        return Err(violation!(
+            "{what}: {call} evaluated the curve {calls} times, more than its bound {bound}"
+        ));
+    }
+    Ok(v)
 }
 
-impl<'a, C: PieceDeriv> Counted<'a, C> {
-    fn new(curve: &'a C) -> Self {
-        Self {
-            curve,
-            calls: Cell::new(0),
+/// `size · 10^lo ..= size · 10^hi`, now and then any `f64`.
+fn relative(b: &mut Bytes<'_>, size: f64, lo: i32, hi: i32) -> f64 {
+    if b.one_in(32) {
+        b.raw()
+    } else {
+        size * b.magnitude(lo, hi)
+    }
+}
+
+/// The largest coordinate of the curve at its piece boundaries and midpoints.
+fn size<C: ParamCurve>(c: &C) -> f64
+where
+    ScalarOf<C>: FuzzScalar,
+{
+    let mut m = 0.0_f64;
+    for i in 0..c.piece_count() {
+        let (lo, hi) = c.piece_domain(i);
+        let mid = ScalarOf::<C>::from_fuzz((lo.to_f64() + hi.to_f64()) / 2.0);
+        for u in [lo, mid, hi] {
+            let p = c.eval(u);
+            for k in 0..<C::Point as Point>::DIM {
+                m = m.max(p.coord(k).to_f64().abs());
+            }
         }
     }
+    m
+}
 
-    fn tick(&self) {
-        self.calls.set(self.calls.get() + 1);
-    }
-
-    /// Runs `f` on the counted curve and fails when it evaluates the curve more than `bound`
-    /// times.
-    fn bounded<T>(
-        &self,
-        what: &str,
-        call: &str,
-        bound: u64,
-        f: impl FnOnce(&Self) -> T,
-    ) -> Result<T, Violation> {
-        self.calls.set(0);
-        let v = f(self);
-        let calls = self.calls.get();
-        if calls > bound {
+/// A tolerance below the curve's resolution (a share `0.001 + 0.998·t` of it) is an error
+/// at once: flattening and arc length return `ToleranceBelowResolution` after the
+/// resolution check.
+fn below_resolution<C: PieceDeriv>(
+    what: &str,
+    counted: &Counted<'_, C>,
+    check: u64,
+    t: f64,
+) -> Result<(), Violation>
+where
+    ScalarOf<C>: FuzzScalar,
+{
+    let share = 0.001 + 0.998 * t;
+    let tolerance = resolution(counted) * share;
+    let accuracy = length_resolution(counted) * share;
+    let flat = bounded(
+        counted,
+        what,
+        &format!("flatten_count({tolerance:e})"),
+        check,
+        |c| flatten_count(c, tolerance),
+    )?;
+    let length = bounded(
+        counted,
+        what,
+        &format!("arc_length({accuracy:e})"),
+        check,
+        |c| arc_length(c, accuracy),
+    )?;
+    let cases = [
+        ("flatten_count", tolerance, flat.map(|_| ())),
+        ("arc_length", accuracy, length.map(|_| ())),
+    ];
+    for (call, tol, r) in cases {
+        // A curve of zero size has a resolution of 0, one whose length overflows an infinite
+        // length resolution: then `tol` itself is invalid.
+        let expected = if tol.is_finite() && tol > 0.0 {
+            matches!(r, Err(Error::ToleranceBelowResolution { .. }))
+        } else {
+            r == Err(Error::InvalidArgument)
+        };
+        if !expected {
             return Err(violation!(
-                "{what}: {call} evaluated the curve {calls} times, more than its bound {bound}"
+                "{what}: {call}({tol:e}) below the resolution (share {share}) returned {r:?}"
             ));
         }
-        Ok(v)
     }
-}
-
-impl<C: PieceDeriv> ParamCurve for Counted<'_, C> {
-    type Point = C::Point;
-    fn domain(&self) -> (ScalarOf<C>, ScalarOf<C>) {
-        self.curve.domain()
-    }
-    fn eval(&self, u: ScalarOf<C>) -> C::Point {
-        self.tick();
-        self.curve.eval(u)
-    }
-    fn piece_count(&self) -> usize {
-        self.curve.piece_count()
-    }
-    fn piece_domain(&self, i: usize) -> (ScalarOf<C>, ScalarOf<C>) {
-        self.curve.piece_domain(i)
-    }
-}
-
-impl<C: PieceDeriv> ParamCurveDeriv for Counted<'_, C> {
-    fn deriv(&self, u: ScalarOf<C>, k: usize) -> C::Point {
-        self.tick();
-        self.curve.deriv(u, k)
-    }
-}
-
-impl<C: PieceDeriv> PieceDeriv for Counted<'_, C> {
-    fn piece_deriv(&self, piece: usize, u: ScalarOf<C>, k: usize) -> C::Point {
-        self.tick();
-        self.curve.piece_deriv(piece, u, k)
-    }
+    Ok(())
 }
 
 fn analysis<C: PieceDeriv>(what: &str, c: &C, b: &mut Bytes<'_>) -> Result<(), Violation>
 where
     ScalarOf<C>: FuzzScalar,
 {
-    let accuracy = b.positive(-12, 0);
-    let tolerance = b.positive(-10, 1);
     let counted = Counted::new(c);
     let pieces = c.piece_count() as u64;
     // The resolution check every routine starts with.
     let check = 2 * pieces + 2;
+    if b.one_in(8) {
+        return below_resolution(what, &counted, check, b.unit());
+    }
+    // Tolerances relative to the curve's size. Finer ones (down to the resolution) have the
+    // same work bounds, but one call may then take seconds; the tests of the bounds
+    // (tests/tests/analysis_on_curves.rs) run those.
+    let size = size(c).max(1e-6);
+    let accuracy = relative(b, size, -9, -1);
+    let tolerance = relative(b, size, -5, 0);
     let length_bound = check + pieces * ARC_LENGTH_PER_PIECE;
     if b.one_in(2) {
-        let length = counted.bounded(
+        let length = bounded(
+            &counted,
             what,
             &format!("arc_length({accuracy:e})"),
             length_bound,
@@ -640,7 +678,8 @@ where
         }
         const SAMPLES: usize = 16;
         let table_bound = check + 2 * (SAMPLES as u64 - 1) * length_bound + 3 * SAMPLES as u64;
-        let table = counted.bounded(
+        let table = bounded(
+            &counted,
             what,
             &format!("ArcLengthTable::new({accuracy:e})"),
             table_bound,
@@ -658,14 +697,16 @@ where
         }
     } else {
         let flatten_bound = check + FLATTEN_CERTIFICATES;
-        let _ = counted.bounded(
+        let _ = bounded(
+            &counted,
             what,
             &format!("flatten_count({tolerance:e})"),
             flatten_bound,
             |c| flatten_count(c, tolerance),
         )?;
         let mut out = [<C::Point as Point>::zero(); 32];
-        let n = counted.bounded(
+        let n = bounded(
+            &counted,
             what,
             &format!("flatten({tolerance:e})"),
             flatten_bound + out.len() as u64,
@@ -679,7 +720,8 @@ where
             ));
         }
         let joins = pieces.saturating_sub(1);
-        let _ = counted.bounded(
+        let _ = bounded(
+            &counted,
             what,
             &format!("classify_breaks({tolerance:e})"),
             8 * joins,

@@ -36,10 +36,12 @@
 
 mod arclength;
 mod continuity;
+mod counted;
 mod flatten;
 
 pub use arclength::*;
 pub use continuity::*;
+pub use counted::Counted;
 pub use flatten::*;
 
 use crate::curve::{ParamCurve, ScalarOf};
