@@ -155,11 +155,11 @@ pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     (omega, alpha)
 }
 
-/// Writes [`PathHeader::end_states`] from the header's end, in place.
+/// Writes [`PathHeader::end_state`] from the header's end, in place.
 ///
 /// # Errors
 /// [`Error::OutOfRange`] when a sample value has no exact accumulator value.
-fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) -> Result<(), Error> {
+fn write_end_state<N: Number, const A: usize>(header: &mut PathHeader<N, A>) -> Result<(), Error> {
     let exact = |v: N::Out| {
         let n = N::from_out(v);
         if n.to_out() == v {
@@ -169,10 +169,8 @@ fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) ->
         }
     };
     let end = &header.end;
-    let [sample, rest] = &mut header.end_states;
-    for (a, (e, r)) in sample.iter_mut().zip(rest.iter_mut()).enumerate() {
+    for (a, e) in header.end_state.iter_mut().enumerate() {
         *e = AxisState::ZERO;
-        *r = AxisState::ZERO;
         if let (Some(&x), Some(&v), Some(&acc)) = (
             end.position.get(a),
             end.velocity.get(a),
@@ -181,7 +179,6 @@ fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) ->
             e.position = exact(x)?;
             e.velocity = exact(v)?;
             e.acceleration = exact(acc)?;
-            r.position = e.position;
         }
     }
     Ok(())
@@ -217,10 +214,9 @@ pub struct PathHeader<N: Number, const A: usize> {
     pub(crate) ticks: u32,
     pub(crate) meta: PathMeta,
     pub(crate) end: PathEnd<N::Out, A>,
-    /// The end as two pieces without motion, for the sampler's fast path: `[0]` the end
-    /// sample (the end's position, velocity and acceleration, zero differences), `[1]` the
-    /// standstill after it (the end position, everything else zero). Derived from `end`.
-    pub(crate) end_states: [[AxisState<N>; A]; 2],
+    /// The end sample as a piece state without motion, for the sampler's piece switch: the
+    /// end's position, velocity and acceleration, every difference zero. Derived from `end`.
+    pub(crate) end_state: [AxisState<N>; A],
     pub(crate) ramp: FeedRampLimits<N>,
     pub(crate) playback_bound: f64,
 }
@@ -245,7 +241,7 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
             velocity: [<N::Out as Scalar>::ZERO; A],
             acceleration: [<N::Out as Scalar>::ZERO; A],
         },
-        end_states: [[AxisState::ZERO; A]; 2],
+        end_state: [AxisState::ZERO; A],
         ramp: FeedRampLimits {
             alpha: N::ZERO,
             k_max: 1,
@@ -485,7 +481,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
 
     /// Checks the header's end (finite, in range, exactly representable by the
     /// accumulator, and continuing the last piece within the path's bounds) and completes
-    /// the header: tick count, end states, playback bound. `last` is the last piece's
+    /// the header: tick count, end state, playback bound. `last` is the last piece's
     /// length and the state of its axis `a` for each `a`.
     ///
     /// # Errors
@@ -515,7 +511,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
         for a in 0..A {
             check_continuation(&self.header.meta, end, a, ticks, &last(a))?;
         }
-        write_end_states(self.header)?;
+        write_end_state(self.header)?;
         self.header.ticks = self.next_start;
         self.header.playback_bound = self.playback_bound;
         Ok(())
