@@ -87,22 +87,25 @@ pub(crate) struct PieceBounds {
 }
 
 pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> PieceBounds {
-    let s = state.to_f64();
+    // Each value converted where it is used (no `f64` copy of the state in this frame, which
+    // lies below the blob validation's).
+    let abs = |x: N| x.to_f64().abs();
     let n = f64::from(ticks);
     let (c1, c2, c3) = (
         binomial_bound(n, 1),
         binomial_bound(n, 2),
         binomial_bound(n, 3),
     );
-    let m3 = s.delta3.abs();
-    let m2 = s.delta2.abs() + c1 * m3;
-    let m1 = s.delta1.abs() + c1 * s.delta2.abs() + c2 * m3;
-    let mf = s.position.abs() + c1 * s.delta1.abs() + c2 * s.delta2.abs() + c3 * m3;
-    let v2 = s.velocity_delta2.abs();
-    let v1 = s.velocity_delta1.abs() + c1 * v2;
-    let v0 = s.velocity.abs() + c1 * s.velocity_delta1.abs() + c2 * v2;
-    let a1 = s.acceleration_delta.abs();
-    let a0 = s.acceleration.abs() + c1 * a1;
+    let (d1, d2, m3) = (abs(state.delta1), abs(state.delta2), abs(state.delta3));
+    let m2 = d2 + c1 * m3;
+    let m1 = d1 + c1 * d2 + c2 * m3;
+    let mf = abs(state.position) + c1 * d1 + c2 * d2 + c3 * m3;
+    let v2 = abs(state.velocity_delta2);
+    let vd1 = abs(state.velocity_delta1);
+    let v1 = vd1 + c1 * v2;
+    let v0 = abs(state.velocity) + c1 * vd1 + c2 * v2;
+    let a1 = abs(state.acceleration_delta);
+    let a0 = abs(state.acceleration) + c1 * a1;
     // Error after i ≤ n ticks: r_f + i·r₁ + C(i,2)·r₂ + C(i,3)·(r₃ + add₂) + C(i,2)·add₁ + i·add_f
     // (r: rounding of the stored value, add: rounding of an addition; 0 in fixed-point).
     let r = N::rounding_error;
