@@ -853,7 +853,11 @@ fn check_icount(
         .map_err(|e| format!("cannot write {}: {e}", json.display()))?;
     println!("    wrote {}", json.display());
     icount::check(&measured, &budgets)?;
-    println!("<== instruction counts within {}", file.display());
+    icount::check_constant_time(&measured)?;
+    println!(
+        "<== instruction counts within {}; every playback case in constant time",
+        file.display()
+    );
     Ok(())
 }
 
