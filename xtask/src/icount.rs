@@ -82,6 +82,7 @@ pub(crate) fn write_budgets(measured: &[Measured]) -> String {
 pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, String> {
     let mut out = Vec::new();
     let mut calibrated = false;
+    let mut sampler = false;
     let mut done = None;
     for line in text.lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
@@ -112,6 +113,7 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
                     worst: num(worst)?,
                 });
             }
+            ["SAMPLER", n] => sampler = num(n)? > 0,
             ["DONE", n] => done = Some(num(n)?),
             [] => {}
             _ => return Err(format!("unexpected icount output: `{line}`")),
@@ -119,6 +121,11 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
     }
     if !calibrated {
         return Err("the icount firmware printed no calibration line".to_owned());
+    }
+    if !sampler {
+        return Err(
+            "the icount firmware reported no check of the sampler's entry points".to_owned(),
+        );
     }
     match done {
         Some(n) if usize::try_from(n).ok() == Some(out.len()) => Ok(out),
@@ -320,7 +327,7 @@ mod tests {
 
     #[test]
     fn output_parses_and_checks_the_calibration() {
-        let ok = "CAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n";
+        let ok = "SAMPLER 15000\nCAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n";
         let v = parse_output(ok, "t").unwrap();
         assert_eq!(
             v,
@@ -334,8 +341,10 @@ mod tests {
                 worst: 4
             }]
         );
-        let e = parse_output("CAL 154 6707 66\nDONE 0\n", "t").unwrap_err();
+        let e = parse_output("SAMPLER 1\nCAL 154 6707 66\nDONE 0\n", "t").unwrap_err();
         assert!(e.contains("calibration"), "{e}");
+        let e = parse_output("CAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n", "t").unwrap_err();
+        assert!(e.contains("entry points"), "{e}");
         assert!(parse_output("I a 1 2 3 10 4\nDONE 1\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nI a 1 2 3 10 4\nDONE 2\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nhello\n", "t").is_err());

@@ -325,7 +325,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// Constant time, no panic path (see [`Sampler`] for the operation counts). After the end (or an abort) it keeps returning the last position with zero
     /// velocity and acceleration.
     #[allow(clippy::should_implement_trait)]
-    #[inline]
+    #[inline(always)] // into the caller's tick handler: the tick and its piece switch make no call
     pub fn next(&mut self) -> Sample<N::Out, A> {
         if self.chains == self.left {
             if self.left > 1 {
@@ -373,7 +373,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// assert_eq!(s.position[0].to_num::<f64>(), 2.0);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    #[inline]
+    #[inline(always)] // into the caller's tick handler: the tick and its piece switch make no call
     pub fn next_into(&mut self, out: &mut Sample<N::Native, A>) {
         if self.chains == self.left {
             if self.left > 1 {
@@ -417,7 +417,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// assert_eq!(b.next().position, path.end_position());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    #[inline]
+    #[inline(always)] // into the caller's tick handler: the tick and its piece switch make no call
     pub fn next_position(&mut self) -> [N::Out; A] {
         if self.left > 1 {
             // `next`'s fast path, stepping the position chains only (the others catch up
