@@ -82,7 +82,6 @@ pub(crate) fn write_budgets(measured: &[Measured]) -> String {
 pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, String> {
     let mut out = Vec::new();
     let mut calibrated = false;
-    let mut sampler = false;
     let mut done = None;
     for line in text.lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
@@ -113,7 +112,9 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
                     worst: num(worst)?,
                 });
             }
-            ["SAMPLER", n] => sampler = num(n)? > 0,
+            ["SAMPLER", n] => {
+                num(n)?;
+            }
             ["DONE", n] => done = Some(num(n)?),
             [] => {}
             _ => return Err(format!("unexpected icount output: `{line}`")),
@@ -122,11 +123,6 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
     if !calibrated {
         return Err("the icount firmware printed no calibration line".to_owned());
     }
-    if !sampler {
-        return Err(
-            "the icount firmware reported no check of the sampler's entry points".to_owned(),
-        );
-    }
     match done {
         Some(n) if usize::try_from(n).ok() == Some(out.len()) => Ok(out),
         other => Err(format!(
@@ -134,6 +130,21 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
             out.len()
         )),
     }
+}
+
+/// The ticks over which the `icount` firmware found the sampler's entry points to agree, bit
+/// for bit (its `SAMPLER` line).
+///
+/// # Errors
+/// No such line, or one of no ticks.
+pub(crate) fn sampler_checked(text: &str) -> Result<u64, String> {
+    text.lines()
+        .find_map(|l| l.strip_prefix("SAMPLER "))
+        .and_then(|n| n.trim().parse::<u64>().ok())
+        .filter(|&n| n > 0)
+        .ok_or_else(|| {
+            "the icount firmware reported no check of the sampler's entry points".to_owned()
+        })
 }
 
 /// The verdict: every measured case needs a budget, and neither its median nor its max may
@@ -343,8 +354,11 @@ mod tests {
         );
         let e = parse_output("SAMPLER 1\nCAL 154 6707 66\nDONE 0\n", "t").unwrap_err();
         assert!(e.contains("calibration"), "{e}");
-        let e = parse_output("CAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n", "t").unwrap_err();
+        assert!(parse_output("SAMPLER x\nCAL 154 6707 64\nDONE 0\n", "t").is_err());
+        assert_eq!(sampler_checked(ok), Ok(15000));
+        let e = sampler_checked("CAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n").unwrap_err();
         assert!(e.contains("entry points"), "{e}");
+        assert!(sampler_checked("SAMPLER 0\n").is_err());
         assert!(parse_output("I a 1 2 3 10 4\nDONE 1\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nI a 1 2 3 10 4\nDONE 2\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nhello\n", "t").is_err());

@@ -828,6 +828,8 @@ fn check_icount(
         let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
         let cases =
             icount::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
+        let agreed = icount::sampler_checked(&text).map_err(|e| format!("{}: {e}", fw.label))?;
+        println!("    the sampler's entry points agree bit for bit over {agreed} ticks");
         print_counts(&cases);
         measured.extend(cases);
     }

@@ -1,7 +1,7 @@
-//! The ticks off the sampler's fast path: the piece switch (the last tick of a piece at full
-//! feed, which outputs its sample and loads the next piece in the same pass), the catch-up of
-//! the chains that position-only ticks leave behind, the end, the standstill, and
-//! interpolation under a feed override or a ramp.
+//! The ticks off the sampler's fast path: the catch-up of the chains that position-only ticks
+//! leave behind, the end after a feed change, the standstill after the end, and
+//! interpolation under a feed override or a ramp (the piece switch at full feed is
+//! [`switch`](super::switch)'s).
 
 use super::form::{Form, Native, Rounded};
 use super::{Kernel, Sampler, SamplerState};

@@ -51,8 +51,9 @@ pub enum SamplerState {
 /// # Two modes, both constant time
 /// * **Forward differencing** (feed 1, no ramp running): per tick and axis six additions
 ///   ([`AxisState::step`](crate::AxisState::step)); on the last tick of a piece a load of the
-///   next piece's state (copy) instead. The end sample and the standstill after it are
-///   played the same way (two pieces without motion). On Cortex-M cores with Thumb-2 the
+///   next piece's state (copy) instead, taken from the pieces still to come in order (no
+///   search). The end sample is played the same way (a piece of one tick without motion);
+///   its own tick finishes. On Cortex-M cores with Thumb-2 the
 ///   tick is a hand-scheduled kernel (`vldm`/`vstm` per axis in `f32`, `ldm`/`stm` and
 ///   `adds`/`adc` in `Q40`) with the same additions in the same order, so the same bits.
 /// * **Interpolation** (feed ≠ 1 or a ramp running): the playback point advances by the feed

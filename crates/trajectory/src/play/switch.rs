@@ -10,6 +10,7 @@
 //! state as a piece of one tick (the end sample); its tick, loading nothing new, finishes
 //! the playback, and every further tick is the standstill.
 
+use super::form::Rounded;
 use super::{Kernel, Sampler, SamplerState};
 use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
@@ -25,6 +26,16 @@ pub(super) enum After {
     /// Leaves the switch to [`Sampler::switch_other`]: a blob's records, or a switch off the
     /// tick grid.
     Other,
+}
+
+/// A switch the out-of-line piece switch makes ([`Sampler::switch_other`]).
+enum Other<'a> {
+    /// From a blob's record (its values); the number of the tick being played.
+    Record(u64, &'a [u8]),
+    /// Into the end state or at it (a blob's end); the number of the tick being played.
+    End(u64),
+    /// Off the tick grid: the tick is [`next_other`](Sampler::next_other)'s (a shifted load).
+    Shifted,
 }
 
 impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
@@ -85,24 +96,22 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         Some((u32::from_le_bytes(ticks.try_into().ok()?), values))
     }
 
-    /// `true` when [`switch_other`](Self::switch_other) loads a blob's record or the end
-    /// state (on the tick grid); `false` when the tick is
-    /// [`next_other`](Self::next_other)'s (a shifted load). Takes the record.
+    /// The bookkeeping of a switch that the inline switch leaves to the out-of-line ones: a
+    /// blob's next record, or its end (on the tick grid), or off the grid a shifted load
+    /// (the tick is then [`next_other`](Self::next_other)'s).
     #[inline(always)]
-    fn switch_other(&mut self) -> Option<Result<(u64, &'a [u8]), u64>> {
+    fn switch_other(&mut self) -> Other<'a> {
         if !self.on_grid {
-            return None;
+            return Other::Shifted;
         }
-        Some(match self.pop_record() {
-            Some((ticks, values)) => Ok((self.enter(ticks), values)),
-            None => {
-                self.records = &[];
-                Err(if self.ended {
-                    self.finish()
-                } else {
-                    self.enter_end()
-                })
-            }
+        if let Some((ticks, values)) = self.pop_record() {
+            return Other::Record(self.enter(ticks), values);
+        }
+        self.records = &[];
+        Other::End(if self.ended {
+            self.finish()
+        } else {
+            self.enter_end()
         })
     }
 
@@ -126,12 +135,12 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     #[inline(never)]
     fn switch_other_sample(&mut self) -> Sample<N::Out, A> {
         match self.switch_other() {
-            Some(Ok((tick, values))) => N::switch_sample_bytes(&mut self.state, values, tick),
-            Some(Err(tick)) => {
+            Other::Record(tick, values) => N::switch_sample_bytes(&mut self.state, values, tick),
+            Other::End(tick) => {
                 let end = self.end_state();
                 N::switch_sample(&mut self.state, end, tick)
             }
-            None => self.next_other::<super::form::Rounded>(),
+            Other::Shifted => self.next_other::<Rounded>(),
         }
     }
 
@@ -155,12 +164,14 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     #[inline(never)]
     fn switch_other_native(&mut self, out: &mut Sample<N::Native, A>) {
         match self.switch_other() {
-            Some(Ok((tick, values))) => N::switch_native_bytes(&mut self.state, values, tick, out),
-            Some(Err(tick)) => {
+            Other::Record(tick, values) => {
+                N::switch_native_bytes(&mut self.state, values, tick, out);
+            }
+            Other::End(tick) => {
                 let end = self.end_state();
                 N::switch_native(&mut self.state, end, tick, out);
             }
-            None => self.next_other_into(out),
+            Other::Shifted => self.next_other_into(out),
         }
     }
 
@@ -185,12 +196,139 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     #[inline(never)]
     fn switch_other_position(&mut self) -> [N::Out; A] {
         match self.switch_other() {
-            Some(Ok((_, values))) => N::switch_position_bytes(&mut self.state, values),
-            Some(Err(_)) => {
+            Other::Record(_, values) => N::switch_position_bytes(&mut self.state, values),
+            Other::End(_) => {
                 let end = self.end_state();
                 N::switch_position(&mut self.state, end)
             }
-            None => self.next_other_position(),
+            Other::Shifted => self.next_other_position(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::compile::testing::{Quintic, big_stack, helix};
+    use crate::compile::{CompileOptions, compile};
+    use crate::num::Q40;
+    use crate::path::{Path, PathBlob, PathView};
+    use crate::plan::Along;
+    use strak_curves::Scalar;
+
+    fn path<N: Kernel>() -> Path<N, 3, 512> {
+        compile(
+            &Along::new(&helix(2.0, 2.0, 1.0), &Quintic(0.5)),
+            10_000.0,
+            &CompileOptions::new().with_tolerance(1e-5),
+        )
+        .unwrap()
+    }
+
+    /// The index of the piece that holds tick `k` of `path` (the piece count from its end on).
+    fn piece_at<N: Kernel>(path: &Path<N, 3, 512>, k: u32) -> usize {
+        path.pieces()
+            .iter()
+            .position(|p| k < p.start() + p.ticks())
+            .unwrap_or(path.pieces().len())
+    }
+
+    /// At full feed every tick of `view` is a fast tick or an inline switch (in RAM) or a
+    /// record switch (a blob): after each, the current piece and the playback point are
+    /// those of the next tick, the end sample is a piece of one tick, and its own tick
+    /// finishes.
+    fn switches_at_full_feed<N: Kernel>(path: &Path<N, 3, 512>, view: PathView<'_, N, 3>) {
+        let mut s = Sampler::new(view);
+        let ticks = path.ticks();
+        for k in 0..ticks {
+            assert_eq!(s.piece(), piece_at(path, k), "tick {k}");
+            assert_eq!(s.progress(), f64::from(k), "tick {k}");
+            s.next_position();
+        }
+        // the end sample: the end state loaded, one tick long
+        assert!(s.ended && s.left == 1 && !s.is_finished());
+        assert_eq!(s.piece(), path.pieces().len());
+        assert_eq!(s.state, path.header.end_state);
+        let end = s.next();
+        assert_eq!(
+            (end.tick, end.position),
+            (u64::from(ticks), path.end_position())
+        );
+        assert_eq!(end.velocity, path.end_velocity());
+        assert!(s.is_finished() && s.left == 0);
+        // the standstill
+        let after = s.next();
+        assert_eq!(
+            (after.tick, after.position),
+            (u64::from(ticks) + 1, end.position)
+        );
+        assert!(after.velocity.iter().all(|v| Scalar::to_f64(*v) == 0.0));
+    }
+
+    fn full_feed<N: Kernel>() {
+        let path = path::<N>();
+        assert!(path.pieces().len() > 20);
+        switches_at_full_feed(&path, path.view());
+        let mut bytes = std::vec![0_u8; path.blob_len()];
+        path.to_bytes(&mut bytes).unwrap();
+        let blob = PathBlob::<N, 3>::from_bytes(&bytes).unwrap();
+        switches_at_full_feed(&path, blob.view());
+    }
+
+    #[test]
+    fn every_switch_at_full_feed_takes_the_next_piece_in_order() {
+        big_stack(full_feed::<f32>);
+        big_stack(full_feed::<f64>);
+        big_stack(full_feed::<Q40>);
+    }
+
+    /// Off the tick grid (full feed again at a fractional offset) the inline switch gets no
+    /// pieces: they are withheld at their place (the current piece is still known), and
+    /// every switch is the shifted load of `next_other`; the end is still exact.
+    fn off_the_grid<N: Kernel>() {
+        let path = path::<N>();
+        let mut s = Sampler::new(&path);
+        for _ in 0..200 {
+            s.next();
+        }
+        assert_eq!(s.after, After::End);
+        assert!(!s.pieces.is_empty());
+        s.set_feed(0.3);
+        for _ in 0..300 {
+            s.next();
+        }
+        s.set_feed(1.0);
+        for _ in 0..2000 {
+            if s.feed.is_idle() && s.theta == N::ZERO {
+                break;
+            }
+            s.next();
+        }
+        assert!(!s.on_grid);
+        let mut switches = 0;
+        let mut last = s.next();
+        while !s.is_finished() {
+            assert!(s.pieces.is_empty() && s.after == After::Other);
+            let (piece, progress) = (s.piece(), s.progress());
+            if let Some(p) = path.pieces().get(piece) {
+                let (start, end) = (f64::from(p.start()), f64::from(p.start() + p.ticks()));
+                assert!(
+                    start <= progress && progress < end,
+                    "{progress} in piece {piece}"
+                );
+            }
+            last = s.next();
+            switches += usize::from(s.piece() != piece);
+        }
+        assert_eq!(last.position, path.end_position());
+        assert!(switches > 10, "{switches}");
+    }
+
+    #[test]
+    fn off_the_tick_grid_the_pieces_are_withheld_from_the_inline_switch() {
+        big_stack(off_the_grid::<f32>);
+        big_stack(off_the_grid::<f64>);
+        big_stack(off_the_grid::<Q40>);
     }
 }
