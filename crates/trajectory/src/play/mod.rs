@@ -158,8 +158,9 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     rest: [N::Out; A],
     /// Ticks [`next`](Sampler::next) may still take on its fast path: while running at full
     /// feed with no ramp and `θ = 0`, the ticks left in the current piece (the last of them
-    /// outputs and loads the next piece: [`switch`](Self::switch)); 0 otherwise. Set by [`Sampler::refresh`] after
-    /// every change other than the forward-differencing tick itself.
+    /// outputs and loads the next piece: [`switch_sample`](Self::switch_sample)); 0
+    /// otherwise. Set by [`Sampler::refresh`] after every change other than the
+    /// forward-differencing tick itself.
     left: u32,
     /// `left` when the velocity and acceleration chains were last stepped: position-only
     /// ticks ([`Sampler::next_position`]) count down `left` alone, so the chains lag the
