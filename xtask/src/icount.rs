@@ -112,6 +112,9 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
                     worst: num(worst)?,
                 });
             }
+            ["SAMPLER", n] => {
+                num(n)?;
+            }
             ["DONE", n] => done = Some(num(n)?),
             [] => {}
             _ => return Err(format!("unexpected icount output: `{line}`")),
@@ -127,6 +130,21 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
             out.len()
         )),
     }
+}
+
+/// The ticks over which the `icount` firmware found the sampler's entry points to agree, bit
+/// for bit (its `SAMPLER` line).
+///
+/// # Errors
+/// No such line, or one of no ticks.
+pub(crate) fn sampler_checked(text: &str) -> Result<u64, String> {
+    text.lines()
+        .find_map(|l| l.strip_prefix("SAMPLER "))
+        .and_then(|n| n.trim().parse::<u64>().ok())
+        .filter(|&n| n > 0)
+        .ok_or_else(|| {
+            "the icount firmware reported no check of the sampler's entry points".to_owned()
+        })
 }
 
 /// The verdict: every measured case needs a budget, and neither its median nor its max may
@@ -199,15 +217,50 @@ const TARGETS: [Target; 4] = [
         what: "Cortex-M3, 3-axis fixed-point, position only",
     },
     Target {
-        case: "playback-q40-3axis",
+        case: "playback-q40-3axis-into",
         target: "thumbv7m-none-eabi",
         limit: 110,
-        what: "Cortex-M3, 3-axis fixed-point, position, velocity, acceleration",
+        what: "Cortex-M3, 3-axis fixed-point, position, velocity, acceleration (next_into)",
     },
 ];
 
-/// The targets, one line each, with `met` / `MISSED` (reported, not enforced: the
-/// budgets are the check).
+/// The prefix of the playback cases (a sampler's ticks over a whole path), whose worst tick
+/// is gated by [`check_constant_time`].
+const PLAYBACK: &str = "playback-";
+
+/// `true` when the worst call of `m` took at most 1.5 times its median (constant time).
+fn constant_time(m: &Measured) -> bool {
+    2 * m.max <= 3 * m.median
+}
+
+/// The constant-time gate: in every playback case the worst tick (a piece switch, the end
+/// included) takes at most 1.5 times the median tick. Lists every case over it.
+///
+/// # Errors
+/// The list of playback cases whose worst tick exceeds 1.5 × median.
+pub(crate) fn check_constant_time(measured: &[Measured]) -> Result<(), String> {
+    let slow: Vec<String> = measured
+        .iter()
+        .filter(|m| m.name.starts_with(PLAYBACK) && !constant_time(m))
+        .map(|m| {
+            format!(
+                "{} ({}): worst tick {} > 1.5 × median {} (call {})",
+                m.name, m.target, m.max, m.median, m.worst
+            )
+        })
+        .collect();
+    if slow.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "not constant time (instruction counts):\n  {}",
+            slow.join("\n  ")
+        ))
+    }
+}
+
+/// The targets, one line each, with `met` / `MISSED` (reported; the budgets and
+/// [`check_constant_time`] are the checks).
 pub(crate) fn target_report(measured: &[Measured]) -> Vec<String> {
     let find = |case: &str, target: &str| {
         measured
@@ -226,13 +279,12 @@ pub(crate) fn target_report(measured: &[Measured]) -> Vec<String> {
             ));
         }
     }
-    if let Some(m) = find("playback-f32-3axis", "thumbv7em-none-eabihf") {
-        let ok = 2 * m.max <= 3 * m.median;
+    let mut playback = measured.iter().filter(|m| m.name.starts_with(PLAYBACK));
+    if let Some(first) = playback.next() {
+        let met = constant_time(first) && playback.all(constant_time);
         lines.push(format!(
-            "Cortex-M4F, 3-axis f32: worst tick {} ≤ 1.5 × median {}: {}",
-            m.max,
-            m.median,
-            if ok { "met" } else { "MISSED" }
+            "every playback case: worst tick ≤ 1.5 × median: {}",
+            if met { "met" } else { "MISSED" }
         ));
     }
     lines
@@ -286,7 +338,7 @@ mod tests {
 
     #[test]
     fn output_parses_and_checks_the_calibration() {
-        let ok = "CAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n";
+        let ok = "SAMPLER 15000\nCAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n";
         let v = parse_output(ok, "t").unwrap();
         assert_eq!(
             v,
@@ -300,8 +352,13 @@ mod tests {
                 worst: 4
             }]
         );
-        let e = parse_output("CAL 154 6707 66\nDONE 0\n", "t").unwrap_err();
+        let e = parse_output("SAMPLER 1\nCAL 154 6707 66\nDONE 0\n", "t").unwrap_err();
         assert!(e.contains("calibration"), "{e}");
+        assert!(parse_output("SAMPLER x\nCAL 154 6707 64\nDONE 0\n", "t").is_err());
+        assert_eq!(sampler_checked(ok), Ok(15000));
+        let e = sampler_checked("CAL 154 6707 64\nI a 1 2 3 10 4\nDONE 1\n").unwrap_err();
+        assert!(e.contains("entry points"), "{e}");
+        assert!(sampler_checked("SAMPLER 0\n").is_err());
         assert!(parse_output("I a 1 2 3 10 4\nDONE 1\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nI a 1 2 3 10 4\nDONE 2\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nhello\n", "t").is_err());
@@ -320,11 +377,25 @@ mod tests {
     }
 
     #[test]
+    fn a_worst_playback_tick_over_one_and_a_half_medians_fails() {
+        let ok = [m("playback-a", 20, 30), m("deboor-b", 10, 100)];
+        assert!(check_constant_time(&ok).is_ok());
+        let e =
+            check_constant_time(&[m("playback-a", 20, 31), m("playback-c", 7, 10)]).unwrap_err();
+        assert!(e.starts_with("not constant time"), "{e}");
+        assert!(
+            e.contains("playback-a (thumbv7m-none-eabi): worst tick 31 > 1.5 × median 20"),
+            "{e}"
+        );
+        assert!(!e.contains("playback-c"), "{e}");
+    }
+
+    #[test]
     fn targets_are_reported_met_or_missed() {
-        let mut a = m("playback-q40-3axis", 110, 120);
+        let mut a = m("playback-q40-3axis-into", 110, 120);
         let mut p = m("playback-q40-3axis-position", 61, 70);
         let lines = target_report(&[a.clone(), p.clone()]);
-        assert_eq!(lines.len(), 2);
+        assert_eq!(lines.len(), 3);
         assert!(lines[0].ends_with("MISSED"), "{}", lines[0]);
         assert!(lines[1].ends_with("met"), "{}", lines[1]);
         a.target = "thumbv7em-none-eabihf".into();
@@ -332,7 +403,10 @@ mod tests {
         a.median = 70;
         a.max = 106;
         p.target = "x".into();
-        let lines = target_report(&[a, p]);
-        assert!(lines.iter().any(|l| l.contains("1.5 × median 70: MISSED")));
+        let lines = target_report(&[a.clone(), p]);
+        assert!(lines.iter().any(|l| l.contains("1.5 × median: MISSED")));
+        a.max = 105;
+        let lines = target_report(&[a]);
+        assert!(lines.iter().any(|l| l.contains("1.5 × median: met")));
     }
 }

@@ -828,6 +828,8 @@ fn check_icount(
         let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
         let cases =
             icount::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
+        let agreed = icount::sampler_checked(&text).map_err(|e| format!("{}: {e}", fw.label))?;
+        println!("    the sampler's entry points agree bit for bit over {agreed} ticks");
         print_counts(&cases);
         measured.extend(cases);
     }
@@ -853,7 +855,11 @@ fn check_icount(
         .map_err(|e| format!("cannot write {}: {e}", json.display()))?;
     println!("    wrote {}", json.display());
     icount::check(&measured, &budgets)?;
-    println!("<== instruction counts within {}", file.display());
+    icount::check_constant_time(&measured)?;
+    println!(
+        "<== instruction counts within {}; every playback case in constant time",
+        file.display()
+    );
     Ok(())
 }
 

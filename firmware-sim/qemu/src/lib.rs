@@ -37,6 +37,7 @@ pub mod kernel_check;
 pub mod mpu;
 pub mod planning;
 pub mod play;
+pub mod sampler_check;
 #[allow(unsafe_code)]
 pub mod stack;
 

@@ -87,22 +87,25 @@ pub(crate) struct PieceBounds {
 }
 
 pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> PieceBounds {
-    let s = state.to_f64();
+    // Each value converted where it is used (no `f64` copy of the state in this frame, which
+    // lies below the blob validation's).
+    let abs = |x: N| x.to_f64().abs();
     let n = f64::from(ticks);
     let (c1, c2, c3) = (
         binomial_bound(n, 1),
         binomial_bound(n, 2),
         binomial_bound(n, 3),
     );
-    let m3 = s.delta3.abs();
-    let m2 = s.delta2.abs() + c1 * m3;
-    let m1 = s.delta1.abs() + c1 * s.delta2.abs() + c2 * m3;
-    let mf = s.position.abs() + c1 * s.delta1.abs() + c2 * s.delta2.abs() + c3 * m3;
-    let v2 = s.velocity_delta2.abs();
-    let v1 = s.velocity_delta1.abs() + c1 * v2;
-    let v0 = s.velocity.abs() + c1 * s.velocity_delta1.abs() + c2 * v2;
-    let a1 = s.acceleration_delta.abs();
-    let a0 = s.acceleration.abs() + c1 * a1;
+    let (d1, d2, m3) = (abs(state.delta1), abs(state.delta2), abs(state.delta3));
+    let m2 = d2 + c1 * m3;
+    let m1 = d1 + c1 * d2 + c2 * m3;
+    let mf = abs(state.position) + c1 * d1 + c2 * d2 + c3 * m3;
+    let v2 = abs(state.velocity_delta2);
+    let vd1 = abs(state.velocity_delta1);
+    let v1 = vd1 + c1 * v2;
+    let v0 = abs(state.velocity) + c1 * vd1 + c2 * v2;
+    let a1 = abs(state.acceleration_delta);
+    let a0 = abs(state.acceleration) + c1 * a1;
     // Error after i ≤ n ticks: r_f + i·r₁ + C(i,2)·r₂ + C(i,3)·(r₃ + add₂) + C(i,2)·add₁ + i·add_f
     // (r: rounding of the stored value, add: rounding of an addition; 0 in fixed-point).
     let r = N::rounding_error;
@@ -155,11 +158,11 @@ pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     (omega, alpha)
 }
 
-/// Writes [`PathHeader::end_states`] from the header's end, in place.
+/// Writes [`PathHeader::end_state`] from the header's end, in place.
 ///
 /// # Errors
 /// [`Error::OutOfRange`] when a sample value has no exact accumulator value.
-fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) -> Result<(), Error> {
+fn write_end_state<N: Number, const A: usize>(header: &mut PathHeader<N, A>) -> Result<(), Error> {
     let exact = |v: N::Out| {
         let n = N::from_out(v);
         if n.to_out() == v {
@@ -169,10 +172,8 @@ fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) ->
         }
     };
     let end = &header.end;
-    let [sample, rest] = &mut header.end_states;
-    for (a, (e, r)) in sample.iter_mut().zip(rest.iter_mut()).enumerate() {
+    for (a, e) in header.end_state.iter_mut().enumerate() {
         *e = AxisState::ZERO;
-        *r = AxisState::ZERO;
         if let (Some(&x), Some(&v), Some(&acc)) = (
             end.position.get(a),
             end.velocity.get(a),
@@ -181,7 +182,6 @@ fn write_end_states<N: Number, const A: usize>(header: &mut PathHeader<N, A>) ->
             e.position = exact(x)?;
             e.velocity = exact(v)?;
             e.acceleration = exact(acc)?;
-            r.position = e.position;
         }
     }
     Ok(())
@@ -217,10 +217,9 @@ pub struct PathHeader<N: Number, const A: usize> {
     pub(crate) ticks: u32,
     pub(crate) meta: PathMeta,
     pub(crate) end: PathEnd<N::Out, A>,
-    /// The end as two pieces without motion, for the sampler's fast path: `[0]` the end
-    /// sample (the end's position, velocity and acceleration, zero differences), `[1]` the
-    /// standstill after it (the end position, everything else zero). Derived from `end`.
-    pub(crate) end_states: [[AxisState<N>; A]; 2],
+    /// The end sample as a piece state without motion, for the sampler's piece switch: the
+    /// end's position, velocity and acceleration, every difference zero. Derived from `end`.
+    pub(crate) end_state: [AxisState<N>; A],
     pub(crate) ramp: FeedRampLimits<N>,
     pub(crate) playback_bound: f64,
 }
@@ -245,7 +244,7 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
             velocity: [<N::Out as Scalar>::ZERO; A],
             acceleration: [<N::Out as Scalar>::ZERO; A],
         },
-        end_states: [[AxisState::ZERO; A]; 2],
+        end_state: [AxisState::ZERO; A],
         ramp: FeedRampLimits {
             alpha: N::ZERO,
             k_max: 1,
@@ -485,7 +484,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
 
     /// Checks the header's end (finite, in range, exactly representable by the
     /// accumulator, and continuing the last piece within the path's bounds) and completes
-    /// the header: tick count, end states, playback bound. `last` is the last piece's
+    /// the header: tick count, end state, playback bound. `last` is the last piece's
     /// length and the state of its axis `a` for each `a`.
     ///
     /// # Errors
@@ -515,7 +514,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
         for a in 0..A {
             check_continuation(&self.header.meta, end, a, ticks, &last(a))?;
         }
-        write_end_states(self.header)?;
+        write_end_state(self.header)?;
         self.header.ticks = self.next_start;
         self.header.playback_bound = self.playback_bound;
         Ok(())

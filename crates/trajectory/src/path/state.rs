@@ -188,10 +188,11 @@ impl<N: Number> AxisState<N> {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(C)] // the states first: the piece switch loads them from the piece's own address
 pub struct Piece<N, const A: usize> {
+    pub(crate) axes: [AxisState<N>; A],
     pub(crate) start: u32,
     pub(crate) ticks: u32,
-    pub(crate) axes: [AxisState<N>; A],
 }
 
 impl<N: Number, const A: usize> Piece<N, A> {

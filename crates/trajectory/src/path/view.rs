@@ -9,15 +9,6 @@ use super::sample::Sample;
 use super::state::{AxisState, Newton, Piece};
 use crate::num::Number;
 
-/// A piece's state for a piece switch: decoded states, or a blob record's value bytes.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum Source<'a, N, const A: usize> {
-    /// The states (a piece in RAM, or one of the end states).
-    State(&'a [AxisState<N>; A]),
-    /// The `9·A` little-endian values of a blob's piece record.
-    Record(&'a [u8]),
-}
-
 /// The bytes of one piece record in a blob: the tick count and `9·A` values.
 pub(crate) const fn piece_record_len<N: Number>(axes: usize) -> usize {
     4 + 9 * axes * N::BYTES
@@ -151,19 +142,46 @@ impl<'a, N: Number, const A: usize> PathView<'a, N, A> {
         Some(ticks)
     }
 
-    /// Where piece `j`'s state is, and its length in ticks (`None` past the last piece):
-    /// for the sampler's piece switch through the format's tick kernel.
-    #[inline(always)]
-    pub(crate) fn source(&self, j: usize) -> Option<(Source<'a, N, A>, u32)> {
+    /// The length in ticks of piece `j` (`None` past the last piece).
+    pub(crate) fn piece_ticks(&self, j: usize) -> Option<u32> {
         if let Some(p) = self.ram.get(j) {
-            return Some((Source::State(&p.axes), p.ticks));
+            return Some(p.ticks);
         }
-        if self.records.is_empty() {
-            // Past the end of a path in RAM: no record arithmetic at the path's last switches.
-            return None;
-        }
-        let (ticks, values) = record::<N>(self.records, j, A)?;
-        Some((Source::Record(values), ticks))
+        record::<N>(self.records, j, A).map(|(ticks, _)| ticks)
+    }
+
+    /// `true` for the view of a path in RAM (or of no pieces), `false` for a blob's.
+    pub(crate) fn in_ram(&self) -> bool {
+        self.records.is_empty()
+    }
+
+    /// The index of the piece before `pieces` (a tail of this view's pieces in RAM, empty
+    /// or not, at its place) or, for a blob, before `records` (a tail of its records).
+    pub(crate) fn index_before(&self, pieces: &[Piece<N, A>], records: &[u8]) -> usize {
+        let next = if self.in_ram() {
+            let bytes = pieces
+                .as_ptr()
+                .addr()
+                .wrapping_sub(self.ram.as_ptr().addr());
+            bytes / size_of::<Piece<N, A>>().max(1)
+        } else {
+            self.count
+                .saturating_sub(records.len() / piece_record_len::<N>(A))
+        };
+        next.saturating_sub(1)
+    }
+
+    /// The pieces in RAM after piece `j`, in order (empty for a blob and past the last
+    /// piece): what the sampler's piece switch loads from.
+    pub(crate) fn pieces_after(&self, j: usize) -> &'a [Piece<N, A>] {
+        self.ram.get(j.saturating_add(1)..).unwrap_or(&[])
+    }
+
+    /// The blob's piece records after piece `j`, in order ([`piece_record_len`] bytes each;
+    /// empty for a path in RAM and past the last piece).
+    pub(crate) fn records_after(&self, j: usize) -> &'a [u8] {
+        let at = j.saturating_add(1).saturating_mul(piece_record_len::<N>(A));
+        self.records.get(at..).unwrap_or(&[])
     }
 
     /// The compiled polynomial at a (possibly fractional) tick, evaluated in `f64` from the

@@ -48,7 +48,7 @@ impl<N: Kernel, const A: usize> Sampler<'_, N, A> {
                 self.chains = self.left;
                 rest = later;
             } else if let Some((first, later)) = all.split_first_mut() {
-                *first = self.next_edge();
+                *first = self.next();
                 rest = later;
             }
         }

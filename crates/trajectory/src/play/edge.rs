@@ -1,81 +1,55 @@
-//! The ticks off the sampler's fast path: the piece switch (the last tick of a piece at full
-//! feed, which outputs its sample and loads the next piece in the same pass), the catch-up of
-//! the chains that position-only ticks leave behind, the end, the standstill, and
-//! interpolation under a feed override or a ramp.
+//! The ticks off the sampler's fast path: the catch-up of the chains that position-only ticks
+//! leave behind, the end after a feed change, the standstill after the end, and
+//! interpolation under a feed override or a ramp (the piece switch at full feed is
+//! [`switch`](super::switch)'s).
 
 use super::form::{Form, Native, Rounded};
 use super::{Kernel, Sampler, SamplerState};
 use crate::num::Number;
-use crate::path::view::Source;
 use crate::path::{Newton, Sample};
 
-impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
-    /// A tick of [`next`](Self::next) off the fast path: the last tick of a piece at full
-    /// feed ([`switch`](Self::switch)), or [`next_other`](Self::next_other). Out of line
-    /// and with a small frame: the switch is the costliest tick at full feed.
+impl<N: Kernel, const A: usize> Sampler<'_, N, A> {
+    /// A tick of [`next`](Self::next) off its fast path: after position-only ticks, the
+    /// chains caught up, then the piece switch or the ordinary tick; otherwise
+    /// [`next_other`](Self::next_other). Out of line, so that the common tick carries none
+    /// of its code.
     #[inline(never)]
     pub(super) fn next_edge(&mut self) -> Sample<N::Out, A> {
-        if self.switches() {
-            let (tick, source) = self.switch();
-            return match source {
-                Source::State(next) => N::switch_sample(&mut self.state, next, tick),
-                Source::Record(bytes) => N::switch_sample_bytes(&mut self.state, bytes, tick),
-            };
+        self.catch_up();
+        if self.left > 1 {
+            let tick = self.count_tick();
+            return N::tick_sample(&mut self.state, tick);
+        }
+        if self.left == 1 {
+            return self.switch_sample();
         }
         self.next_other::<Rounded>()
     }
 
-    /// [`next_edge`](Self::next_edge) for [`next_into`](Self::next_into): the piece switch
-    /// writes `out` in place.
+    /// [`next_edge`](Self::next_edge) for [`next_into`](Self::next_into).
     #[inline(never)]
     pub(super) fn next_edge_into(&mut self, out: &mut Sample<N::Native, A>) {
-        if self.switches() {
-            let (tick, source) = self.switch();
-            match source {
-                Source::State(next) => N::switch_native(&mut self.state, next, tick, out),
-                Source::Record(bytes) => {
-                    N::switch_native_bytes(&mut self.state, bytes, tick, out);
-                }
-            }
-        } else {
-            self.next_other_into(out);
+        self.catch_up();
+        if self.left > 1 {
+            let tick = self.count_tick();
+            return N::tick_native(&mut self.state, tick, out);
         }
-    }
-
-    /// [`next_edge`](Self::next_edge) for [`next_position`](Self::next_position): a piece
-    /// switch loads fresh chains, so the lagging ones need no catching up, and it outputs
-    /// the positions only.
-    #[inline(never)]
-    pub(super) fn next_edge_position(&mut self) -> [N::Out; A] {
-        if self.left == 1 && self.on_grid {
-            let (_, source) = self.switch();
-            return match source {
-                Source::State(next) => N::switch_position(&mut self.state, next),
-                Source::Record(bytes) => N::switch_position_bytes(&mut self.state, bytes),
-            };
+        if self.left == 1 {
+            return self.switch_native(out);
         }
-        self.next_other_position()
-    }
-
-    /// `true` when this tick is a piece switch at full feed (the last tick of a piece, on
-    /// the tick grid), after catching the chains up.
-    #[inline(always)]
-    fn switches(&mut self) -> bool {
-        if self.chains != self.left {
-            self.catch_up();
-        }
-        self.left == 1 && self.on_grid
+        self.next_other_into(out);
     }
 
     /// [`next_other`](Self::next_other) in the accumulator's format, copied to `out`.
     #[inline(never)]
-    fn next_other_into(&mut self, out: &mut Sample<N::Native, A>) {
+    pub(super) fn next_other_into(&mut self, out: &mut Sample<N::Native, A>) {
         *out = self.next_other::<Native>();
     }
 
-    /// [`next_other`](Self::next_other)'s positions (the chains caught up first).
+    /// [`next_other`](Self::next_other)'s positions (the chains caught up first), for
+    /// [`next_position`](Self::next_position) off its fast path and its piece switch.
     #[inline(never)]
-    fn next_other_position(&mut self) -> [N::Out; A] {
+    pub(super) fn next_other_position(&mut self) -> [N::Out; A] {
         self.catch_up();
         self.next_other::<Rounded>().position
     }
@@ -102,40 +76,12 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         }
     }
 
-    /// The bookkeeping of the last tick of a piece at full feed: returns that tick's number
-    /// and where the next piece's state is, for the format's switch kernel to output the
-    /// sample of the current state and load the next one in its place. After the last piece
-    /// come the path's two end states ([`Path`](crate::Path)'s `end_states`): the end
-    /// sample (one tick: piece `count`, [`at_end`](Self::at_end)) and the standstill (piece
-    /// `count + 1`, finished: [`current_mode`](Self::current_mode)), so that every tick at
-    /// full feed, the final one included, takes this path or the fast one.
-    #[inline(always)]
-    fn switch(&mut self) -> (u64, Source<'a, N, A>) {
-        // `left == 1`.
-        let tick = self.end.wrapping_sub(1);
-        let next = self.piece.wrapping_add(1);
-        let (source, ticks) = self.path.source(next).unwrap_or_else(|| {
-            // The end sample (one tick), or the standstill after it (`u32::MAX` ticks).
-            let past = next != self.path.piece_count();
-            let ends = &self.path.header().end_states;
-            let end = if past { &ends[1] } else { &ends[0] };
-            (Source::State(end), if past { u32::MAX } else { 1 })
-        });
-        // The next sample is tick `end`; `left` counts the new piece's ticks down (`local`
-        // and `piece_ticks` are derived from it when next needed).
-        self.end = self.end.wrapping_add(u64::from(ticks));
-        self.piece = next;
-        self.left = ticks;
-        self.chains = ticks;
-        (tick, source)
-    }
-
     /// Every tick that is not a plain forward-differencing step or a piece switch at full
     /// feed: the end sample after a feed change, standing at the end, interpolation (feed
     /// override, ramps). Out of line, so that the common tick carries none of its code or
     /// register saves.
     #[inline(never)]
-    fn next_other<F: Form<N>>(&mut self) -> Sample<F::T, A> {
+    pub(super) fn next_other<F: Form<N>>(&mut self) -> Sample<F::T, A> {
         self.sync();
         let sample = self.next_checked::<F>();
         self.refresh();
@@ -244,6 +190,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             self.shift = self.shift + self.theta;
             self.on_grid = self.shift == N::ZERO;
             self.theta = N::ZERO;
+            self.set_ahead(self.piece());
         }
     }
 }

@@ -7,10 +7,12 @@ pub(crate) mod events;
 mod feed;
 mod form;
 pub(crate) mod kernel;
+mod switch;
 
-use crate::path::{AxisState, Newton, PathView, Sample};
+use crate::path::{AxisState, Newton, PathView, Piece, Sample};
 use feed::FeedRamp;
 pub use kernel::Kernel;
+use switch::After;
 
 /// What the sampler is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,8 +51,9 @@ pub enum SamplerState {
 /// # Two modes, both constant time
 /// * **Forward differencing** (feed 1, no ramp running): per tick and axis six additions
 ///   ([`AxisState::step`](crate::AxisState::step)); on the last tick of a piece a load of the
-///   next piece's state (copy) instead. The end sample and the standstill after it are
-///   played the same way (two pieces without motion). On Cortex-M cores with Thumb-2 the
+///   next piece's state (copy) instead, taken from the pieces still to come in order (no
+///   search). The end sample is played the same way (a piece of one tick without motion);
+///   its own tick finishes. On Cortex-M cores with Thumb-2 the
 ///   tick is a hand-scheduled kernel (`vldm`/`vstm` per axis in `f32`, `ldm`/`stm` and
 ///   `adds`/`adc` in `Q40`) with the same additions in the same order, so the same bits.
 /// * **Interpolation** (feed ≠ 1 or a ramp running): the playback point advances by the feed
@@ -118,17 +121,27 @@ pub enum SamplerState {
 #[derive(Clone, Debug)]
 pub struct Sampler<'a, N: Kernel, const A: usize> {
     path: PathView<'a, N, A>,
-    /// Current piece. The state is at tick `local + shift` of that piece, `piece_ticks`
-    /// long: as of the last [`sync`](Self::sync) while [`left`](Self::left) is 0; while the
-    /// fast path runs they are derived from `left` ([`sync`](Self::sync)).
-    piece: usize,
+    /// The pieces after the current one, for the inline piece switch to load in order: those
+    /// of a path in RAM while the switch may load them unshifted (on the tick grid); empty
+    /// otherwise (for a blob; off the grid empty at the same place, so that it still tells
+    /// the current piece: [`piece`](Self::piece)).
+    pieces: &'a [Piece<N, A>],
+    /// The piece records after the current one: those of a blob (empty for a path in RAM).
+    records: &'a [u8],
+    /// Past the last piece: at the end sample (the current piece is the path's end state,
+    /// one tick long) or finished.
+    ended: bool,
+    /// What the inline piece switch does once `pieces` is empty.
+    after: After,
+    /// The state is at tick `local + shift` of the current piece, `piece_ticks` long: as of
+    /// the last [`sync`](Self::sync) while [`left`](Self::left) is 0; while the fast path runs
+    /// they are derived from `left` ([`sync`](Self::sync)).
     local: u32,
     piece_ticks: u32,
     state: [AxisState<N>; A],
     /// Fraction by which the state (and every later load) is shifted off the tick grid.
     shift: N,
-    /// `shift == 0` (tested by the piece switch: a flag costs fewer instructions than a
-    /// comparison in the number format).
+    /// `shift == 0` (a flag costs fewer instructions than a comparison in the number format).
     on_grid: bool,
     /// Fractional playback offset after the state (interpolation mode), with
     /// `shift + theta ∈ [0, 1)`.
@@ -136,8 +149,7 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     feed: FeedRamp<N>,
     /// The override set by [`Sampler::set_feed`].
     feed_override: N,
-    /// What the sampler is doing, as of the last [`sync`](Self::sync) (the fast path may
-    /// have entered the standstill since: [`current_mode`](Self::current_mode)).
+    /// What the sampler is doing.
     mode: SamplerState,
     /// The wall-clock tick of the next sample plus `left` (the fast path counts only
     /// `left` down: the next sample's tick is `end − left`).
@@ -146,8 +158,9 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     rest: [N::Out; A],
     /// Ticks [`next`](Sampler::next) may still take on its fast path: while running at full
     /// feed with no ramp and `θ = 0`, the ticks left in the current piece (the last of them
-    /// outputs and loads the next piece); 0 otherwise. Set by [`Sampler::refresh`] after
-    /// every change other than the forward-differencing tick itself.
+    /// outputs and loads the next piece: [`switch_sample`](Self::switch_sample)); 0
+    /// otherwise. Set by [`Sampler::refresh`] after every change other than the
+    /// forward-differencing tick itself.
     left: u32,
     /// `left` when the velocity and acceleration chains were last stepped: position-only
     /// ticks ([`Sampler::next_position`]) count down `left` alone, so the chains lag the
@@ -162,7 +175,10 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         let path = path.into();
         let mut s = Sampler {
             path,
-            piece: 0,
+            pieces: &[],
+            records: &[],
+            ended: false,
+            after: After::Other,
             local: 0,
             piece_ticks: 0,
             state: [AxisState::default(); A],
@@ -188,29 +204,40 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     }
 
     /// `true` once the current piece is past the path's pieces: the end sample (piece
-    /// `count`) or the standstill after it.
+    /// `count`), or finished.
     #[inline]
     fn at_end(&self) -> bool {
-        self.piece >= self.path.piece_count()
+        self.ended
     }
 
-    /// The mode, the standstill after the end included: the fast path switches into it
-    /// (piece `count + 1`) without touching [`mode`](Self::mode); [`sync`](Self::sync)
-    /// writes it back.
-    #[inline]
-    fn current_mode(&self) -> SamplerState {
-        if self.piece > self.path.piece_count() {
-            SamplerState::Finished
-        } else {
-            self.mode
+    /// The current piece's index (the path's piece count at the end sample and after it).
+    fn piece(&self) -> usize {
+        if self.ended {
+            return self.path.piece_count();
         }
+        self.path.index_before(self.pieces, self.records)
+    }
+
+    /// Sets what comes after piece `j` for the piece switch: the pieces (or records) after
+    /// it, and what follows them.
+    fn set_ahead(&mut self, j: usize) {
+        self.ended = j >= self.path.piece_count();
+        self.records = self.path.records_after(j);
+        let pieces = self.path.pieces_after(j);
+        let inline = self.on_grid && self.path.in_ram() && !self.ended;
+        self.pieces = if inline {
+            pieces
+        } else {
+            pieces.get(..0).unwrap_or_default()
+        };
+        self.after = if inline { After::End } else { After::Other };
     }
 
     /// Loads piece `j` (shifted by `shift`), or marks the end.
     #[inline]
     fn load(&mut self, j: usize) {
-        self.piece = j;
         self.local = 0;
+        self.set_ahead(j);
         match self.path.load(j, &mut self.state) {
             Some(ticks) => {
                 self.piece_ticks = ticks;
@@ -231,7 +258,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     fn advance_index(&mut self) {
         self.local += 1;
         if self.local >= self.piece_ticks {
-            self.load(self.piece + 1);
+            self.load(self.piece() + 1);
         }
     }
 
@@ -243,29 +270,23 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         self.chains = left.wrapping_add(lag);
     }
 
-    /// Leaves the fast path: brings `local`, `piece_ticks` and `mode` up to date with the
-    /// ticks the fast path has counted down in `left` (and the standstill it may have
-    /// entered), then sets `left` to 0 (`end` is the next sample's tick). Every change other
-    /// than a fast tick starts with it and ends with [`refresh`](Self::refresh).
+    /// Leaves the fast path: brings `local` and `piece_ticks` up to date with the ticks the
+    /// fast path has counted down in `left`, then sets `left` to 0 (`end` is the next
+    /// sample's tick). Every change other than a fast tick starts with it and ends with
+    /// [`refresh`](Self::refresh).
     #[inline]
     fn sync(&mut self) {
         if self.left > 0 {
-            self.piece_ticks = self.ticks_of(self.piece);
+            self.piece_ticks = self.ticks_of(self.piece());
             self.local = self.piece_ticks.wrapping_sub(self.left);
             self.end = self.end.wrapping_sub(u64::from(self.left));
             self.set_left(0);
         }
-        self.mode = self.current_mode();
     }
 
-    /// The length in ticks of piece `j`, the end states included (the end sample: 1, the
-    /// standstill: `u32::MAX`).
+    /// The length in ticks of piece `j`, the end sample (piece `count`, one tick) included.
     fn ticks_of(&self, j: usize) -> u32 {
-        match self.path.source(j) {
-            Some((_, ticks)) => ticks,
-            None if j == self.path.piece_count() => 1,
-            None => u32::MAX,
-        }
+        self.path.piece_ticks(j).unwrap_or(1)
     }
 
     /// Sets [`left`](Self::left) from the state (after [`sync`](Self::sync)): called after
@@ -306,16 +327,20 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// Constant time, no panic path (see [`Sampler`] for the operation counts). After the end (or an abort) it keeps returning the last position with zero
     /// velocity and acceleration.
     #[allow(clippy::should_implement_trait)]
-    #[inline]
+    #[inline(always)] // into the caller's tick handler: the tick and its piece switch make no call
     pub fn next(&mut self) -> Sample<N::Out, A> {
-        if self.on_fast_path() {
-            // A plain forward-differencing tick inside a piece: one counter and the format's
-            // tick kernel.
-            let tick = self.count_tick();
-            N::tick_sample(&mut self.state, tick)
-        } else {
-            self.next_edge()
+        if self.chains == self.left {
+            if self.left > 1 {
+                // A plain forward-differencing tick inside a piece: one counter and the
+                // format's tick kernel.
+                let tick = self.count_tick();
+                return N::tick_sample(&mut self.state, tick);
+            }
+            if self.left == 1 {
+                return self.switch_sample();
+            }
         }
+        self.next_edge()
     }
 
     /// [`next`](Self::next) in the accumulator's own format ([`Kernel::Native`]: `f32`,
@@ -350,14 +375,18 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// assert_eq!(s.position[0].to_num::<f64>(), 2.0);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    #[inline]
+    #[inline(always)] // into the caller's tick handler: the tick and its piece switch make no call
     pub fn next_into(&mut self, out: &mut Sample<N::Native, A>) {
-        if self.on_fast_path() {
-            let tick = self.count_tick();
-            N::tick_native(&mut self.state, tick, out);
-        } else {
-            self.next_edge_into(out);
+        if self.chains == self.left {
+            if self.left > 1 {
+                let tick = self.count_tick();
+                return N::tick_native(&mut self.state, tick, out);
+            }
+            if self.left == 1 {
+                return self.switch_native(out);
+            }
         }
+        self.next_edge_into(out);
     }
 
     /// The next setpoint's positions only: exactly [`next`](Self::next)`().position`, bit for
@@ -390,26 +419,29 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// assert_eq!(b.next().position, path.end_position());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    #[inline]
+    #[inline(always)] // into the caller's tick handler: the tick and its piece switch make no call
     pub fn next_position(&mut self) -> [N::Out; A] {
         if self.left > 1 {
             // `next`'s fast path, stepping the position chains only (the others catch up
             // when they are next needed).
             self.left -= 1;
             N::tick_position(&mut self.state)
+        } else if self.left == 1 {
+            // A piece switch loads fresh chains: the lagging ones need no catching up.
+            self.switch_position()
         } else {
-            self.next_edge_position()
+            self.next_other_position()
         }
     }
 
     /// `true` after the end sample (or the stop after an abort) has been returned.
     pub fn is_finished(&self) -> bool {
-        self.current_mode() == SamplerState::Finished
+        self.mode == SamplerState::Finished
     }
 
     /// What the sampler is doing.
     pub fn state(&self) -> SamplerState {
-        self.current_mode()
+        self.mode
     }
 
     /// Sets the feed override `f`, clamped to `[0, 1]` (NaN is ignored). Takes effect
@@ -477,9 +509,10 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         if self.at_end() {
             return f64::from(self.path.ticks());
         }
-        let start = f64::from(self.path.piece_start(self.piece));
+        let piece = self.piece();
+        let start = f64::from(self.path.piece_start(piece));
         let local = if self.left > 0 {
-            self.ticks_of(self.piece).wrapping_sub(self.left)
+            self.ticks_of(piece).wrapping_sub(self.left)
         } else {
             self.local
         };

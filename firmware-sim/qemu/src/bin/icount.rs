@@ -11,11 +11,14 @@
 //! (2 501 samples, several pieces each).
 //!
 //! Before measuring, it checks every tick kernel entry point against the portable kernel, bit
-//! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`): a difference is
-//! logged and fails the run.
+//! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`), and the sampler's
+//! entry points against each other over the measured paths, in RAM and from blobs
+//! (`strak_qemu::sampler_check`): a difference is logged and fails the run.
 //!
 //! # Output protocol (defmt, read by `cargo xtask qemu`)
 //! ```text
+//! SAMPLER <ticks>                                the sampler's entry points agreed, bit for
+//!                                                bit, over <ticks> ticks
 //! CAL <empty> <nops> <nop64>                     calibration: SysTick counts of an empty
 //!                                                measurement and of 256 nops; 64 nops
 //!                                                measured again, in instructions
@@ -34,8 +37,10 @@ use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::basis::MonomialCurve;
 use strak_curves::{BSpline, ParamCurve, Point, Scalar};
 use strak_qemu::counter::{Calibration, Counter};
-use strak_qemu::{exit_failure, exit_success};
-use strak_trajectory::{Along, CompileOptions, Kernel, Path, Sample, Sampler, Timing, compile};
+use strak_qemu::{exit_failure, exit_success, sampler_check};
+use strak_trajectory::{
+    AlignedBlob, Along, CompileOptions, Kernel, Path, PathBlob, Sample, Sampler, Timing, compile,
+};
 
 /// Control rate of the measured paths.
 const RATE_HZ: f64 = 10_000.0;
@@ -47,6 +52,8 @@ const MAX_CALLS: usize = 4_096;
 const PIECES: usize = 128;
 /// Direct evaluations per case (at `k / EVALS`, `k = 0 ..= EVALS`).
 const EVALS: usize = 1_000;
+/// Room for the blob of a measured path (at most [`PIECES`] pieces of 6 axes in `Q40`).
+const BLOB_BYTES: usize = 64 * 1024;
 
 /// Rest to rest: `u = 10s³ − 15s⁴ + 6s⁵`, `s = t / duration`.
 struct Quintic(f64);
@@ -126,14 +133,9 @@ fn report(name: &str, counts: &mut [u32]) {
     );
 }
 
-/// Plays the `A`-axis path in `N` to its end, counting every call of `f`.
-#[inline(never)]
-fn playback<N: Kernel, const A: usize, R>(
-    name: &str,
-    counter: &Counter,
-    cal: &Calibration,
-    mut f: impl FnMut(&mut Sampler<'_, N, A>) -> R,
-) {
+/// The measured `A`-axis path in `N`, compiled on the device (fails the run if it does not
+/// compile into several pieces).
+fn measured_path<N: Kernel, const A: usize>(name: &str) -> Path<N, A, PIECES> {
     let Some(curve) = bspline::<f64, A>() else {
         defmt::error!("{=str}: the B-spline does not build", name);
         exit_failure()
@@ -153,6 +155,64 @@ fn playback<N: Kernel, const A: usize, R>(
         defmt::error!("{=str}: only {=usize} pieces", name, path.pieces().len());
         exit_failure()
     }
+    path
+}
+
+/// Checks the sampler's entry points against each other on the measured `A`-axis path in
+/// `N` (`strak_qemu::sampler_check`), in RAM and read from a blob at an aligned and at an
+/// odd address; a difference fails the run. Returns the ticks compared.
+#[inline(never)]
+fn check_sampler<N: Kernel, const A: usize>(name: &str) -> u32 {
+    let path = measured_path::<N, A>(name);
+    let mut buf = AlignedBlob([0_u8; BLOB_BYTES + 1]);
+    let mut ticks = 0;
+    for (source, at) in [
+        ("RAM", None),
+        ("aligned blob", Some(0)),
+        ("odd blob", Some(1)),
+    ] {
+        let result = match at {
+            None => sampler_check::check(path.view()),
+            Some(at) => {
+                let bytes = buf.0.get_mut(at..).unwrap_or(&mut []);
+                let Ok(len) = path.to_bytes(bytes) else {
+                    defmt::error!("{=str}: the blob does not fit", name);
+                    exit_failure()
+                };
+                match PathBlob::<N, A>::from_bytes(buf.0.get(at..at + len).unwrap_or(&[])) {
+                    Ok(blob) => sampler_check::check(blob.view()),
+                    Err(e) => {
+                        defmt::error!("{=str}: the blob does not load: {}", name, e);
+                        exit_failure()
+                    }
+                }
+            }
+        };
+        match result {
+            Ok(n) => ticks += n,
+            Err(entry) => {
+                defmt::error!(
+                    "{=str} ({=str}): {=str} differs from next(), bit for bit",
+                    name,
+                    source,
+                    entry
+                );
+                exit_failure()
+            }
+        }
+    }
+    ticks
+}
+
+/// Plays the `A`-axis path in `N` to its end, counting every call of `f`.
+#[inline(never)]
+fn playback<N: Kernel, const A: usize, R>(
+    name: &str,
+    counter: &Counter,
+    cal: &Calibration,
+    mut f: impl FnMut(&mut Sampler<'_, N, A>) -> R,
+) {
+    let path = measured_path::<N, A>(name);
     let mut sampler = Sampler::new(&path);
     let mut counts = [0_u32; MAX_CALLS];
     let mut n = 0;
@@ -246,6 +306,21 @@ fn main() -> ! {
         );
         exit_failure()
     }
+    let mut compared = 0;
+    #[cfg(target_abi = "eabihf")]
+    {
+        compared += check_sampler::<f32, 1>("playback-f32-1axis");
+        compared += check_sampler::<f32, 3>("playback-f32-3axis");
+        compared += check_sampler::<f32, 6>("playback-f32-6axis");
+    }
+    #[cfg(not(target_abi = "eabihf"))]
+    {
+        use strak_trajectory::Q40;
+        compared += check_sampler::<Q40, 1>("playback-q40-1axis");
+        compared += check_sampler::<Q40, 3>("playback-q40-3axis");
+        compared += check_sampler::<Q40, 6>("playback-q40-6axis");
+    }
+    defmt::println!("SAMPLER {=u32}", compared);
     let counter = Counter::start(p.SYST);
     let cal = Calibration::measure(&counter);
     let check = cal.check_nop64(&counter);
