@@ -491,11 +491,12 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::compile::testing::{Quintic, Smoothstep, Wave, big_stack, exact, helix};
+    use crate::compile::testing::{Quintic, Smoothstep, Wave, compile_boxed, exact, helix};
     use crate::compile::{CompileOptions, compile};
     use crate::num::Q40;
     use crate::path::Path;
     use crate::plan::Along;
+    use std::boxed::Box;
     use strak_curves::ParamCurveDeriv;
     use strak_curves::Scalar;
 
@@ -518,7 +519,7 @@ mod tests {
             crate::NumberFormat::Q40 => 2e-6,
             crate::NumberFormat::F64 => 1e-6,
         };
-        let path: Path<N, 1, 16384> = compile(
+        let path: Box<Path<N, 1, 16384>> = compile_boxed(
             &Along::new(&curve, &timing),
             100_000.0,
             &CompileOptions::new().with_tolerance(tol),
@@ -585,17 +586,17 @@ mod tests {
 
     #[test]
     fn million_ticks_f32() {
-        big_stack(million_ticks::<f32>);
+        million_ticks::<f32>();
     }
 
     #[test]
     fn million_ticks_f64() {
-        big_stack(million_ticks::<f64>);
+        million_ticks::<f64>();
     }
 
     #[test]
     fn million_ticks_q40() {
-        big_stack(million_ticks::<Q40>);
+        million_ticks::<Q40>();
     }
 
     fn helix_path<N: Kernel>() -> Path<N, 3, 512> {
@@ -683,16 +684,16 @@ mod tests {
 
     #[test]
     fn velocities_catch_up_after_position_only_ticks() {
-        big_stack(|| catch_up_after_positions::<Q40>(0.0));
-        big_stack(|| catch_up_after_positions::<f64>(1e-11));
-        big_stack(|| catch_up_after_positions::<f32>(1e-4));
+        catch_up_after_positions::<Q40>(0.0);
+        catch_up_after_positions::<f64>(1e-11);
+        catch_up_after_positions::<f32>(1e-4);
     }
 
     #[test]
     fn next_position_is_next_position_bit_for_bit() {
-        big_stack(position_only::<f32>);
-        big_stack(position_only::<f64>);
-        big_stack(position_only::<Q40>);
+        position_only::<f32>();
+        position_only::<f64>();
+        position_only::<Q40>();
     }
 
     /// The control events of the entry-point comparisons: a feed override, a hold, a
@@ -760,9 +761,9 @@ mod tests {
 
     #[test]
     fn next_into_is_next_in_the_accumulators_format() {
-        big_stack(native_samples::<f32>);
-        big_stack(native_samples::<f64>);
-        big_stack(native_samples::<Q40>);
+        native_samples::<f32>();
+        native_samples::<f64>();
+        native_samples::<Q40>();
     }
 
     /// `fill` against as many `next` calls, bit for bit: batches of 1 to 300 samples (so
@@ -808,9 +809,9 @@ mod tests {
 
     #[test]
     fn fill_is_next_called_as_often() {
-        big_stack(batches::<f32>);
-        big_stack(batches::<f64>);
-        big_stack(batches::<Q40>);
+        batches::<f32>();
+        batches::<f64>();
+        batches::<Q40>();
     }
 
     fn exact_loads<N: Kernel>() {
@@ -833,9 +834,9 @@ mod tests {
 
     #[test]
     fn piece_switches_are_exact_loads() {
-        big_stack(exact_loads::<f32>);
-        big_stack(exact_loads::<f64>);
-        big_stack(exact_loads::<Q40>);
+        exact_loads::<f32>();
+        exact_loads::<f64>();
+        exact_loads::<Q40>();
     }
 
     fn end_is_exact<N: Kernel>() {
@@ -866,9 +867,9 @@ mod tests {
 
     #[test]
     fn final_sample_is_the_end_point_exactly() {
-        big_stack(end_is_exact::<f32>);
-        big_stack(end_is_exact::<f64>);
-        big_stack(end_is_exact::<Q40>);
+        end_is_exact::<f32>();
+        end_is_exact::<f64>();
+        end_is_exact::<Q40>();
     }
 
     /// Runs the sampler to the end with `control(tick, sampler)` called before each sample;
@@ -957,9 +958,9 @@ mod tests {
 
     #[test]
     fn feed_override_without_jumps_within_the_acceleration_limit() {
-        big_stack(override_run::<f32>);
-        big_stack(override_run::<f64>);
-        big_stack(override_run::<Q40>);
+        override_run::<f32>();
+        override_run::<f64>();
+        override_run::<Q40>();
     }
 
     fn back_to_full_feed<N: Kernel>() {
@@ -1000,9 +1001,9 @@ mod tests {
 
     #[test]
     fn forward_differencing_resumes_at_full_feed() {
-        big_stack(back_to_full_feed::<f32>);
-        big_stack(back_to_full_feed::<f64>);
-        big_stack(back_to_full_feed::<Q40>);
+        back_to_full_feed::<f32>();
+        back_to_full_feed::<f64>();
+        back_to_full_feed::<Q40>();
     }
 
     fn hold_and_resume<N: Kernel>() {
@@ -1034,9 +1035,9 @@ mod tests {
 
     #[test]
     fn hold_stands_still_and_resume_reaches_the_exact_end() {
-        big_stack(hold_and_resume::<f32>);
-        big_stack(hold_and_resume::<f64>);
-        big_stack(hold_and_resume::<Q40>);
+        hold_and_resume::<f32>();
+        hold_and_resume::<f64>();
+        hold_and_resume::<Q40>();
     }
 
     fn held_samples_do_not_move<N: Kernel>() {
@@ -1067,8 +1068,8 @@ mod tests {
 
     #[test]
     fn held_samples_repeat_bit_for_bit() {
-        big_stack(held_samples_do_not_move::<f32>);
-        big_stack(held_samples_do_not_move::<Q40>);
+        held_samples_do_not_move::<f32>();
+        held_samples_do_not_move::<Q40>();
     }
 
     fn abort_stops<N: Kernel>() {
@@ -1101,49 +1102,45 @@ mod tests {
 
     #[test]
     fn abort_ramps_down_and_finishes_on_the_path() {
-        big_stack(abort_stops::<f32>);
-        big_stack(abort_stops::<f64>);
-        big_stack(abort_stops::<Q40>);
+        abort_stops::<f32>();
+        abort_stops::<f64>();
+        abort_stops::<Q40>();
     }
 
     #[test]
     fn set_feed_clamps_and_ignores_nan() {
-        big_stack(|| {
-            let path = helix_path::<f64>();
-            let mut s = Sampler::new(&path);
-            s.set_feed(f32::NAN);
-            assert_eq!(s.feed_override(), 1.0);
-            s.set_feed(-3.0);
-            assert_eq!(s.feed_override(), 0.0);
-            s.set_feed(7.0);
-            assert_eq!(s.feed_override(), 1.0);
-            s.set_feed(0.25);
-            assert_eq!(s.feed_override(), 0.25);
-            assert_eq!(s.feed(), 1.0); // the ramp has not started yet
-            s.next();
-            assert!(s.feed() < 1.0);
-        });
+        let path = helix_path::<f64>();
+        let mut s = Sampler::new(&path);
+        s.set_feed(f32::NAN);
+        assert_eq!(s.feed_override(), 1.0);
+        s.set_feed(-3.0);
+        assert_eq!(s.feed_override(), 0.0);
+        s.set_feed(7.0);
+        assert_eq!(s.feed_override(), 1.0);
+        s.set_feed(0.25);
+        assert_eq!(s.feed_override(), 0.25);
+        assert_eq!(s.feed(), 1.0); // the ramp has not started yet
+        s.next();
+        assert!(s.feed() < 1.0);
     }
 
     #[test]
     fn zero_feed_from_the_start_stops_and_stands() {
-        big_stack(|| {
-            let path = helix_path::<Q40>();
-            let mut s = Sampler::new(&path);
-            s.set_feed(0.0);
-            for _ in 0..20_000 {
-                s.next();
-            }
-            // the ramp to feed 0 took a while; then it stands
-            let stop = s.progress();
-            assert!(stop > 10.0 && stop < 2000.0, "{stop}");
-            for _ in 0..100_000 {
-                s.next();
-            }
-            assert_eq!(s.progress(), stop);
-            assert_eq!(f(s.next().velocity), [0.0; 3]);
-            assert!(!s.is_finished());
-        });
+        let path = helix_path::<Q40>();
+        let mut s = Sampler::new(&path);
+        s.set_feed(0.0);
+        for _ in 0..20_000 {
+            s.next();
+        }
+        // the ramp to feed 0 took a while; then it stands
+        let stop = s.progress();
+        assert!(stop > 10.0 && stop < 2000.0, "{stop}");
+        for _ in 0..100_000 {
+            s.next();
+        }
+        assert_eq!(s.progress(), stop);
+        assert_eq!(f(s.next().velocity), [0.0; 3]);
+        assert!(!s.is_finished());
     }
 
     /// A line at constant speed (no planned acceleration): a feed change may use the whole
@@ -1196,8 +1193,8 @@ mod tests {
 
     #[test]
     fn feed_ramps_reach_but_never_exceed_the_limits() {
-        big_stack(ramp_uses_and_respects_the_limits::<f32>);
-        big_stack(ramp_uses_and_respects_the_limits::<f64>);
-        big_stack(ramp_uses_and_respects_the_limits::<Q40>);
+        ramp_uses_and_respects_the_limits::<f32>();
+        ramp_uses_and_respects_the_limits::<f64>();
+        ramp_uses_and_respects_the_limits::<Q40>();
     }
 }
