@@ -37,7 +37,6 @@ use strak_curves::{BSpline, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Scalar};
 use strak_tests::{compile_boxed, compile_within_bound};
 use strak_trajectory::{
     Along, CompileOptions, Kernel, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing,
-    compile,
 };
 
 /// 100 kHz: 10⁶ ticks in 10 s.

@@ -31,7 +31,7 @@ use strak_curves::Bezier;
 use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
-    ProfileShape, Timing, compile,
+    ProfileShape, Timing,
 };
 
 /// The planner's durations must match within 0.1 % (the requirement); they are

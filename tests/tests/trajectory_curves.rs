@@ -14,7 +14,7 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_tests::{check_playback, compile_boxed};
-use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler, Timing, compile};
+use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler, Timing};
 
 /// Control rate (Hz).
 const RATE: f64 = 10_000.0;

@@ -36,7 +36,7 @@ use strak_curves::{BSpline, ParamCurve, Scalar};
 use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sample, Sampler, SamplerState,
-    Timing, compile,
+    Timing,
 };
 
 const RATE: f64 = 1_000.0;

@@ -62,8 +62,6 @@
 //!   were uniform in `u`, not on the curve's knots, so at the NURBS circle's double knots the
 //!   time law had an acceleration jump; the table now samples every knot with one-sided slopes.
 
-use std::thread;
-
 use strak_curves::{
     BSpline, Bezier, CubicSpline, Nurbs, ParamCurve, ParamCurveDeriv, Parameterization,
     SplineBoundary,
@@ -71,7 +69,7 @@ use strak_curves::{
 use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
-    ProfileShape, Sampler, Timing, compile,
+    ProfileShape, Sampler, Timing,
 };
 
 /// Control rate of all tests here.
@@ -565,7 +563,7 @@ fn check_law<C, const A: usize>(name: &str, curve: &C, law: Law, m: &Machine<A>)
 where
     C: ParamCurveDeriv<Point = [f64; A]> + Sync,
 {
-    let o = big_stack_run(curve, law, m);
+    let o = run_law(curve, law, m, None);
     let straight = name == "line";
     let jerk = matches!(law, Law::SCurve | Law::ConstantSpeed);
     let checks = Checks {
@@ -589,21 +587,6 @@ where
         assert!(o.ratios.tangential < 0.05, "{:?}", o.ratios);
     }
     o.ratios
-}
-
-fn big_stack_run<C, const A: usize>(curve: &C, law: Law, m: &Machine<A>) -> Outcome
-where
-    C: ParamCurveDeriv<Point = [f64; A]> + Sync,
-{
-    // The compiled paths (~1 MB) and the fit's scratch live on the stack: run on a big one.
-    thread::scope(|s| {
-        thread::Builder::new()
-            .stack_size(128 << 20)
-            .spawn_scoped(s, || run_law(curve, law, m, None))
-            .expect("spawn")
-            .join()
-            .expect("test thread panicked")
-    })
 }
 
 // --- pick and place -----------------------------------------------------------------------
