@@ -543,7 +543,7 @@ mod tests {
         let r = |m: f64| N::rounding_error(m) + N::addition_error(m);
         let v_format = 2.0 * (n + 1.0) * r(v_peak) + n * n * r(a_peak / 1e5) + N::OUT_ERROR;
         let a_format = 2.0 * (n + 1.0) * r(a_peak) + N::OUT_ERROR;
-        let mut sampler = Sampler::new(&path);
+        let mut sampler = Sampler::new(&*path);
         let (mut ep, mut ev, mut ea, mut ee) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
         for k in 0..=path.ticks() {
             assert!(!sampler.is_finished());
