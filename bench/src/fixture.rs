@@ -2,10 +2,12 @@
 //! every benchmark (strak and its peers) uses.
 
 use std::boxed::Box;
-use std::thread;
 
-use strak_curves::{BSpline, ParamCurve, PowerSpline};
-use strak_trajectory::{CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sampler, compile};
+use strak_curves::{BSpline, ParamCurve, ParamCurveDeriv, PowerSpline};
+use strak_trajectory::{
+    CompileOptions, Kernel, Limits, Number, Path, PathTiming, PlanOptions, Q40, Sampler,
+    compile_into,
+};
 
 /// The control-point counts measured: 8, 64, 1024 and 8192.
 pub const SIZES: [usize; 4] = [8, 64, 1024, 8192];
@@ -28,8 +30,6 @@ pub const TOLERANCE_MM: f64 = 1e-3;
 const ARC_TABLE: usize = 1_024;
 /// Zone capacity of the time law.
 const ZONES: usize = 4_096;
-/// Stack of the thread that plans and compiles (both keep their work arrays on the stack).
-const COMPILE_STACK: usize = 512 << 20;
 
 /// The `n` de Boor points: a helix of radius 50 mm, 16 points per turn, rising 0.5 mm per
 /// point (every span has the same shape, so the path grows with `n` at a constant density
@@ -127,30 +127,38 @@ pub struct Paths {
 }
 
 /// The paths of the `n`-point helix B-spline (`f64`): one jerk-limited S-curve
-/// ([`PathTiming::scurve`] under [`limits`]), compiled at [`RATE_HZ`] with [`TOLERANCE_MM`]
-/// into `f32`, `f64` and `Q40`. Runs on a thread with a large stack.
+/// ([`PathTiming::scurve`]'s plan under [`limits`]), compiled at [`RATE_HZ`] with
+/// [`TOLERANCE_MM`] into `f32`, `f64` and `Q40`. The plan (1.7 MB) and the paths (up to 15 MB)
+/// are boxed empty and filled in place ([`PathTiming::plan_into`], [`compile_into`]): none
+/// lies on the stack.
 ///
 /// # Panics
 /// When planning or compiling fails (a bug of the fixture).
 pub fn strak_paths(n: usize) -> Paths {
-    thread::Builder::new()
-        .stack_size(COMPILE_STACK)
-        .spawn(move || {
-            let curve = strak_curve::<[f64; 3]>(n);
-            let limits = limits();
-            let timing = PathTiming::<_, ARC_TABLE, ZONES>::scurve(&*curve, &limits).expect("plan");
-            let options = CompileOptions::new()
-                .with_tolerance(TOLERANCE_MM)
-                .with_path_limits(&limits);
-            Paths {
-                f32: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
-                f64: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
-                q40: Box::new(compile(&timing, RATE_HZ, &options).expect("compile")),
-            }
-        })
-        .expect("spawn")
-        .join()
-        .expect("compile thread")
+    let curve = strak_curve::<[f64; 3]>(n);
+    let limits = limits();
+    let mut timing = Box::new(PathTiming::<_, ARC_TABLE, ZONES>::empty(&*curve));
+    timing
+        .plan_into(&limits, &PlanOptions::new())
+        .expect("plan");
+    let options = CompileOptions::new()
+        .with_tolerance(TOLERANCE_MM)
+        .with_path_limits(&limits);
+    Paths {
+        f32: compiled(&*timing, &options),
+        f64: compiled(&*timing, &options),
+        q40: compiled(&*timing, &options),
+    }
+}
+
+/// `timing` compiled at [`RATE_HZ`] into a boxed empty path, in place.
+fn compiled<N: Number, C: ParamCurveDeriv, const T: usize, const Z: usize>(
+    timing: &PathTiming<'_, C, T, Z>,
+    options: &CompileOptions,
+) -> Box<Path<N, 3, PIECES>> {
+    let mut path = Box::new(Path::new());
+    compile_into(timing, RATE_HZ, options, &mut path).expect("compile");
+    path
 }
 
 /// A sampler of `path` advanced by `ticks` calls of [`Sampler::next`].

@@ -25,8 +25,9 @@ pub const SMALL_CAPACITY: usize = 256;
 /// The largest degree of a B-spline or NURBS in a file.
 pub use strak_curves::BSPLINE_MAX_DEGREE;
 
-/// The largest number of segments of a Bézier chain (points: `n·degree + 1`).
-pub const BEZIER_CHAIN_MAX_SEGMENTS: usize = MAX_POINTS;
+/// The largest number of segments of a Bézier chain (points: `n·degree + 1`, at most
+/// [`MAX_POINTS`]; degree 1).
+pub const BEZIER_CHAIN_MAX_SEGMENTS: usize = MAX_POINTS - 1;
 
 /// A built curve, seen through `f64` at the boundary of the simulator.
 pub trait Sampled {
@@ -63,13 +64,14 @@ fn to_scalar<S: Scalar>(u: f64) -> S {
 }
 
 /// What to do with a built curve, whatever its concrete type: the builder hands each curve
-/// (with points `[S; D]`) to [`CurveVisitor::visit`].
+/// (with points `[S; D]`) to [`CurveVisitor::visit`], boxed (a curve of [`MAX_POINTS`]
+/// points holds up to about 0.5 MB, so it is moved once, from its constructor to the heap).
 pub trait CurveVisitor {
     /// What the visit produces.
     type Output;
 
     /// Uses the curve.
-    fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+    fn visit<S, const D: usize, C>(self, curve: Box<C>) -> Self::Output
     where
         S: Scalar,
         C: PieceDeriv<Point = [S; D]> + 'static;
@@ -82,12 +84,12 @@ pub struct BoxSampled;
 impl CurveVisitor for BoxSampled {
     type Output = Box<dyn Sampled>;
 
-    fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+    fn visit<S, const D: usize, C>(self, curve: Box<C>) -> Self::Output
     where
         S: Scalar,
         C: PieceDeriv<Point = [S; D]> + 'static,
     {
-        Box::new(curve)
+        curve
     }
 }
 
@@ -383,35 +385,64 @@ where
         }
     };
     type Hermite<S, const D: usize, const C: usize> = HermiteSpline<[S; D], C>;
-    Ok(match file {
-        CurveFile::Lagrange(_) => {
-            visitor.visit(LagrangeCurve::<[S; D], C>::new(&points, nodes()).map_err(&err)?)
-        }
+    match file {
+        CurveFile::Lagrange(_) => visit_built(
+            || LagrangeCurve::<[S; D], C>::new(&points, nodes()),
+            &err,
+            visitor,
+        ),
         CurveFile::Hermite(h) => {
             let tangents: Vec<[S; D]> = vectors("tangents", &h.tangents, number)?;
-            visitor.visit(Hermite::<S, D, C>::new(&points, &tangents, nodes()).map_err(&err)?)
+            visit_built(
+                || Hermite::<S, D, C>::new(&points, &tangents, nodes()),
+                &err,
+                visitor,
+            )
         }
-        CurveFile::CatmullRom(_) => {
-            visitor.visit(Hermite::<S, D, C>::catmull_rom(&points, nodes()).map_err(&err)?)
-        }
+        CurveFile::CatmullRom(_) => visit_built(
+            || Hermite::<S, D, C>::catmull_rom(&points, nodes()),
+            &err,
+            visitor,
+        ),
         CurveFile::CubicSpline(c) => {
             let boundary = cubic_boundary(c, number)?;
-            visitor.visit(CubicSpline::<[S; D], C>::new(&points, nodes(), boundary).map_err(&err)?)
+            visit_built(
+                || CubicSpline::<[S; D], C>::new(&points, nodes(), boundary),
+                &err,
+                visitor,
+            )
         }
         CurveFile::ParabolicBlend(_) => {
-            visitor.visit(ParabolicBlend::<[S; D], C>::new(&points).map_err(&err)?)
+            visit_built(|| ParabolicBlend::<[S; D], C>::new(&points), &err, visitor)
         }
-        CurveFile::Bezier(_) => return build_bezier(&points, &err, visitor),
+        CurveFile::Bezier(_) => build_bezier(&points, &err, visitor),
         CurveFile::BezierChain(c) => {
-            return build_bezier_chain::<S, D, C, V>(c.degree, &points, &err, visitor);
+            build_bezier_chain::<S, D, V>(c.degree, &points, &err, visitor)
         }
-        CurveFile::Bspline(b) => {
-            return build_bspline::<S, D, CP, K, V>(b, &points, number, &err, visitor);
-        }
-        CurveFile::Nurbs(f) => {
-            return build_nurbs::<S, D, CP, K, V>(f, &points, number, &err, visitor);
-        }
-    })
+        CurveFile::Bspline(b) => build_bspline::<S, D, CP, K, V>(b, &points, number, &err, visitor),
+        CurveFile::Nurbs(f) => build_nurbs::<S, D, CP, K, V>(f, &points, number, &err, visitor),
+    }
+}
+
+/// Builds a curve with `make`, boxes it and hands it to `visitor`. Not inlined: the curve (up
+/// to about 0.5 MB in the class of [`MAX_POINTS`], returned by value by its constructor) lies
+/// in this frame once, one frame per kind, so that a run needs the stack of its own kind only.
+#[inline(never)]
+fn visit_built<S, const D: usize, C, V>(
+    make: impl FnOnce() -> Result<C, Error>,
+    err: &dyn Fn(Error) -> FieldError,
+    visitor: V,
+) -> Result<V::Output, FieldError>
+where
+    S: Scalar,
+    C: PieceDeriv<Point = [S; D]> + 'static,
+    V: CurveVisitor,
+{
+    let curve = match make() {
+        Ok(curve) => Box::new(curve),
+        Err(e) => return Err(err(e)),
+    };
+    Ok(visitor.visit(curve))
 }
 
 fn cubic_boundary<S: Scalar, const D: usize>(
@@ -445,7 +476,7 @@ fn bezier<S: Scalar, const D: usize, const N: usize, V: CurveVisitor>(
     let array: [[S; D]; N] = points
         .try_into()
         .map_err(|_| FieldError::new("points", format!("expected {N} points")))?;
-    Ok(visitor.visit(Bezier::new(array).map_err(err)?))
+    visit_built(|| Bezier::new(array), err, visitor)
 }
 
 fn build_bezier<S: Scalar, const D: usize, V: CurveVisitor>(
@@ -474,19 +505,26 @@ fn bezier_chain<S: Scalar, const D: usize, const N: usize, const C: usize, V: Cu
     err: &dyn Fn(Error) -> FieldError,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
-    Ok(visitor.visit(BezierChain::<[S; D], N, C>::new(points).map_err(err)?))
+    visit_built(|| BezierChain::<[S; D], N, C>::new(points), err, visitor)
 }
 
-fn build_bezier_chain<S: Scalar, const D: usize, const C: usize, V: CurveVisitor>(
+/// A Bézier chain of `degree` with room for the segments of its size class: `n·degree + 1`
+/// points of at most [`SMALL_CAPACITY`] or [`MAX_POINTS`] are `(class − 1)/degree` segments
+/// at most.
+fn build_bezier_chain<S: Scalar, const D: usize, V: CurveVisitor>(
     degree: usize,
     points: &[[S; D]],
     err: &dyn Fn(Error) -> FieldError,
     visitor: V,
 ) -> Result<V::Output, FieldError> {
+    const SMALL: usize = SMALL_CAPACITY - 1;
+    const LARGE: usize = MAX_POINTS - 1;
+    let small = points.len() <= SMALL_CAPACITY;
     macro_rules! by_degree {
         ($($g:literal => $n:literal)*) => {
             match degree {
-                $($g => bezier_chain::<S, D, $n, C, V>(points, err, visitor),)*
+                $($g if small => bezier_chain::<S, D, $n, { SMALL / $g }, V>(points, err, visitor),
+                $g => bezier_chain::<S, D, $n, { LARGE / $g }, V>(points, err, visitor),)*
                 g => Err(FieldError::new(
                     "degree",
                     format!("a Bézier chain takes segments of degree 1 to 5, not {g}"),
@@ -513,15 +551,17 @@ fn build_bspline<S: Scalar, const D: usize, const CP: usize, const K: usize, V: 
     visitor: V,
 ) -> Result<V::Output, FieldError> {
     let knots = knots_of::<S>(b.knots.as_deref(), number)?;
-    let curve: Result<BSpline<[S; D], CP, K>, Error> = if b.closed {
-        BSpline::closed(b.degree, points, knots.as_deref())
-    } else {
-        match &knots {
-            Some(k) => BSpline::new(b.degree, points, k),
-            None => BSpline::clamped_uniform(b.degree, points, S::ZERO, S::ONE),
+    let make = || -> Result<BSpline<[S; D], CP, K>, Error> {
+        if b.closed {
+            BSpline::closed(b.degree, points, knots.as_deref())
+        } else {
+            match &knots {
+                Some(k) => BSpline::new(b.degree, points, k),
+                None => BSpline::clamped_uniform(b.degree, points, S::ZERO, S::ONE),
+            }
         }
     };
-    Ok(visitor.visit(curve.map_err(err)?))
+    visit_built(make, err, visitor)
 }
 
 #[inline(never)]
@@ -534,11 +574,13 @@ fn build_nurbs<S: Scalar, const D: usize, const CP: usize, const K: usize, V: Cu
 ) -> Result<V::Output, FieldError> {
     let knots = knots_of::<S>(f.knots.as_deref(), number)?;
     let w: Vec<S> = scalars("weights", &f.weights, number)?;
-    let curve: Result<Nurbs<[S; D], CP, K>, Error> = match &knots {
-        Some(k) => Nurbs::new(f.degree, points, &w, k),
-        None => Nurbs::clamped_uniform(f.degree, points, &w, S::ZERO, S::ONE),
+    let make = || -> Result<Nurbs<[S; D], CP, K>, Error> {
+        match &knots {
+            Some(k) => Nurbs::new(f.degree, points, &w, k),
+            None => Nurbs::clamped_uniform(f.degree, points, &w, S::ZERO, S::ONE),
+        }
     };
-    Ok(visitor.visit(curve.map_err(err)?))
+    visit_built(make, err, visitor)
 }
 
 #[cfg(test)]
@@ -585,7 +627,7 @@ mod tests {
     impl CurveVisitor for Domain {
         type Output = (f64, f64, usize);
 
-        fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+        fn visit<S, const D: usize, C>(self, curve: Box<C>) -> Self::Output
         where
             S: Scalar,
             C: PieceDeriv<Point = [S; D]> + 'static,

@@ -66,12 +66,12 @@ struct BoxDyn;
 impl CurveVisitor for BoxDyn {
     type Output = Box<dyn Any>;
 
-    fn visit<S, const D: usize, C>(self, curve: C) -> Self::Output
+    fn visit<S, const D: usize, C>(self, curve: Box<C>) -> Self::Output
     where
         S: Scalar,
         C: PieceDeriv<Point = [S; D]> + 'static,
     {
-        Box::new(DynCurve::<S, D>(Box::new(curve)))
+        Box::new(DynCurve::<S, D>(curve))
     }
 }
 

@@ -116,20 +116,11 @@ impl Export {
 pub fn export(job: &Job, playback: NumberFormat) -> Result<Export, JobError> {
     let mut job = job.clone();
     job.number = playback;
-    let job = &job;
-    std::thread::scope(|scope| {
-        std::thread::Builder::new()
-            .name("strak-sim export".to_owned())
-            .stack_size(crate::run::STACK_BYTES)
-            .spawn_scoped(scope, || match playback {
-                NumberFormat::F32 => by_dim::<f32, f32>(job, playback),
-                NumberFormat::F64 => by_dim::<f64, f64>(job, playback),
-                NumberFormat::Q40 => by_dim::<Q40, I32F32>(job, playback),
-            })
-            .map_err(|e| JobError::new("job", format!("cannot start the export thread: {e}")))?
-            .join()
-            .map_err(|_| JobError::new("job", "the export thread panicked"))?
-    })
+    match playback {
+        NumberFormat::F32 => by_dim::<f32, f32>(&job, playback),
+        NumberFormat::F64 => by_dim::<f64, f64>(&job, playback),
+        NumberFormat::Q40 => by_dim::<Q40, I32F32>(&job, playback),
+    }
 }
 
 fn by_dim<N, S>(job: &Job, playback: NumberFormat) -> Result<Export, JobError>
@@ -148,7 +139,8 @@ where
     )
 }
 
-/// `path` as a blob, and the path read back from it (checked to equal `path`).
+/// `path` as a blob, and the path read back from it (checked to equal `path`; read in place
+/// into a boxed empty path, as the pipeline compiles).
 #[allow(clippy::type_complexity)]
 fn to_blob<N: Number, const D: usize>(
     path: &Path<N, D, PIECES>,
@@ -158,10 +150,9 @@ fn to_blob<N: Number, const D: usize>(
         .to_bytes(&mut blob)
         .map_err(|e| JobError::new("path", format!("cannot serialize the path: {e}")))?;
     blob.truncate(written);
-    let back: Box<Path<N, D, PIECES>> = Box::new(
-        Path::from_bytes(&blob)
-            .map_err(|e| JobError::new("path", format!("the blob does not read back: {e}")))?,
-    );
+    let mut back: Box<Path<N, D, PIECES>> = Box::new(Path::new());
+    back.read_bytes(&blob)
+        .map_err(|e| JobError::new("path", format!("the blob does not read back: {e}")))?;
     if *back != *path {
         return Err(JobError::new(
             "path",

@@ -14,8 +14,19 @@
 //!    [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler is given
 //!    `min(a, aᵢ)` and `j` as the limits of feed changes, so a feed ramp adds at most
 //!    `s·min(a, aᵢ)` (or what the plan left free) to the acceleration.
-//! 3. **Compile** ([`compile`]) into a [`Path`] of at most [`PIECES`] pieces (boxed: a path
-//!    is large), in the playback format (`f64`, `f32`, [`Q40`]).
+//! 3. **Compile** ([`compile_into`]) into a [`Path`] of at most [`PIECES`] pieces, in the
+//!    playback format (`f64`, `f32`, [`Q40`]).
+//!
+//! # Stack
+//! The large values live on the heap and are filled in place, so that the pipeline runs on a
+//! default thread stack (2 MiB), whatever the job: the plan ([`PathTiming::empty`], then
+//! [`PathTiming::plan_into`]) and the path ([`Path::new`], then [`compile_into`]) are boxed
+//! empty and written where they lie; neither is returned by value. Planning and compiling
+//! themselves need small fixed frames. A path of 6 axes in `f64` holds about 7 MB, more than
+//! such a stack: it is never built on the stack first because an empty path is its header
+//! followed by unwritten storage, which an optimized build allocates and writes in place
+//! (strak-sim's own debug builds are optimized for that reason: see the workspace's
+//! `Cargo.toml`).
 //!
 //! Every error is a [`JobError`] on the field that causes it.
 
@@ -24,7 +35,7 @@ use std::time::{Duration, Instant};
 use strak_curves::Scalar;
 use strak_trajectory::{
     Along, CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
-    PlanOptions, ProfileShape, Q40, Timing, compile,
+    PlanOptions, ProfileShape, Q40, Timing, compile_into,
 };
 
 use crate::dyn_curve::{DynCurve, build_dyn};
@@ -35,8 +46,8 @@ use crate::summary::num;
 /// Piece capacity of a compiled path (a path of `A` axes in `f64` takes about
 /// `PIECES · (8 + 72·A)` bytes).
 pub const PIECES: usize = 16_384;
-/// Zone capacity of a planned motion (the planner's default 1024 sampling intervals never
-/// need more).
+/// Zone capacity of a planned motion, trapezoid or S-curve (the planner's default 1024
+/// sampling intervals never need more; the constant-speed law has one zone).
 pub const ZONES: usize = 1_024;
 /// Samples of the arc-length table.
 pub const TABLE: usize = 1_024;
@@ -133,19 +144,41 @@ pub fn plan_timing<'c, S: Scalar, const D: usize>(
     limits: &Limits<D>,
 ) -> Result<Box<dyn Timing + 'c>, JobError> {
     let err = |e| plan_error(job, e);
-    Ok(match &job.profile {
-        Profile::Parameter(p) => Box::new(ParameterTiming::over(curve, p.duration).map_err(err)?),
-        Profile::ConstantSpeed(c) => Box::new(
-            PathTiming::<_, TABLE, ZONES>::constant_speed(
-                curve,
-                c.speed.unwrap_or(job.limits.velocity),
-            )
-            .map_err(err)?,
-        ),
-        Profile::Trapezoid(_) | Profile::SCurve(_) => Box::new(
-            PathTiming::<_, TABLE, ZONES>::plan(curve, limits, &plan_options(job)).map_err(err)?,
-        ),
-    })
+    match &job.profile {
+        Profile::Parameter(p) => Ok(Box::new(
+            ParameterTiming::over(curve, p.duration).map_err(err)?,
+        )),
+        Profile::ConstantSpeed(c) => {
+            constant_speed(curve, c.speed.unwrap_or(job.limits.velocity)).map_err(err)
+        }
+        Profile::Trapezoid(_) | Profile::SCurve(_) => {
+            planned(curve, limits, &plan_options(job)).map_err(err)
+        }
+    }
+}
+
+/// The constant-speed law, boxed: one zone (the library returns it by value, and with one
+/// zone it is small).
+fn constant_speed<S: Scalar, const D: usize>(
+    curve: &DynCurve<S, D>,
+    speed: f64,
+) -> Result<Box<dyn Timing + '_>, TrajError> {
+    Ok(Box::new(PathTiming::<_, TABLE, 1>::constant_speed(
+        curve, speed,
+    )?))
+}
+
+/// A trapezoid or S-curve, planned in place into a boxed empty plan. Not inlined, so that the
+/// empty plan this frame may hold while it is moved to the heap is not part of the caller's.
+#[inline(never)]
+fn planned<'c, S: Scalar, const D: usize>(
+    curve: &'c DynCurve<S, D>,
+    limits: &Limits<D>,
+    options: &PlanOptions,
+) -> Result<Box<dyn Timing + 'c>, TrajError> {
+    let mut plan = Box::new(PathTiming::<_, TABLE, ZONES>::empty(curve));
+    plan.plan_into(limits, options)?;
+    Ok(plan)
 }
 
 /// A curve file error as an error on the job's `path.…` field.
@@ -350,14 +383,14 @@ impl<S: Scalar, const D: usize> Prepared<S, D> {
         let started = Instant::now();
         let timing = plan_timing(job, &self.curve, &self.limits)?;
         let plan_time = started.elapsed();
-        let path: Box<Path<N, D, PIECES>> = Box::new(
-            compile(
-                &Along::new(&self.curve, &*timing),
-                job.rate_hz,
-                &compile_options(job),
-            )
-            .map_err(|e| compile_error(job, e, timing.duration()))?,
-        );
+        let mut path: Box<Path<N, D, PIECES>> = Box::new(Path::new());
+        compile_into(
+            &Along::new(&self.curve, &*timing),
+            job.rate_hz,
+            &compile_options(job),
+            &mut path,
+        )
+        .map_err(|e| compile_error(job, e, timing.duration()))?;
         Ok(Compiled {
             timing,
             path,

@@ -16,8 +16,8 @@
 //!    exits with code 3). The trapezoid does not plan the jerk; the parameter and
 //!    constant-speed laws plan none of the limits: the summary reports them without failing.
 //!
-//! Everything runs on a thread with a [`STACK_BYTES`] stack (planning and compiling keep
-//! their work arrays on the stack).
+//! Everything runs on the caller's thread: the plan and the path are on the heap, filled in
+//! place (see [`pipeline`](crate::pipeline#stack)), so a default thread stack is enough.
 
 use std::fs::{self, File};
 use std::io::{BufWriter, IsTerminal, Write};
@@ -39,8 +39,6 @@ use crate::summary::{
     PlannedLimits, ReferenceDistance, Summary, WallTime,
 };
 
-/// The stack of the thread a job runs on.
-pub const STACK_BYTES: usize = 256 << 20;
 /// Runs expected to take at least this many samples show a progress bar (on a terminal).
 pub const PROGRESS_MIN_SAMPLES: u64 = 200_000;
 
@@ -172,18 +170,6 @@ pub fn csv_header(axes: usize) -> String {
 /// [`RunError::Job`] naming the field for a job that cannot be planned or compiled;
 /// [`RunError::Io`] when the output cannot be written.
 pub fn run_job(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
-    std::thread::scope(|scope| {
-        std::thread::Builder::new()
-            .name("strak-sim run".to_owned())
-            .stack_size(STACK_BYTES)
-            .spawn_scoped(scope, || dispatch(job, options))
-            .map_err(|e| RunError::Io(format!("cannot start the run thread: {e}")))?
-            .join()
-            .map_err(|_| RunError::Io("the run thread panicked".to_owned()))?
-    })
-}
-
-fn dispatch(job: &Job, options: &RunOptions) -> Result<Summary, RunError> {
     let axes =
         || -> RunError { JobError::new("path.points", "points need 1 to 6 coordinates").into() };
     match job.number {

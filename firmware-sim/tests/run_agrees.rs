@@ -1,6 +1,6 @@
 //! `strak-sim run` (the binary) against a direct library call: the curve built with
-//! strak-curves' own constructors, planned with `PathTiming::plan` under the job's limits
-//! reduced by the feed share, compiled with `compile` and played with `Sampler` — every sample
+//! strak-curves' own constructors, planned with `PathTiming::plan_into` under the job's limits
+//! reduced by the feed share, compiled with `compile_into` and played with `Sampler` — every sample
 //! bit for bit (the CSV holds the shortest text that reads back to the same bits). Also: the
 //! last sample is the path's end point exactly, and every output file exists and is not empty.
 
@@ -16,7 +16,8 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_trajectory::{
-    Along, CompileOptions, Kernel, Limits, Path, PathTiming, PlanOptions, Q40, Sampler, compile,
+    Along, CompileOptions, Kernel, Limits, Path, PathTiming, PlanOptions, Q40, Sampler,
+    compile_into,
 };
 
 use strak_sim::pipeline::{PIECES, TABLE, ZONES};
@@ -143,13 +144,15 @@ where
     let plan = PlanOptions::new()
         .with_rate(rate)
         .with_feed_share(feed_share);
-    let timing = PathTiming::<_, TABLE, ZONES>::plan(curve, &plan_limits, &plan).unwrap();
+    // boxed and filled in place, as strak-sim does (on the test's default thread stack)
+    let mut timing = Box::new(PathTiming::<_, TABLE, ZONES>::empty(curve));
+    timing.plan_into(&plan_limits, &plan).unwrap();
     let a_feed = axis_a.iter().fold(limits[1], |m, a| m.min(*a));
     let options = CompileOptions::new()
         .with_feed_share(feed_share)
         .with_limits(a_feed, limits[2]);
-    let path: Box<Path<N, A, PIECES>> =
-        Box::new(compile(&Along::new(curve, &timing), rate, &options).unwrap());
+    let mut path: Box<Path<N, A, PIECES>> = Box::new(Path::new());
+    compile_into(&Along::new(curve, &*timing), rate, &options, &mut path).unwrap();
     let mut sampler = Sampler::new(&*path);
     let mut k = 0_u64;
     let mut next = 0;
@@ -195,15 +198,6 @@ where
     k as usize
 }
 
-fn big_stack(f: impl FnOnce() + Send + 'static) {
-    std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(f)
-        .unwrap()
-        .join()
-        .unwrap();
-}
-
 const PICK_POINTS: [[f64; 3]; 8] = [
     [0.0, 0.0, 0.0],
     [0.0, 0.0, 40.0],
@@ -215,28 +209,25 @@ const PICK_POINTS: [[f64; 3]; 8] = [
     [300.0, 150.0, 0.0],
 ];
 
-fn pick_and_place(job: Option<&'static str>, events: &'static [(u64, Event)]) {
+fn pick_and_place(job: Option<&str>, events: &[(u64, Event)]) {
     let dir = tempfile::tempdir().unwrap();
     let stdout = run_binary(job, dir.path());
     assert!(stdout.contains("limits     all respected"), "{stdout}");
     let rows = csv_rows(dir.path(), 3);
-    big_stack(move || {
-        let curve =
-            BSpline::<[f64; 3], 16, 24>::clamped_uniform(3, &PICK_POINTS, 0.0, 1.0).unwrap();
-        let n = direct_run::<f64, _, 3>(
-            &curve,
-            &Spec {
-                limits: [500.0, 5000.0, 100_000.0],
-                axis_v: [500.0, 500.0, 400.0],
-                axis_a: [5000.0, 5000.0, 3000.0],
-                feed_share: 0.25,
-                rate: 1000.0,
-            },
-            events,
-            &rows,
-        );
-        assert!(n > 1000);
-    });
+    let curve = BSpline::<[f64; 3], 16, 24>::clamped_uniform(3, &PICK_POINTS, 0.0, 1.0).unwrap();
+    let n = direct_run::<f64, _, 3>(
+        &curve,
+        &Spec {
+            limits: [500.0, 5000.0, 100_000.0],
+            axis_v: [500.0, 500.0, 400.0],
+            axis_a: [5000.0, 5000.0, 3000.0],
+            feed_share: 0.25,
+            rate: 1000.0,
+        },
+        events,
+        &rows,
+    );
+    assert!(n > 1000);
 }
 
 #[test]
@@ -260,36 +251,34 @@ fn f32_circle_matches_the_library_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
     run_binary(Some("circle-f32.toml"), dir.path());
     let rows = csv_rows(dir.path(), 2);
-    big_stack(move || {
-        let w = std::f64::consts::FRAC_1_SQRT_2 as f32; // the file's 0.7071067811865476
-        let points: [[f32; 2]; 9] = [
-            [50.0, 0.0],
-            [50.0, 50.0],
-            [0.0, 50.0],
-            [-50.0, 50.0],
-            [-50.0, 0.0],
-            [-50.0, -50.0],
-            [0.0, -50.0],
-            [50.0, -50.0],
-            [50.0, 0.0],
-        ];
-        let weights = [1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
-        let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 4.0];
-        let curve = Nurbs::<[f32; 2], 16, 24>::new(2, &points, &weights, &knots).unwrap();
-        let inf = f64::INFINITY;
-        direct_run::<f32, _, 2>(
-            &curve,
-            &Spec {
-                limits: [500.0, 5000.0, 100_000.0],
-                axis_v: [inf, inf],
-                axis_a: [inf, inf],
-                feed_share: 0.25,
-                rate: 2000.0,
-            },
-            &[],
-            &rows,
-        );
-    });
+    let w = std::f64::consts::FRAC_1_SQRT_2 as f32; // the file's 0.7071067811865476
+    let points: [[f32; 2]; 9] = [
+        [50.0, 0.0],
+        [50.0, 50.0],
+        [0.0, 50.0],
+        [-50.0, 50.0],
+        [-50.0, 0.0],
+        [-50.0, -50.0],
+        [0.0, -50.0],
+        [50.0, -50.0],
+        [50.0, 0.0],
+    ];
+    let weights = [1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 4.0];
+    let curve = Nurbs::<[f32; 2], 16, 24>::new(2, &points, &weights, &knots).unwrap();
+    let inf = f64::INFINITY;
+    direct_run::<f32, _, 2>(
+        &curve,
+        &Spec {
+            limits: [500.0, 5000.0, 100_000.0],
+            axis_v: [inf, inf],
+            axis_a: [inf, inf],
+            feed_share: 0.25,
+            rate: 2000.0,
+        },
+        &[],
+        &rows,
+    );
 }
 
 #[test]
@@ -297,36 +286,34 @@ fn fixed_point_contour_matches_the_library_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
     run_binary(Some("contour-fixed.toml"), dir.path());
     let rows = csv_rows(dir.path(), 2);
-    big_stack(move || {
-        let p = |x: f64, y: f64| [I32F32::from_num(x), I32F32::from_num(y)];
-        let points = [
-            p(0.0, 0.0),
-            p(120.0, -10.0),
-            p(160.0, 60.0),
-            p(100.0, 110.0),
-            p(20.0, 90.0),
-            p(-20.0, 40.0),
-            p(0.0, 0.0),
-        ];
-        let curve = CubicSpline::<_, 16>::new(
-            &points,
-            Parameterization::ChordLength,
-            SplineBoundary::Periodic,
-        )
-        .unwrap();
-        direct_run::<Q40, _, 2>(
-            &curve,
-            &Spec {
-                limits: [300.0, 3000.0, 60_000.0],
-                axis_v: [250.0, 250.0],
-                axis_a: [2500.0, 2500.0],
-                feed_share: 0.25,
-                rate: 10_000.0,
-            },
-            &[],
-            &rows,
-        );
-    });
+    let p = |x: f64, y: f64| [I32F32::from_num(x), I32F32::from_num(y)];
+    let points = [
+        p(0.0, 0.0),
+        p(120.0, -10.0),
+        p(160.0, 60.0),
+        p(100.0, 110.0),
+        p(20.0, 90.0),
+        p(-20.0, 40.0),
+        p(0.0, 0.0),
+    ];
+    let curve = CubicSpline::<_, 16>::new(
+        &points,
+        Parameterization::ChordLength,
+        SplineBoundary::Periodic,
+    )
+    .unwrap();
+    direct_run::<Q40, _, 2>(
+        &curve,
+        &Spec {
+            limits: [300.0, 3000.0, 60_000.0],
+            axis_v: [250.0, 250.0],
+            axis_a: [2500.0, 2500.0],
+            feed_share: 0.25,
+            rate: 10_000.0,
+        },
+        &[],
+        &rows,
+    );
 }
 
 #[test]

@@ -175,36 +175,73 @@ pub fn ensure(cond: bool, what: impl FnOnce() -> String) -> TestCaseResult {
 
 use strak_curves::{ParamCurveDeriv, Scalar};
 use strak_trajectory::{
-    CompileOptions, Error, Kernel, Number, Path, Sample, Sampler, Timing, Trajectory, compile,
+    CompileOptions, Error, Kernel, Number, Path, PathTiming, Sample, Sampler, Timing, Trajectory,
+    compile_into,
 };
 
-/// [`compile`], and when the number format's playback bound exceeds the tolerance
+/// [`compile_into`] a boxed empty path: the path is written in place on the heap, so that a
+/// path of thousands of pieces (MBs in `f64`) never lies on the test thread's stack (libtest's
+/// default 2 MiB).
+///
+/// # Errors
+/// As [`compile_into`].
+pub fn compile_boxed<N: Number, const A: usize, const P: usize, M>(
+    trajectory: &M,
+    rate: f64,
+    options: &CompileOptions,
+) -> Result<Box<Path<N, A, P>>, Error>
+where
+    M: Trajectory + ?Sized,
+{
+    let mut path = Box::new(Path::new());
+    compile_into(trajectory, rate, options, &mut path)?;
+    Ok(path)
+}
+
+/// [`PathTiming::compile_into`] a boxed empty path: [`PathTiming::compile`] without the path
+/// on the stack (see [`compile_boxed`]).
+///
+/// # Errors
+/// As [`PathTiming::compile_into`].
+pub fn compile_plan_boxed<
+    N: Number,
+    const A: usize,
+    const P: usize,
+    C,
+    const T: usize,
+    const Z: usize,
+>(
+    plan: &PathTiming<'_, C, T, Z>,
+    options: &CompileOptions,
+) -> Result<Box<Path<N, A, P>>, Error>
+where
+    C: ParamCurveDeriv,
+{
+    let mut path = Box::new(Path::new());
+    plan.compile_into(options, &mut path)?;
+    Ok(path)
+}
+
+/// [`compile_boxed`], and when the number format's playback bound exceeds the tolerance
 /// ([`Error::PlaybackBoundExceeded`], typical of `f32` at tight tolerances), once more to
 /// twice the bound the error names: the error is what a user acts on.
+///
+/// # Errors
+/// As [`compile_into`].
 pub fn compile_within_bound<N: Number, const A: usize, const P: usize, M>(
     trajectory: &M,
     rate: f64,
     options: &CompileOptions,
-) -> Result<Path<N, A, P>, Error>
+) -> Result<Box<Path<N, A, P>>, Error>
 where
     M: Trajectory + ?Sized,
 {
-    match compile(trajectory, rate, options) {
+    match compile_boxed(trajectory, rate, options) {
         Err(Error::PlaybackBoundExceeded { bound, .. }) => {
-            compile(trajectory, rate, &options.with_tolerance(2.0 * bound.0))
+            compile_boxed(trajectory, rate, &options.with_tolerance(2.0 * bound.0))
         }
         other => other,
     }
-}
-
-/// Runs `f` on a thread with a large stack (paths and the compiler's scratch live on it).
-pub fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(f)
-        .expect("spawn")
-        .join()
-        .expect("test thread panicked")
 }
 
 /// The exact position at tick `k` of `path`: the `f64` curve at the time law's parameter at

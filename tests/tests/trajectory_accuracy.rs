@@ -34,10 +34,9 @@
 #![allow(clippy::needless_range_loop)] // axis loops index several arrays at once
 
 use strak_curves::{BSpline, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Scalar};
-use strak_tests::{big_stack, compile_within_bound};
+use strak_tests::{compile_boxed, compile_within_bound};
 use strak_trajectory::{
     Along, CompileOptions, Kernel, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing,
-    compile,
 };
 
 /// 100 kHz: 10⁶ ticks in 10 s.
@@ -240,10 +239,11 @@ where
 {
     // f32 and Q40 within what their playback holds (the tolerance widened to twice the bound
     // where it is finer)
-    let p32: Path<f32, A, PIECES> =
+    let p32: Box<Path<f32, A, PIECES>> =
         compile_within_bound(&Along::new(curve, plan), RATE, options).expect("f32");
-    let p64: Path<f64, A, PIECES> = compile(&Along::new(curve, plan), RATE, options).expect("f64");
-    let pq: Path<Q40, A, PIECES> =
+    let p64: Box<Path<f64, A, PIECES>> =
+        compile_boxed(&Along::new(curve, plan), RATE, options).expect("f64");
+    let pq: Box<Path<Q40, A, PIECES>> =
         compile_within_bound(&Along::new(curve, plan), RATE, options).expect("Q40");
     assert_eq!(p32.ticks(), p64.ticks());
     assert_eq!(pq.ticks(), p64.ticks());
@@ -284,7 +284,7 @@ where
 
 #[test]
 fn million_ticks_in_every_format() {
-    let ticks = big_stack(|| {
+    let ticks = {
         // Pick and place at 28 mm/s: about 10.6 s, 1.06·10⁶ ticks at 100 kHz.
         let curve = pick_and_place();
         let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
@@ -300,7 +300,7 @@ fn million_ticks_in_every_format() {
         let options = CompileOptions::new().with_tolerance(1e-6);
         let b = three_formats("far circle", &circle, &plan, &options);
         u64::from(a) + u64::from(b)
-    });
+    };
     println!("{ticks} ticks in total");
     assert!(ticks >= 1_000_000, "{ticks}");
 }
@@ -309,55 +309,52 @@ fn million_ticks_in_every_format() {
 /// own end point, not a rounding of the `f64` one.
 #[test]
 fn end_point_of_curves_in_their_own_type() {
-    big_stack(|| {
-        // f32 curve → f32 path
-        let pts32: Vec<[f32; 3]> = PICK
-            .iter()
-            .map(|p| p.map(|x| x as f32 * 1.1 + 0.1))
-            .collect();
-        let c32 = BSpline::<[f32; 3], 8, 12>::clamped_uniform(3, &pts32, 0.0, 1.0).expect("f32");
-        let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
-        let plan = PathTiming::<_, 256, 128>::scurve(&c32, &limits).expect("plan");
-        let path: Path<f32, 3, 1024> =
-            compile(&Along::new(&c32, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
-        let last = play_to_end(&path);
-        let end = c32.eval(1.0);
-        for i in 0..3 {
-            assert_eq!(last.position[i].to_bits(), end[i].to_bits(), "axis {i}");
-        }
+    // f32 curve → f32 path
+    let pts32: Vec<[f32; 3]> = PICK
+        .iter()
+        .map(|p| p.map(|x| x as f32 * 1.1 + 0.1))
+        .collect();
+    let c32 = BSpline::<[f32; 3], 8, 12>::clamped_uniform(3, &pts32, 0.0, 1.0).expect("f32");
+    let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
+    let plan = PathTiming::<_, 256, 128>::scurve(&c32, &limits).expect("plan");
+    let path: Box<Path<f32, 3, 1024>> =
+        compile_boxed(&Along::new(&c32, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
+    let last = play_to_end(&path);
+    let end = c32.eval(1.0);
+    for i in 0..3 {
+        assert_eq!(last.position[i].to_bits(), end[i].to_bits(), "axis {i}");
+    }
 
-        // I32F32 curve → Q40 path
-        let ptsq: Vec<[I32F32; 3]> = PICK
-            .iter()
-            .map(|p| p.map(|x| I32F32::from_num(x * 1.1 + 0.1 / 3.0)))
-            .collect();
-        let cq =
-            BSpline::<[I32F32; 3], 8, 12>::clamped_uniform(3, &ptsq, I32F32::ZERO, I32F32::ONE)
-                .expect("fixed");
-        let plan = PathTiming::<_, 256, 128>::scurve(&cq, &limits).expect("plan");
-        let path: Path<Q40, 3, 1024> =
-            compile(&Along::new(&cq, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
-        let last = play_to_end(&path);
-        assert_eq!(last.position, cq.eval(I32F32::ONE));
-        assert_eq!(path.end_position(), cq.eval(I32F32::ONE));
+    // I32F32 curve → Q40 path
+    let ptsq: Vec<[I32F32; 3]> = PICK
+        .iter()
+        .map(|p| p.map(|x| I32F32::from_num(x * 1.1 + 0.1 / 3.0)))
+        .collect();
+    let cq = BSpline::<[I32F32; 3], 8, 12>::clamped_uniform(3, &ptsq, I32F32::ZERO, I32F32::ONE)
+        .expect("fixed");
+    let plan = PathTiming::<_, 256, 128>::scurve(&cq, &limits).expect("plan");
+    let path: Box<Path<Q40, 3, 1024>> =
+        compile_boxed(&Along::new(&cq, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
+    let last = play_to_end(&path);
+    assert_eq!(last.position, cq.eval(I32F32::ONE));
+    assert_eq!(path.end_position(), cq.eval(I32F32::ONE));
 
-        // f64 curve → f64 path with an end point that is not a round number
-        let c64 = BSpline::<[f64; 3], 8, 12>::clamped_uniform(
-            3,
-            &PICK.map(|p| p.map(|x| x / 3.0 + 0.1)),
-            0.0,
-            1.0,
-        )
-        .expect("f64");
-        let plan = PathTiming::<_, 256, 128>::scurve(&c64, &limits).expect("plan");
-        let path: Path<f64, 3, 1024> =
-            compile(&Along::new(&c64, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
-        let last = play_to_end(&path);
-        let end = c64.eval(1.0);
-        for i in 0..3 {
-            assert_eq!(last.position[i].to_bits(), end[i].to_bits(), "axis {i}");
-        }
-    });
+    // f64 curve → f64 path with an end point that is not a round number
+    let c64 = BSpline::<[f64; 3], 8, 12>::clamped_uniform(
+        3,
+        &PICK.map(|p| p.map(|x| x / 3.0 + 0.1)),
+        0.0,
+        1.0,
+    )
+    .expect("f64");
+    let plan = PathTiming::<_, 256, 128>::scurve(&c64, &limits).expect("plan");
+    let path: Box<Path<f64, 3, 1024>> =
+        compile_boxed(&Along::new(&c64, &plan), 10_000.0, &CompileOptions::new()).expect("compile");
+    let last = play_to_end(&path);
+    let end = c64.eval(1.0);
+    for i in 0..3 {
+        assert_eq!(last.position[i].to_bits(), end[i].to_bits(), "axis {i}");
+    }
 }
 
 /// Plays a path to its end; returns the last sample (checks the sampler's end semantics).
@@ -390,92 +387,87 @@ fn play_to_end<N: Kernel, const A: usize, const P: usize>(
 /// `f64`) stays within it.
 #[test]
 fn q40_format_error_within_the_playback_bound() {
-    big_stack(|| {
-        let curve = pick_and_place();
-        let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
-        let plan = PathTiming::<_, 256, 128>::scurve(&curve, &limits).expect("plan");
-        let path: Path<Q40, 3, PIECES> =
-            compile(&Along::new(&curve, &plan), RATE, &CompileOptions::new()).expect("compile");
-        let n = 256.0_f64;
-        let ulp = 2f64.powi(-40);
-        let documented = 0.5 * ulp * (1.0 + n + n * n / 2.0 + n * n * n / 6.0);
-        println!(
-            "Q40 playback bound {:.3e}, documented scale {documented:.3e}",
-            path.playback_bound()
-        );
-        assert!(path.playback_bound() <= 1.3 * documented + Q40::OUT_ERROR);
-        assert!(path.playback_bound() >= 0.5 * documented);
-        let mut s = Sampler::new(&path);
-        let mut worst = 0.0_f64;
-        for k in 0..=path.ticks() {
-            let smp = s.next();
-            let poly = path.eval(f64::from(k));
-            for i in 0..3 {
-                worst = worst.max((smp.position[i].to_f64() - poly.position[i]).abs());
-            }
+    let curve = pick_and_place();
+    let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
+    let plan = PathTiming::<_, 256, 128>::scurve(&curve, &limits).expect("plan");
+    let path: Box<Path<Q40, 3, PIECES>> =
+        compile_boxed(&Along::new(&curve, &plan), RATE, &CompileOptions::new()).expect("compile");
+    let n = 256.0_f64;
+    let ulp = 2f64.powi(-40);
+    let documented = 0.5 * ulp * (1.0 + n + n * n / 2.0 + n * n * n / 6.0);
+    println!(
+        "Q40 playback bound {:.3e}, documented scale {documented:.3e}",
+        path.playback_bound()
+    );
+    assert!(path.playback_bound() <= 1.3 * documented + Q40::OUT_ERROR);
+    assert!(path.playback_bound() >= 0.5 * documented);
+    let mut s = Sampler::new(&*path);
+    let mut worst = 0.0_f64;
+    for k in 0..=path.ticks() {
+        let smp = s.next();
+        let poly = path.eval(f64::from(k));
+        for i in 0..3 {
+            worst = worst.max((smp.position[i].to_f64() - poly.position[i]).abs());
         }
-        println!("Q40 measured format error {worst:.3e}");
-        assert!(worst <= path.playback_bound(), "{worst}");
-    });
+    }
+    println!("Q40 measured format error {worst:.3e}");
+    assert!(worst <= path.playback_bound(), "{worst}");
 }
 
 /// Sanity of the reference: it starts and ends at the curve's ends, at rest.
 #[test]
 fn reference_starts_and_ends_at_rest() {
-    big_stack(|| {
-        let curve = pick_and_place();
-        let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
-        let plan = PathTiming::<_, 256, 128>::scurve(&curve, &limits).expect("plan");
-        let path: Path<f64, 3, PIECES> =
-            compile(&Along::new(&curve, &plan), 1_000.0, &CompileOptions::new()).expect("compile");
-        let start = exact(&curve, &plan, &path, 0);
-        let end = exact(&curve, &plan, &path, path.ticks());
-        assert_eq!(start.x, [0.0, 0.0, 0.0]);
-        assert_eq!(end.x, [180.0, 90.0, 0.0]);
-        // at rest, up to the reference's own difference error (δ²·j)
-        let (v_ref, _) = reference_error(6_000.0, 200.0);
-        assert!(
-            start.v.iter().chain(&end.v).all(|v| v.abs() <= v_ref),
-            "{:?} {:?}",
-            start.v,
-            end.v
-        );
-        assert_eq!(plan.param(0.0), (0.0, 0.0));
-        assert_eq!(plan.param(plan.duration()).0, 1.0);
-    });
+    let curve = pick_and_place();
+    let limits = Limits::<3>::new(28.0, 300.0, 6_000.0).expect("limits");
+    let plan = PathTiming::<_, 256, 128>::scurve(&curve, &limits).expect("plan");
+    let path: Box<Path<f64, 3, PIECES>> =
+        compile_boxed(&Along::new(&curve, &plan), 1_000.0, &CompileOptions::new())
+            .expect("compile");
+    let start = exact(&curve, &plan, &path, 0);
+    let end = exact(&curve, &plan, &path, path.ticks());
+    assert_eq!(start.x, [0.0, 0.0, 0.0]);
+    assert_eq!(end.x, [180.0, 90.0, 0.0]);
+    // at rest, up to the reference's own difference error (δ²·j)
+    let (v_ref, _) = reference_error(6_000.0, 200.0);
+    assert!(
+        start.v.iter().chain(&end.v).all(|v| v.abs() <= v_ref),
+        "{:?} {:?}",
+        start.v,
+        end.v
+    );
+    assert_eq!(plan.param(0.0), (0.0, 0.0));
+    assert_eq!(plan.param(plan.duration()).0, 1.0);
 }
 
 /// One axis (a spindle or a linear stage) and six axes (the joints of a robot arm, in
 /// degrees): the same bounds and the exact end point in every format.
 #[test]
 fn one_and_six_axes() {
-    big_stack(|| {
-        let stage = BSpline::<[f64; 1], 5, 9>::clamped_uniform(
-            3,
-            &[[0.0], [20.0], [5.0], [60.0], [80.0]],
-            0.0,
-            1.0,
-        )
-        .expect("stage");
-        let limits = Limits::<1>::new(100.0, 1_000.0, 20_000.0).expect("limits");
-        let plan = PathTiming::<_, 256, 128>::scurve(&stage, &limits).expect("plan");
-        let one = three_formats("one axis", &stage, &plan, &CompileOptions::new());
+    let stage = BSpline::<[f64; 1], 5, 9>::clamped_uniform(
+        3,
+        &[[0.0], [20.0], [5.0], [60.0], [80.0]],
+        0.0,
+        1.0,
+    )
+    .expect("stage");
+    let limits = Limits::<1>::new(100.0, 1_000.0, 20_000.0).expect("limits");
+    let plan = PathTiming::<_, 256, 128>::scurve(&stage, &limits).expect("plan");
+    let one = three_formats("one axis", &stage, &plan, &CompileOptions::new());
 
-        let joints: [[f64; 6]; 6] = [
-            [0.0, -90.0, 90.0, 0.0, 45.0, 0.0],
-            [10.0, -80.0, 85.0, 5.0, 40.0, 15.0],
-            [40.0, -60.0, 70.0, 20.0, 30.0, 60.0],
-            [80.0, -45.0, 60.0, 10.0, 35.0, 120.0],
-            [110.0, -50.0, 75.0, -5.0, 45.0, 170.0],
-            [120.0, -55.0, 80.0, -10.0, 50.0, 180.0],
-        ];
-        let arm = BSpline::<[f64; 6], 6, 10>::clamped_uniform(3, &joints, 0.0, 1.0).expect("arm");
-        let limits = Limits::<6>::new(180.0, 720.0, 10_000.0)
-            .and_then(|l| l.with_axis_velocity([90.0, 60.0, 60.0, 120.0, 120.0, 180.0]))
-            .expect("limits");
-        let plan = PathTiming::<_, 256, 128>::scurve(&arm, &limits).expect("plan");
-        let six = three_formats("six axes", &arm, &plan, &CompileOptions::new());
-        println!("one axis: {one} ticks, six axes: {six} ticks");
-        assert!(one > 10_000 && six > 10_000);
-    });
+    let joints: [[f64; 6]; 6] = [
+        [0.0, -90.0, 90.0, 0.0, 45.0, 0.0],
+        [10.0, -80.0, 85.0, 5.0, 40.0, 15.0],
+        [40.0, -60.0, 70.0, 20.0, 30.0, 60.0],
+        [80.0, -45.0, 60.0, 10.0, 35.0, 120.0],
+        [110.0, -50.0, 75.0, -5.0, 45.0, 170.0],
+        [120.0, -55.0, 80.0, -10.0, 50.0, 180.0],
+    ];
+    let arm = BSpline::<[f64; 6], 6, 10>::clamped_uniform(3, &joints, 0.0, 1.0).expect("arm");
+    let limits = Limits::<6>::new(180.0, 720.0, 10_000.0)
+        .and_then(|l| l.with_axis_velocity([90.0, 60.0, 60.0, 120.0, 120.0, 180.0]))
+        .expect("limits");
+    let plan = PathTiming::<_, 256, 128>::scurve(&arm, &limits).expect("plan");
+    let six = three_formats("six axes", &arm, &plan, &CompileOptions::new());
+    println!("one axis: {one} ticks, six axes: {six} ticks");
+    assert!(one > 10_000 && six > 10_000);
 }

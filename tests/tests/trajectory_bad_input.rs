@@ -8,7 +8,7 @@ use std::cell::Cell;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
-use strak_tests::{big_stack, compile_within_bound};
+use strak_tests::compile_within_bound;
 use strak_trajectory::{
     Along, BLOB_MAGIC, BLOB_VERSION, BlobFormat, CompileOptions, Error, Kernel, Limits,
     MotionProfile, NumberFormat, ParameterTiming, Path, PathTiming, PlanOptions, ProfileShape, Q40,
@@ -1104,24 +1104,22 @@ fn options() -> impl Strategy<Value = CompileOptions> {
 }
 
 fn run_property(cases: u32, test: impl Fn(&mut TestRunner) -> Result<(), String> + Send + 'static) {
-    big_stack(move || {
-        let mut runner = TestRunner::new(Config {
-            cases,
-            failure_persistence: None,
-            ..Config::default()
-        });
-        if let Err(e) = test(&mut runner) {
-            panic!("{e}");
-        }
-        let (attempts, compiled) = (ATTEMPTS.with(Cell::get), COMPILED.with(Cell::get));
-        if attempts > 0 {
-            println!("{compiled} of {attempts} compile attempts succeeded and played to the end");
-        }
-        assert!(
-            attempts == 0 || compiled * 10 >= attempts,
-            "mostly rejected: {compiled}/{attempts}"
-        );
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
     });
+    if let Err(e) = test(&mut runner) {
+        panic!("{e}");
+    }
+    let (attempts, compiled) = (ATTEMPTS.with(Cell::get), COMPILED.with(Cell::get));
+    if attempts > 0 {
+        println!("{compiled} of {attempts} compile attempts succeeded and played to the end");
+    }
+    assert!(
+        attempts == 0 || compiled * 10 >= attempts,
+        "mostly rejected: {compiled}/{attempts}"
+    );
 }
 
 #[test]

@@ -28,10 +28,10 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::Bezier;
-use strak_tests::big_stack;
+use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
-    ProfileShape, Timing, compile,
+    ProfileShape, Timing,
 };
 
 /// The planner's durations must match within 0.1 % (the requirement); they are
@@ -128,8 +128,8 @@ impl<T: Timing> Timing for Unlimited<'_, T> {
 fn check_ticks<T: Timing>(curve: &Bezier<[f64; 3], 4>, timing: &T, rate: f64) -> f64 {
     // long pieces: only the tick count matters here (65 s at 100 kHz)
     let options = CompileOptions::new().with_max_piece_ticks(1 << 20);
-    let path: Path<f64, 3, 4096> =
-        compile(&Along::new(curve, &Unlimited(timing)), rate, &options).expect("compile");
+    let path: Box<Path<f64, 3, 4096>> =
+        compile_boxed(&Along::new(curve, &Unlimited(timing)), rate, &options).expect("compile");
     let d = timing.duration();
     let compiled = f64::from(path.ticks()) / rate;
     assert_eq!(path.plan_duration(), d);
@@ -211,68 +211,64 @@ fn scurve_closed_form_hand_values() {
 
 #[test]
 fn scurve_straight_line_through_planner_and_compiler() {
-    big_stack(|| {
-        let (p, q) = ([1.0, -2.0, 3.0], [31.0, 38.0, 123.0]); // length 130
-        let curve = line(p, q);
-        let l = length(p, q);
-        assert!((l - 130.0).abs() < 1e-12);
-        for (l_case, v, a, j, _, _) in SCURVE_CASES {
-            // scale the limits so that this line of length 130 is in the same regime
-            let s = l / l_case;
-            let (v, a, j) = (v * s, a * s, j * s);
-            let limits = Limits::<3>::new(v, a, j).expect("limits");
-            let timing = PathTiming::<_, 64, 8>::scurve(&curve, &limits).expect("plan");
-            assert_eq!(
-                timing.motion().zones().len(),
-                1,
-                "a straight line is one zone"
-            );
-            let (v, a, j) = planned(v, a, j);
-            let exact = scurve_duration(l, v, a, j);
-            let r = rel(timing.duration(), exact);
-            println!(
-                "line S-curve v={v:.3} a={a:.3} j={j:.3}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
-                timing.duration()
-            );
-            assert!(r < REQUIRED, "{r}");
-            assert!(r < ACHIEVED, "{r}");
-            for rate in RATES {
-                let compiled = check_ticks(&curve, &timing, rate);
-                assert!(compiled >= exact * (1.0 - ACHIEVED));
-                assert!(compiled < exact * (1.0 + ACHIEVED) + 1.0 / rate);
-            }
+    let (p, q) = ([1.0, -2.0, 3.0], [31.0, 38.0, 123.0]); // length 130
+    let curve = line(p, q);
+    let l = length(p, q);
+    assert!((l - 130.0).abs() < 1e-12);
+    for (l_case, v, a, j, _, _) in SCURVE_CASES {
+        // scale the limits so that this line of length 130 is in the same regime
+        let s = l / l_case;
+        let (v, a, j) = (v * s, a * s, j * s);
+        let limits = Limits::<3>::new(v, a, j).expect("limits");
+        let timing = PathTiming::<_, 64, 8>::scurve(&curve, &limits).expect("plan");
+        assert_eq!(
+            timing.motion().zones().len(),
+            1,
+            "a straight line is one zone"
+        );
+        let (v, a, j) = planned(v, a, j);
+        let exact = scurve_duration(l, v, a, j);
+        let r = rel(timing.duration(), exact);
+        println!(
+            "line S-curve v={v:.3} a={a:.3} j={j:.3}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
+            timing.duration()
+        );
+        assert!(r < REQUIRED, "{r}");
+        assert!(r < ACHIEVED, "{r}");
+        for rate in RATES {
+            let compiled = check_ticks(&curve, &timing, rate);
+            assert!(compiled >= exact * (1.0 - ACHIEVED));
+            assert!(compiled < exact * (1.0 + ACHIEVED) + 1.0 / rate);
         }
-    });
+    }
 }
 
 /// Per-axis limits on a line: the planner's duration is the closed form with the effective
 /// limits `min(v, vᵢ/|dᵢ|)` and `min(a, aᵢ/|dᵢ|)`.
 #[test]
 fn scurve_line_with_axis_limits() {
-    big_stack(|| {
-        let (p, q) = ([0.0, 0.0, 0.0], [30.0, 40.0, 120.0]); // direction (3, 4, 12)/13
-        let curve = line(p, q);
-        let d = [3.0 / 13.0, 4.0 / 13.0, 12.0 / 13.0];
-        let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0)
-            .and_then(|l| l.with_axis_velocity([1e9, 1e9, 60.0]))
-            .and_then(|l| l.with_axis_acceleration([1e9, 200.0, 1e9]))
-            .expect("limits");
-        let v = 200.0_f64.min(60.0 / d[2]);
-        let a = 2_000.0_f64.min(200.0 / d[1]);
-        let (v, a, j) = planned(v, a, 50_000.0);
-        let exact = scurve_duration(130.0, v, a, j);
-        let timing = PathTiming::<_, 64, 8>::scurve(&curve, &limits).expect("plan");
-        let r = rel(timing.duration(), exact);
-        println!(
-            "line with axis limits: v {v}, a {a}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
-            timing.duration()
-        );
-        assert!(r < REQUIRED, "{r}");
-        assert!(r < 1e-6, "{r}");
-        for rate in RATES {
-            check_ticks(&curve, &timing, rate);
-        }
-    });
+    let (p, q) = ([0.0, 0.0, 0.0], [30.0, 40.0, 120.0]); // direction (3, 4, 12)/13
+    let curve = line(p, q);
+    let d = [3.0 / 13.0, 4.0 / 13.0, 12.0 / 13.0];
+    let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0)
+        .and_then(|l| l.with_axis_velocity([1e9, 1e9, 60.0]))
+        .and_then(|l| l.with_axis_acceleration([1e9, 200.0, 1e9]))
+        .expect("limits");
+    let v = 200.0_f64.min(60.0 / d[2]);
+    let a = 2_000.0_f64.min(200.0 / d[1]);
+    let (v, a, j) = planned(v, a, 50_000.0);
+    let exact = scurve_duration(130.0, v, a, j);
+    let timing = PathTiming::<_, 64, 8>::scurve(&curve, &limits).expect("plan");
+    let r = rel(timing.duration(), exact);
+    println!(
+        "line with axis limits: v {v}, a {a}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
+        timing.duration()
+    );
+    assert!(r < REQUIRED, "{r}");
+    assert!(r < 1e-6, "{r}");
+    for rate in RATES {
+        check_ticks(&curve, &timing, rate);
+    }
 }
 
 #[test]
@@ -326,89 +322,83 @@ fn scurve_random_lines_match_the_closed_form() {
 
 #[test]
 fn trapezoid_closed_form() {
-    big_stack(|| {
-        let (p, q) = ([1.0, -2.0, 3.0], [31.0, 38.0, 123.0]); // length 130
-        let curve = line(p, q);
-        let l = 130.0;
-        for (v, a) in [
-            (10.0, 20.0),         // cruise: L ≥ v²/a
-            (100.0, 20.0),        // triangle: L < v²/a = 500
-            (50.0, 500.0 / 26.0), // exactly L = v²/a
-            (200.0, 2_000.0),
-        ] {
-            let exact = trapezoid_duration(l, v, a);
-            let m = MotionProfile::<1>::trapezoid(l, v, a).expect("profile");
-            assert!(
-                rel(m.duration(), exact) < ACHIEVED,
-                "{} vs {exact}",
-                m.duration()
-            );
-            let timing = PathTiming::<_, 64, 8>::trapezoid(&curve, v, a).expect("plan");
-            let r = rel(timing.duration(), exact);
-            println!(
-                "trapezoid v={v} a={a:.4}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
-                timing.duration()
-            );
-            assert!(r < REQUIRED, "{r}");
-            assert!(r < ACHIEVED, "{r}");
-            // the planner with a trapezoid shape and global limits only: the same
-            let limits = Limits::<3>::new(v, a, 1.0).expect("limits");
-            let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
-            let plan = PathTiming::<_, 64, 8>::plan(&curve, &limits, &options).expect("plan");
-            let (_, a_planned, _) = planned(v, a, 1.0);
-            let exact_planned = trapezoid_duration(l, v, a_planned);
-            assert!(rel(plan.duration(), exact_planned) < ACHIEVED);
-            for rate in RATES {
-                check_ticks(&curve, &timing, rate);
-            }
+    let (p, q) = ([1.0, -2.0, 3.0], [31.0, 38.0, 123.0]); // length 130
+    let curve = line(p, q);
+    let l = 130.0;
+    for (v, a) in [
+        (10.0, 20.0),         // cruise: L ≥ v²/a
+        (100.0, 20.0),        // triangle: L < v²/a = 500
+        (50.0, 500.0 / 26.0), // exactly L = v²/a
+        (200.0, 2_000.0),
+    ] {
+        let exact = trapezoid_duration(l, v, a);
+        let m = MotionProfile::<1>::trapezoid(l, v, a).expect("profile");
+        assert!(
+            rel(m.duration(), exact) < ACHIEVED,
+            "{} vs {exact}",
+            m.duration()
+        );
+        let timing = PathTiming::<_, 64, 8>::trapezoid(&curve, v, a).expect("plan");
+        let r = rel(timing.duration(), exact);
+        println!(
+            "trapezoid v={v} a={a:.4}: T = {:.9}, closed form {exact:.9} (rel {r:.1e})",
+            timing.duration()
+        );
+        assert!(r < REQUIRED, "{r}");
+        assert!(r < ACHIEVED, "{r}");
+        // the planner with a trapezoid shape and global limits only: the same
+        let limits = Limits::<3>::new(v, a, 1.0).expect("limits");
+        let options = PlanOptions::new().with_shape(ProfileShape::Trapezoid);
+        let plan = PathTiming::<_, 64, 8>::plan(&curve, &limits, &options).expect("plan");
+        let (_, a_planned, _) = planned(v, a, 1.0);
+        let exact_planned = trapezoid_duration(l, v, a_planned);
+        assert!(rel(plan.duration(), exact_planned) < ACHIEVED);
+        for rate in RATES {
+            check_ticks(&curve, &timing, rate);
         }
-    });
+    }
 }
 
 #[test]
 fn constant_speed_duration_is_length_over_speed() {
-    big_stack(|| {
-        let (p, q) = ([0.0, 0.0, 0.0], [30.0, 40.0, 120.0]);
-        let curve = line(p, q);
-        for v in [0.5, 13.0, 130.0, 2_600.0] {
-            let timing = PathTiming::<_, 64, 1>::constant_speed(&curve, v).expect("plan");
-            let exact = 130.0 / v;
-            let r = rel(timing.duration(), exact);
-            assert!(r < REQUIRED, "v {v}: {} vs {exact}", timing.duration());
-            assert!(r < ACHIEVED, "v {v}: {} vs {exact}", timing.duration());
-            assert_eq!(
-                MotionProfile::<1>::constant_speed(130.0, v)
-                    .expect("profile")
-                    .duration(),
-                exact
-            );
-            for rate in RATES {
-                check_ticks(&curve, &timing, rate);
-            }
+    let (p, q) = ([0.0, 0.0, 0.0], [30.0, 40.0, 120.0]);
+    let curve = line(p, q);
+    for v in [0.5, 13.0, 130.0, 2_600.0] {
+        let timing = PathTiming::<_, 64, 1>::constant_speed(&curve, v).expect("plan");
+        let exact = 130.0 / v;
+        let r = rel(timing.duration(), exact);
+        assert!(r < REQUIRED, "v {v}: {} vs {exact}", timing.duration());
+        assert!(r < ACHIEVED, "v {v}: {} vs {exact}", timing.duration());
+        assert_eq!(
+            MotionProfile::<1>::constant_speed(130.0, v)
+                .expect("profile")
+                .duration(),
+            exact
+        );
+        for rate in RATES {
+            check_ticks(&curve, &timing, rate);
         }
-    });
+    }
 }
 
 #[test]
 fn parameter_law_duration_and_ticks() {
-    big_stack(|| {
-        let curve = line([0.0; 3], [30.0, 40.0, 120.0]);
-        for d in [0.01, 0.3, 1.0, 2.5e-3] {
-            let timing = ParameterTiming::over(&curve, d).expect("law");
-            assert_eq!(timing.duration(), d);
-            for rate in RATES {
-                let compiled = check_ticks(&curve, &timing, rate);
-                // ⌈d·f⌉ ticks
-                let ticks = (compiled * rate).round();
-                assert_eq!(
-                    ticks,
-                    (d * rate * (1.0 - 1e-12)).ceil().max(1.0),
-                    "{d} s at {rate} Hz"
-                );
-            }
+    let curve = line([0.0; 3], [30.0, 40.0, 120.0]);
+    for d in [0.01, 0.3, 1.0, 2.5e-3] {
+        let timing = ParameterTiming::over(&curve, d).expect("law");
+        assert_eq!(timing.duration(), d);
+        for rate in RATES {
+            let compiled = check_ticks(&curve, &timing, rate);
+            // ⌈d·f⌉ ticks
+            let ticks = (compiled * rate).round();
+            assert_eq!(
+                ticks,
+                (d * rate * (1.0 - 1e-12)).ceil().max(1.0),
+                "{d} s at {rate} Hz"
+            );
         }
-        // the domain at a rate: duration = (u_end − u_start)/rate
-        let timing = ParameterTiming::at_rate(&curve, 4.0).expect("law");
-        assert_eq!(timing.duration(), 0.25);
-    });
+    }
+    // the domain at a rate: duration = (u_end − u_start)/rate
+    let timing = ParameterTiming::at_rate(&curve, 4.0).expect("law");
+    assert_eq!(timing.duration(), 0.25);
 }

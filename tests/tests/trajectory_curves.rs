@@ -13,8 +13,8 @@ use strak_curves::{
     BSpline, BezierChain, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization,
     SplineBoundary,
 };
-use strak_tests::{big_stack, check_playback};
-use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler, Timing, compile};
+use strak_tests::{check_playback, compile_boxed};
+use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler, Timing};
 
 /// Control rate (Hz).
 const RATE: f64 = 10_000.0;
@@ -62,12 +62,12 @@ where
     let scurve = PathTiming::<_, 256, 128>::scurve(curve, &limits()).expect("plan");
     let plan = PositionsOnly(&scurve);
     let options = CompileOptions::new().with_tolerance(1e-6);
-    let p64: Path<f64, 3, PIECES> =
-        compile(&Along::new(curve, &plan), RATE, &options).expect("compile f64");
+    let p64: Box<Path<f64, 3, PIECES>> =
+        compile_boxed(&Along::new(curve, &plan), RATE, &options).expect("compile f64");
     // f32 to what its playback holds on these paths (bounds 4·10⁻⁴ … 1.3·10⁻³)
     let options32 = CompileOptions::new().with_tolerance(2e-3);
-    let p32: Path<f32, 3, PIECES> =
-        compile(&Along::new(curve, &plan), RATE, &options32).expect("compile f32");
+    let p32: Box<Path<f32, 3, PIECES>> =
+        compile_boxed(&Along::new(curve, &plan), RATE, &options32).expect("compile f32");
     assert_eq!(p32.ticks(), p64.ticks(), "{name}: same tick count");
     let r64 = check_playback(name, curve, &plan, &p64);
     let r32 = check_playback(name, curve, &plan, &p32);
@@ -96,110 +96,97 @@ where
 
 #[test]
 fn bspline() {
-    big_stack(|| {
-        let c =
-            BSpline::<[f64; 3], 8, 12>::clamped_uniform(3, &WAYPOINTS, 0.0, 1.0).expect("B-spline");
-        plan_compile_play("B-spline", &c);
-    });
+    let c = BSpline::<[f64; 3], 8, 12>::clamped_uniform(3, &WAYPOINTS, 0.0, 1.0).expect("B-spline");
+    plan_compile_play("B-spline", &c);
 }
 
 #[test]
 fn nurbs() {
-    big_stack(|| {
-        let w = [1.0, 2.0, 0.5, 1.5, 1.0, 1.0];
-        let c =
-            Nurbs::<[f64; 3], 8, 12>::clamped_uniform(2, &WAYPOINTS, &w, 0.0, 1.0).expect("NURBS");
-        plan_compile_play("NURBS", &c);
-    });
+    let w = [1.0, 2.0, 0.5, 1.5, 1.0, 1.0];
+    let c = Nurbs::<[f64; 3], 8, 12>::clamped_uniform(2, &WAYPOINTS, &w, 0.0, 1.0).expect("NURBS");
+    plan_compile_play("NURBS", &c);
 }
 
 #[test]
 fn hermite_spline() {
-    big_stack(|| {
-        // tangents with respect to chord length (|c'| ≈ 1): vertical at the ends
-        let tangents = [
-            [0.0, 0.0, 1.0],
-            [0.5, 0.2, 0.8],
-            [0.85, 0.5, 0.1],
-            [0.85, 0.5, -0.1],
-            [0.5, 0.2, -0.8],
-            [0.0, 0.0, -1.0],
-        ];
-        let c =
-            HermiteSpline::<[f64; 3], 8>::new(&WAYPOINTS, &tangents, Parameterization::ChordLength)
-                .expect("Hermite spline");
-        plan_compile_play("Hermite spline", &c);
-    });
+    // tangents with respect to chord length (|c'| ≈ 1): vertical at the ends
+    let tangents = [
+        [0.0, 0.0, 1.0],
+        [0.5, 0.2, 0.8],
+        [0.85, 0.5, 0.1],
+        [0.85, 0.5, -0.1],
+        [0.5, 0.2, -0.8],
+        [0.0, 0.0, -1.0],
+    ];
+    let c = HermiteSpline::<[f64; 3], 8>::new(&WAYPOINTS, &tangents, Parameterization::ChordLength)
+        .expect("Hermite spline");
+    plan_compile_play("Hermite spline", &c);
 }
 
 #[test]
 fn interpolating_cubic_spline() {
-    big_stack(|| {
-        let c = CubicSpline::<[f64; 3], 8>::new(
-            &WAYPOINTS,
-            Parameterization::ChordLength,
-            SplineBoundary::Natural,
-        )
-        .expect("cubic spline");
-        plan_compile_play("cubic spline", &c);
-    });
+    let c = CubicSpline::<[f64; 3], 8>::new(
+        &WAYPOINTS,
+        Parameterization::ChordLength,
+        SplineBoundary::Natural,
+    )
+    .expect("cubic spline");
+    plan_compile_play("cubic spline", &c);
 }
 
 #[test]
 fn bezier_chain() {
-    big_stack(|| {
-        // three cubic segments joined C¹ (firmware-sim/examples/bezier-chain.toml)
-        let c = BezierChain::<[f64; 3], 4, 4>::new(&[
-            [0.0, 0.0, 0.0],
-            [10.0, 0.0, 5.0],
-            [20.0, 10.0, 10.0],
-            [30.0, 10.0, 10.0],
-            [40.0, 10.0, 10.0],
-            [45.0, 20.0, 5.0],
-            [50.0, 30.0, 5.0],
-            [55.0, 40.0, 5.0],
-            [60.0, 50.0, 0.0],
-            [70.0, 50.0, 0.0],
-        ])
-        .expect("Bézier chain");
-        plan_compile_play("Bézier chain", &c);
-        // and with a corner (a C⁰, not G¹, join at (30, 10, 10)): the motion stops there, so
-        // the acceleration in space stays within the limit (before the planner detected
-        // corners it passed this one at about 71 mm/s: 2.4·10⁶ mm/s² in the samples)
-        let corner = BezierChain::<[f64; 3], 4, 4>::new(&[
-            [0.0, 0.0, 0.0],
-            [10.0, 0.0, 5.0],
-            [20.0, 10.0, 10.0],
-            [30.0, 10.0, 10.0],
-            [30.0, 20.0, 10.0],
-            [40.0, 30.0, 5.0],
-            [50.0, 30.0, 5.0],
-        ])
-        .expect("Bézier chain with a corner");
-        plan_compile_play("Bézier chain (corner)", &corner);
-        let plan = PathTiming::<_, 256, 128>::scurve(&corner, &limits()).expect("plan");
-        let zones = plan.motion().zones();
-        let stop = zones
-            .iter()
-            .position(|z| z.stops_at_end())
-            .expect("a zone ends at the corner");
-        assert_eq!(zones[stop].v_end(), 0.0);
-        assert_eq!(zones.iter().filter(|z| z.stops_at_end()).count(), 1);
-        let corner_s = plan.table().length_at(1.0);
-        assert!((zones[stop].end() - corner_s).abs() < 1e-9 * corner_s);
-        let options = CompileOptions::new().with_tolerance(1e-6);
-        let path: Path<f64, 3, PIECES> =
-            compile(&Along::new(&corner, &plan), RATE, &options).expect("compile");
-        let mut sampler = Sampler::new(&path);
-        let (mut prev, mut a_max) = (sampler.next().velocity, 0.0_f64);
-        while !sampler.is_finished() {
-            let v = sampler.next().velocity;
-            let dv = (0..3).map(|i| (v[i] - prev[i]).powi(2)).sum::<f64>().sqrt();
-            a_max = a_max.max(dv * RATE);
-            prev = v;
-        }
-        println!("Bézier chain (corner): |a| ≤ {a_max:.1} (limit 1500)");
-        // the compiled spline's fit may exceed the planned acceleration by a few percent
-        assert!(a_max <= 1.1 * limits().acceleration(), "{a_max}");
-    });
+    // three cubic segments joined C¹ (firmware-sim/examples/bezier-chain.toml)
+    let c = BezierChain::<[f64; 3], 4, 4>::new(&[
+        [0.0, 0.0, 0.0],
+        [10.0, 0.0, 5.0],
+        [20.0, 10.0, 10.0],
+        [30.0, 10.0, 10.0],
+        [40.0, 10.0, 10.0],
+        [45.0, 20.0, 5.0],
+        [50.0, 30.0, 5.0],
+        [55.0, 40.0, 5.0],
+        [60.0, 50.0, 0.0],
+        [70.0, 50.0, 0.0],
+    ])
+    .expect("Bézier chain");
+    plan_compile_play("Bézier chain", &c);
+    // and with a corner (a C⁰, not G¹, join at (30, 10, 10)): the motion stops there, so
+    // the acceleration in space stays within the limit (before the planner detected
+    // corners it passed this one at about 71 mm/s: 2.4·10⁶ mm/s² in the samples)
+    let corner = BezierChain::<[f64; 3], 4, 4>::new(&[
+        [0.0, 0.0, 0.0],
+        [10.0, 0.0, 5.0],
+        [20.0, 10.0, 10.0],
+        [30.0, 10.0, 10.0],
+        [30.0, 20.0, 10.0],
+        [40.0, 30.0, 5.0],
+        [50.0, 30.0, 5.0],
+    ])
+    .expect("Bézier chain with a corner");
+    plan_compile_play("Bézier chain (corner)", &corner);
+    let plan = PathTiming::<_, 256, 128>::scurve(&corner, &limits()).expect("plan");
+    let zones = plan.motion().zones();
+    let stop = zones
+        .iter()
+        .position(|z| z.stops_at_end())
+        .expect("a zone ends at the corner");
+    assert_eq!(zones[stop].v_end(), 0.0);
+    assert_eq!(zones.iter().filter(|z| z.stops_at_end()).count(), 1);
+    let corner_s = plan.table().length_at(1.0);
+    assert!((zones[stop].end() - corner_s).abs() < 1e-9 * corner_s);
+    let options = CompileOptions::new().with_tolerance(1e-6);
+    let path: Box<Path<f64, 3, PIECES>> =
+        compile_boxed(&Along::new(&corner, &plan), RATE, &options).expect("compile");
+    let mut sampler = Sampler::new(&*path);
+    let (mut prev, mut a_max) = (sampler.next().velocity, 0.0_f64);
+    while !sampler.is_finished() {
+        let v = sampler.next().velocity;
+        let dv = (0..3).map(|i| (v[i] - prev[i]).powi(2)).sum::<f64>().sqrt();
+        a_max = a_max.max(dv * RATE);
+        prev = v;
+    }
+    println!("Bézier chain (corner): |a| ≤ {a_max:.1} (limit 1500)");
+    // the compiled spline's fit may exceed the planned acceleration by a few percent
+    assert!(a_max <= 1.1 * limits().acceleration(), "{a_max}");
 }

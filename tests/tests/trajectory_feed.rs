@@ -33,10 +33,10 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::{BSpline, ParamCurve, Scalar};
-use strak_tests::big_stack;
+use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Kernel, Limits, Path, PathTiming, Q40, Sample, Sampler, SamplerState,
-    Timing, compile,
+    Timing,
 };
 
 const RATE: f64 = 1_000.0;
@@ -82,9 +82,10 @@ fn plan(curve: &Curve) -> Plan<'_> {
     PathTiming::scurve(curve, &planned()).expect("plan")
 }
 
-fn compile_path<N: Kernel>(curve: &Curve, plan: &Plan<'_>) -> Path<N, 3, PIECES> {
+/// The path, compiled in place on the heap ([`compile_boxed`]).
+fn compile_path<N: Kernel>(curve: &Curve, plan: &Plan<'_>) -> Box<Path<N, 3, PIECES>> {
     let options = CompileOptions::new().with_path_limits(&machine());
-    compile(&Along::new(curve, plan), RATE, &options).expect("compile")
+    compile_boxed(&Along::new(curve, plan), RATE, &options).expect("compile")
 }
 
 fn norm(x: &[f64; 3]) -> f64 {
@@ -269,9 +270,9 @@ fn override_steps<N: Kernel>() {
 
 #[test]
 fn override_at_fixed_ticks() {
-    big_stack(override_steps::<f32>);
-    big_stack(override_steps::<f64>);
-    big_stack(override_steps::<Q40>);
+    override_steps::<f32>();
+    override_steps::<f64>();
+    override_steps::<Q40>();
 }
 
 /// At feed 0.1, once the ramp has settled, the speed is a tenth of the full-feed speed at
@@ -280,7 +281,7 @@ fn override_scales_the_speed<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
-    let mut sampler = Sampler::new(&path);
+    let mut sampler = Sampler::new(&*path);
     for _ in 0..800 {
         sampler.next();
     }
@@ -299,9 +300,9 @@ fn override_scales_the_speed<N: Kernel>() {
 
 #[test]
 fn override_scales_the_speed_in_every_format() {
-    big_stack(override_scales_the_speed::<f32>);
-    big_stack(override_scales_the_speed::<f64>);
-    big_stack(override_scales_the_speed::<Q40>);
+    override_scales_the_speed::<f32>();
+    override_scales_the_speed::<f64>();
+    override_scales_the_speed::<Q40>();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -353,14 +354,10 @@ fn override_every_tick_random() {
         0_u8..3,
     );
     runner
-        .run(&strategy, |(feeds, events, format)| {
-            let feeds2 = feeds.clone();
-            let events2 = events.clone();
-            big_stack(move || match format {
-                0 => random_feeds::<f32>(&feeds2, &events2),
-                1 => random_feeds::<f64>(&feeds2, &events2),
-                _ => random_feeds::<Q40>(&feeds2, &events2),
-            })
+        .run(&strategy, |(feeds, events, format)| match format {
+            0 => random_feeds::<f32>(&feeds, &events),
+            1 => random_feeds::<f64>(&feeds, &events),
+            _ => random_feeds::<Q40>(&feeds, &events),
         })
         .expect("random feed sequences");
 }
@@ -416,9 +413,9 @@ fn hold_and_resume<N: Kernel>() {
 
 #[test]
 fn hold_stands_still_and_resume_reaches_the_exact_end() {
-    big_stack(hold_and_resume::<f32>);
-    big_stack(hold_and_resume::<f64>);
-    big_stack(hold_and_resume::<Q40>);
+    hold_and_resume::<f32>();
+    hold_and_resume::<f64>();
+    hold_and_resume::<Q40>();
 }
 
 fn abort_stops<N: Kernel>() {
@@ -446,7 +443,7 @@ fn abort_stops<N: Kernel>() {
     let last = last.expect("samples");
     assert_ne!(last.position, path.end_position());
     // stays put: replay and look past the stop
-    let mut s = Sampler::new(&path);
+    let mut s = Sampler::new(&*path);
     let mut stop = None;
     for k in 0..seen.ticks + 50 {
         if k == 1200 {
@@ -480,9 +477,9 @@ fn abort_stops<N: Kernel>() {
 
 #[test]
 fn abort_stops_within_the_limits_and_stays_put() {
-    big_stack(abort_stops::<f32>);
-    big_stack(abort_stops::<f64>);
-    big_stack(abort_stops::<Q40>);
+    abort_stops::<f32>();
+    abort_stops::<f64>();
+    abort_stops::<Q40>();
 }
 
 /// `is_finished` becomes true exactly when the end sample (tick `ticks()`) has been returned;
@@ -492,7 +489,7 @@ fn finished_semantics<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
-    let mut s = Sampler::new(&path);
+    let mut s = Sampler::new(&*path);
     assert!(!s.is_finished());
     assert_eq!(s.state(), SamplerState::Running);
     for k in 0..path.ticks() {
@@ -521,9 +518,9 @@ fn finished_semantics<N: Kernel>() {
 
 #[test]
 fn finished_exactly_after_the_end_sample() {
-    big_stack(finished_semantics::<f32>);
-    big_stack(finished_semantics::<f64>);
-    big_stack(finished_semantics::<Q40>);
+    finished_semantics::<f32>();
+    finished_semantics::<f64>();
+    finished_semantics::<Q40>();
 }
 
 /// A hold never finishes by itself, and zero feed from the start stands still at the start.
@@ -531,7 +528,7 @@ fn zero_feed_from_the_start<N: Kernel>() {
     let curve = pick_and_place();
     let plan = plan(&curve);
     let path = compile_path::<N>(&curve, &plan);
-    let mut s = Sampler::new(&path);
+    let mut s = Sampler::new(&*path);
     s.hold();
     let first = s.next();
     let mut last = first;
@@ -559,29 +556,27 @@ fn zero_feed_from_the_start<N: Kernel>() {
 
 #[test]
 fn hold_from_the_start_then_resume() {
-    big_stack(zero_feed_from_the_start::<f32>);
-    big_stack(zero_feed_from_the_start::<f64>);
-    big_stack(zero_feed_from_the_start::<Q40>);
+    zero_feed_from_the_start::<f32>();
+    zero_feed_from_the_start::<f64>();
+    zero_feed_from_the_start::<Q40>();
 }
 
 /// The end point of a run with overrides is bit for bit the one at full feed.
 #[test]
 fn end_is_exact_with_an_override_until_the_end() {
-    big_stack(|| {
-        let curve = pick_and_place();
-        let plan = plan(&curve);
-        let path = compile_path::<Q40>(&curve, &plan);
-        let (_, last, _) = run(&curve, &plan, &path, 1_000_000, |k, s| {
-            if k == 5 {
-                s.set_feed(0.37);
-            }
-        });
-        assert_eq!(last.expect("samples").position, path.end_position());
-        let end = curve.eval(curve.domain().1);
-        assert_eq!(
-            path.end_position(),
-            end.map(strak_curves::I32F32::from_num),
-            "the Q40 end point is the f64 end rounded to I32F32"
-        );
+    let curve = pick_and_place();
+    let plan = plan(&curve);
+    let path = compile_path::<Q40>(&curve, &plan);
+    let (_, last, _) = run(&curve, &plan, &path, 1_000_000, |k, s| {
+        if k == 5 {
+            s.set_feed(0.37);
+        }
     });
+    assert_eq!(last.expect("samples").position, path.end_position());
+    let end = curve.eval(curve.domain().1);
+    assert_eq!(
+        path.end_position(),
+        end.map(strak_curves::I32F32::from_num),
+        "the Q40 end point is the f64 end rounded to I32F32"
+    );
 }

@@ -62,16 +62,14 @@
 //!   were uniform in `u`, not on the curve's knots, so at the NURBS circle's double knots the
 //!   time law had an acceleration jump; the table now samples every knot with one-sided slopes.
 
-use std::thread;
-
 use strak_curves::{
     BSpline, Bezier, CubicSpline, Nurbs, ParamCurve, ParamCurveDeriv, Parameterization,
     SplineBoundary,
 };
-use strak_tests::big_stack;
+use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
-    ProfileShape, Sampler, Timing, compile,
+    ProfileShape, Sampler, Timing,
 };
 
 /// Control rate of all tests here.
@@ -493,8 +491,8 @@ where
     if let Some(tol) = tolerance {
         options = options.with_relative_tolerance(tol);
     }
-    let path: Path<f64, A, PIECES> =
-        compile(&Along::new(curve, timing), RATE, &options).expect("compile");
+    let path: Box<Path<f64, A, PIECES>> =
+        compile_boxed(&Along::new(curve, timing), RATE, &options).expect("compile");
     assert_eq!(path.acceleration_limit(), m.full.acceleration());
     assert_eq!(path.jerk_limit(), m.full.jerk());
     let dv = velocity_allowance(&path);
@@ -565,7 +563,7 @@ fn check_law<C, const A: usize>(name: &str, curve: &C, law: Law, m: &Machine<A>)
 where
     C: ParamCurveDeriv<Point = [f64; A]> + Sync,
 {
-    let o = big_stack_run(curve, law, m);
+    let o = run_law(curve, law, m, None);
     let straight = name == "line";
     let jerk = matches!(law, Law::SCurve | Law::ConstantSpeed);
     let checks = Checks {
@@ -589,21 +587,6 @@ where
         assert!(o.ratios.tangential < 0.05, "{:?}", o.ratios);
     }
     o.ratios
-}
-
-fn big_stack_run<C, const A: usize>(curve: &C, law: Law, m: &Machine<A>) -> Outcome
-where
-    C: ParamCurveDeriv<Point = [f64; A]> + Sync,
-{
-    // The compiled paths (~1 MB) and the fit's scratch live on the stack: run on a big one.
-    thread::scope(|s| {
-        thread::Builder::new()
-            .stack_size(128 << 20)
-            .spawn_scoped(s, || run_law(curve, law, m, None))
-            .expect("spawn")
-            .join()
-            .expect("test thread panicked")
-    })
 }
 
 // --- pick and place -----------------------------------------------------------------------
@@ -657,7 +640,7 @@ fn pick_and_place_parameter() {
 fn pick_and_place_scurve_jerk_tight_tolerance() {
     let m = pick_and_place_machine();
     let curve = pick_and_place();
-    let o = big_stack(move || run_law(&curve, Law::SCurve, &m, Some(1e-5)));
+    let o = run_law(&curve, Law::SCurve, &m, Some(1e-5));
     let checks = Checks {
         planned_acceleration: true,
         jerk: true,
@@ -672,7 +655,7 @@ fn pick_and_place_scurve_jerk_tight_tolerance() {
 #[test]
 fn circle_scurve_without_jerk() {
     let m = circle_machine();
-    let o = big_stack(move || run_law(&circle(), Law::SCurve, &m, None));
+    let o = run_law(&circle(), Law::SCurve, &m, None);
     let checks = Checks {
         planned_acceleration: true,
         jerk: false,
@@ -721,31 +704,29 @@ fn circle_parameter() {
 /// stretch) at a tight compile tolerance (10⁻⁶ of the extent, so that the fit adds little):
 /// the largest deviation relative to the planned acceleration limit.
 fn tangential_deviation<const N: usize>() -> f64 {
-    big_stack(|| {
-        let m = circle_machine();
-        let curve = circle();
-        let plan =
-            PathTiming::<_, N, ZONES>::plan(&curve, &m.full, &PlanOptions::new().with_rate(RATE))
-                .expect("plan");
-        let options = CompileOptions::new()
-            .with_relative_tolerance(1e-6)
-            .with_path_limits(&m.full);
-        let path: Path<f64, 2, PIECES> =
-            compile(&Along::new(&curve, &plan), RATE, &options).expect("compile");
-        let run = play(&path);
-        let sigma = path.time_scale();
-        let mut worst = 0.0_f64;
-        for (k, (v, a)) in run.v.iter().zip(&run.a).enumerate() {
-            let sp = norm(v);
-            if sp > 1e-3 * m.planned.velocity() {
-                let planned = plan.motion().state(path.plan_time(k as f64)).a * sigma * sigma;
-                worst = worst.max((dot(a, v) / sp - planned).abs());
-            }
+    let m = circle_machine();
+    let curve = circle();
+    let plan =
+        PathTiming::<_, N, ZONES>::plan(&curve, &m.full, &PlanOptions::new().with_rate(RATE))
+            .expect("plan");
+    let options = CompileOptions::new()
+        .with_relative_tolerance(1e-6)
+        .with_path_limits(&m.full);
+    let path: Box<Path<f64, 2, PIECES>> =
+        compile_boxed(&Along::new(&curve, &plan), RATE, &options).expect("compile");
+    let run = play(&path);
+    let sigma = path.time_scale();
+    let mut worst = 0.0_f64;
+    for (k, (v, a)) in run.v.iter().zip(&run.a).enumerate() {
+        let sp = norm(v);
+        if sp > 1e-3 * m.planned.velocity() {
+            let planned = plan.motion().state(path.plan_time(k as f64)).a * sigma * sigma;
+            worst = worst.max((dot(a, v) / sp - planned).abs());
         }
-        let ratio = worst / m.planned.acceleration();
-        println!("arc-length table of {N}: |s̈ − planned s̈| ≤ {ratio:.4} × a'");
-        ratio
-    })
+    }
+    let ratio = worst / m.planned.acceleration();
+    println!("arc-length table of {N}: |s̈ − planned s̈| ≤ {ratio:.4} × a'");
+    ratio
 }
 
 /// With 257 table samples over the circle's domain [0, 4] the knots 1, 2, 3 are table nodes:
@@ -827,88 +808,83 @@ fn corner_parameter() {
 /// limit on the straight parts and slows to the corner's limit in the corner.
 #[test]
 fn scurve_slows_only_where_it_must() {
-    big_stack(|| {
-        let m = corner_machine();
-        let curve = corner();
-        let lim = &m.planned;
-        let plan = scurve_plan(&curve, &m);
-        let zones = plan.motion().zones();
-        let v_min = zones
-            .iter()
-            .map(|z| z.v_limit())
-            .fold(f64::INFINITY, f64::min);
-        // the corner limits the speed to ≈ 83 (radius ≈ 4.6: √(1500·4.6))
-        assert!(v_min < 0.5 * lim.velocity(), "the corner is tight: {v_min}");
-        let global =
-            MotionProfile::<1>::scurve(plan.length(), v_min, lim.acceleration(), lim.jerk())
-                .expect("global plan");
-        println!(
-            "corner: {} zones, slowest limit {v_min:.2} mm/s; duration {:.4} s, with the \
-             global minimum {:.4} s",
-            zones.len(),
-            plan.duration(),
-            global.duration()
-        );
-        assert!(plan.duration() < 0.6 * global.duration());
+    let m = corner_machine();
+    let curve = corner();
+    let lim = &m.planned;
+    let plan = scurve_plan(&curve, &m);
+    let zones = plan.motion().zones();
+    let v_min = zones
+        .iter()
+        .map(|z| z.v_limit())
+        .fold(f64::INFINITY, f64::min);
+    // the corner limits the speed to ≈ 83 (radius ≈ 4.6: √(1500·4.6))
+    assert!(v_min < 0.5 * lim.velocity(), "the corner is tight: {v_min}");
+    let global = MotionProfile::<1>::scurve(plan.length(), v_min, lim.acceleration(), lim.jerk())
+        .expect("global plan");
+    println!(
+        "corner: {} zones, slowest limit {v_min:.2} mm/s; duration {:.4} s, with the \
+         global minimum {:.4} s",
+        zones.len(),
+        plan.duration(),
+        global.duration()
+    );
+    assert!(plan.duration() < 0.6 * global.duration());
 
-        let options = CompileOptions::new().with_path_limits(&m.full);
-        let path: Path<f64, 2, PIECES> =
-            compile(&Along::new(&curve, &plan), RATE, &options).expect("compile");
-        let run = play(&path);
-        let (mut straight_peak, mut corner_min) = (0.0_f64, f64::INFINITY);
-        for k in 0..run.x.len() - 1 {
-            let sp = norm(&diff(&run.x[k], &run.x[k + 1], run.period));
-            let p = run.x[k];
-            if (p[0] - 79.5).abs() < 1.0 && (p[1] - 0.5).abs() < 1.0 {
-                corner_min = corner_min.min(sp);
-            } else {
-                straight_peak = straight_peak.max(sp);
-            }
+    let options = CompileOptions::new().with_path_limits(&m.full);
+    let path: Box<Path<f64, 2, PIECES>> =
+        compile_boxed(&Along::new(&curve, &plan), RATE, &options).expect("compile");
+    let run = play(&path);
+    let (mut straight_peak, mut corner_min) = (0.0_f64, f64::INFINITY);
+    for k in 0..run.x.len() - 1 {
+        let sp = norm(&diff(&run.x[k], &run.x[k + 1], run.period));
+        let p = run.x[k];
+        if (p[0] - 79.5).abs() < 1.0 && (p[1] - 0.5).abs() < 1.0 {
+            corner_min = corner_min.min(sp);
+        } else {
+            straight_peak = straight_peak.max(sp);
         }
-        println!(
-            "corner: fastest on the straights {straight_peak:.2}, slowest in the corner {corner_min:.2}"
-        );
-        assert!(straight_peak > 0.99 * lim.velocity(), "{straight_peak}");
-        assert!(corner_min <= v_min * 1.01, "{corner_min} vs {v_min}");
-        assert!(straight_peak > 2.0 * corner_min);
-    });
+    }
+    println!(
+        "corner: fastest on the straights {straight_peak:.2}, slowest in the corner {corner_min:.2}"
+    );
+    assert!(straight_peak > 0.99 * lim.velocity(), "{straight_peak}");
+    assert!(corner_min <= v_min * 1.01, "{corner_min} vs {v_min}");
+    assert!(straight_peak > 2.0 * corner_min);
 }
 
 /// The compiled path's reported peaks bound the samples, and the samples lie on the plan's
 /// `x(t) = c(u(t))` within the tolerance at every tick.
 #[test]
 fn compiled_peaks_and_positions_match_the_samples() {
-    big_stack(|| {
-        let m = pick_and_place_machine();
-        let curve = pick_and_place();
-        let plan = scurve_plan(&curve, &m);
-        let options = CompileOptions::new().with_path_limits(&m.full);
-        let path: Path<f64, 3, PIECES> =
-            compile(&Along::new(&curve, &plan), RATE, &options).expect("compile");
-        let run = play(&path);
-        let peak_v = run.v.iter().map(norm).fold(0.0, f64::max);
-        let peak_a = run.a.iter().map(norm).fold(0.0, f64::max);
-        println!(
-            "peaks: |v| {peak_v:.3} (path: ≤ {:.3}), |a| {peak_a:.3} (path: {:.3})",
-            path.peak_velocity(),
-            path.peak_acceleration()
-        );
-        assert!(peak_v <= path.peak_velocity() * (1.0 + ROUNDING));
-        assert!(peak_v >= 0.99 * path.peak_velocity());
-        assert!(peak_a <= path.peak_acceleration() * (1.0 + ROUNDING));
-        assert!(peak_a >= 0.99 * path.peak_acceleration());
-        let mut worst = 0.0_f64;
-        for (k, x) in run.x.iter().enumerate() {
-            let (u, _) = plan.param(path.plan_time(k as f64));
-            let c = curve.eval(u);
-            for i in 0..3 {
-                worst = worst.max((x[i] - c[i]).abs());
-            }
+    let m = pick_and_place_machine();
+    let curve = pick_and_place();
+    let plan = scurve_plan(&curve, &m);
+    let options = CompileOptions::new().with_path_limits(&m.full);
+    let path: Box<Path<f64, 3, PIECES>> =
+        compile_boxed(&Along::new(&curve, &plan), RATE, &options).expect("compile");
+    let run = play(&path);
+    let peak_v = run.v.iter().map(norm).fold(0.0, f64::max);
+    let peak_a = run.a.iter().map(norm).fold(0.0, f64::max);
+    println!(
+        "peaks: |v| {peak_v:.3} (path: ≤ {:.3}), |a| {peak_a:.3} (path: {:.3})",
+        path.peak_velocity(),
+        path.peak_acceleration()
+    );
+    assert!(peak_v <= path.peak_velocity() * (1.0 + ROUNDING));
+    assert!(peak_v >= 0.99 * path.peak_velocity());
+    assert!(peak_a <= path.peak_acceleration() * (1.0 + ROUNDING));
+    assert!(peak_a >= 0.99 * path.peak_acceleration());
+    let mut worst = 0.0_f64;
+    for (k, x) in run.x.iter().enumerate() {
+        let (u, _) = plan.param(path.plan_time(k as f64));
+        let c = curve.eval(u);
+        for i in 0..3 {
+            worst = worst.max((x[i] - c[i]).abs());
         }
-        println!(
-            "positions: {worst:.3e} from c(u(t)), tolerance {:.3e}",
-            path.tolerance()
-        );
-        assert!(worst <= path.tolerance() + path.playback_bound(), "{worst}");
-    });
+    }
+    println!(
+        "positions: {worst:.3e} from c(u(t)), tolerance {:.3e}",
+        path.tolerance()
+    );
+    assert!(worst <= path.tolerance() + path.playback_bound(), "{worst}");
 }

@@ -33,7 +33,7 @@
 //!   for it (the test would catch it).
 
 use strak_curves::{BSpline, Bezier, ParamCurveDeriv, Scalar};
-use strak_tests::big_stack;
+use strak_tests::compile_plan_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Sampler, Timing,
 };
@@ -143,7 +143,8 @@ where
     C: ParamCurveDeriv<Point = [f64; A]>,
 {
     let plan: Plan<'_, C> = PathTiming::plan(curve, machine, options).expect("plan");
-    let path: Path<f64, A, PIECES> = plan.compile(&CompileOptions::new()).expect("compile");
+    let path: Box<Path<f64, A, PIECES>> =
+        compile_plan_boxed(&plan, &CompileOptions::new()).expect("compile");
     let (r, _) = play(&path, machine, |_, _| {});
     assert_within(name, &r, &path, machine);
 }
@@ -184,20 +185,18 @@ fn zigzag() -> BSpline<[f64; 2], 24, 32> {
 /// keep the limits at 1 and 10 kHz, by stopping or by crawling through.
 #[test]
 fn corner_angle_never_breaks_the_limits() {
-    big_stack(|| {
-        let m = machine2();
-        for angle in [1e-4, 1.0, core::f64::consts::PI] {
-            for rate in [1_000.0, 10_000.0] {
-                let o = PlanOptions::new().with_corner_angle(angle).with_rate(rate);
-                for deg in [0.06, 1.0, 5.0, 30.0, 90.0, 179.0] {
-                    let name = format!("turn {deg}° corner angle {angle} at {rate} Hz");
-                    run(&name, &polyline(f64::to_radians(deg)), &m, &o);
-                }
-                let name = format!("zigzag, corner angle {angle} at {rate} Hz");
-                run(&name, &zigzag(), &m, &o);
+    let m = machine2();
+    for angle in [1e-4, 1.0, core::f64::consts::PI] {
+        for rate in [1_000.0, 10_000.0] {
+            let o = PlanOptions::new().with_corner_angle(angle).with_rate(rate);
+            for deg in [0.06, 1.0, 5.0, 30.0, 90.0, 179.0] {
+                let name = format!("turn {deg}° corner angle {angle} at {rate} Hz");
+                run(&name, &polyline(f64::to_radians(deg)), &m, &o);
             }
+            let name = format!("zigzag, corner angle {angle} at {rate} Hz");
+            run(&name, &zigzag(), &m, &o);
         }
-    });
+    }
 }
 
 /// The measurement catches a join passed at speed: a plan whose zones are forced through the
@@ -214,16 +213,14 @@ fn a_join_at_speed_is_caught() {
             ((t * 1.5).clamp(0.0, 1.0), 1.5)
         }
     }
-    big_stack(|| {
-        let m = machine2();
-        let c = polyline(30.0_f64.to_radians());
-        let path: Path<f64, 2, PIECES> =
-            strak_trajectory::compile(&Along::new(&c, &Through), 1_000.0, &CompileOptions::new())
-                .expect("compile");
-        let (r, _) = play(&path, &m, |_, _| {});
-        println!("30° at 150 mm/s: |a| {:.1} × the limit", r.acceleration);
-        assert!(r.acceleration > 5.0, "{}", r.acceleration);
-    });
+    let m = machine2();
+    let c = polyline(30.0_f64.to_radians());
+    let path: Path<f64, 2, PIECES> =
+        strak_trajectory::compile(&Along::new(&c, &Through), 1_000.0, &CompileOptions::new())
+            .expect("compile");
+    let (r, _) = play(&path, &m, |_, _| {});
+    println!("30° at 150 mm/s: |a| {:.1} × the limit", r.acceleration);
+    assert!(r.acceleration > 5.0, "{}", r.acceleration);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -234,38 +231,36 @@ fn a_join_at_speed_is_caught() {
 /// comes to rest at the reversal and keeps the limits.
 #[test]
 fn cusps_stop_the_motion() {
-    big_stack(|| {
-        let m = machine2();
-        let o = PlanOptions::new();
-        // out to x = 4, back to x = −5 (c' = 0 at u = 0.4)
-        let back = Bezier::new([[0.0, 0.0], [10.0, 0.0], [-5.0, 0.0]]).expect("curve");
-        run("doubles back", &back, &m, &o);
-        // twice back and forth along x
-        let twice = Bezier::new([[0.0, 0.0], [30.0, 0.0], [-10.0, 0.0], [20.0, 0.0]]).expect("c");
-        run("back and forth", &twice, &m, &o);
-        // the semicubical parabola (20(2t − 1)², 20(2t − 1)³): a cusp at t = ½
-        let cusp = Bezier::new([
-            [20.0, -20.0],
-            [-20.0 / 3.0, 20.0],
-            [-20.0 / 3.0, -20.0],
-            [20.0, 20.0],
-        ])
-        .expect("cusp");
-        run("semicubical cusp", &cusp, &m, &o);
-        // 3-D: a B-spline of four pieces that turns back at an inner knot and inside a piece
-        let pts = [
-            [0.0, 0.0, 0.0],
-            [20.0, 0.0, 0.0],
-            [40.0, 5.0, 2.0],
-            [20.0, 5.0, 2.0],
-            [0.0, 5.0, 2.0],
-            [0.0, 5.0, 2.0],
-            [30.0, 10.0, 4.0],
-        ];
-        let spline = BSpline::<[f64; 3], 8, 16>::clamped_uniform(3, &pts, 0.0, 1.0).expect("b");
-        let m3 = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
-        run("3-D B-spline with reversals", &spline, &m3, &o);
-    });
+    let m = machine2();
+    let o = PlanOptions::new();
+    // out to x = 4, back to x = −5 (c' = 0 at u = 0.4)
+    let back = Bezier::new([[0.0, 0.0], [10.0, 0.0], [-5.0, 0.0]]).expect("curve");
+    run("doubles back", &back, &m, &o);
+    // twice back and forth along x
+    let twice = Bezier::new([[0.0, 0.0], [30.0, 0.0], [-10.0, 0.0], [20.0, 0.0]]).expect("c");
+    run("back and forth", &twice, &m, &o);
+    // the semicubical parabola (20(2t − 1)², 20(2t − 1)³): a cusp at t = ½
+    let cusp = Bezier::new([
+        [20.0, -20.0],
+        [-20.0 / 3.0, 20.0],
+        [-20.0 / 3.0, -20.0],
+        [20.0, 20.0],
+    ])
+    .expect("cusp");
+    run("semicubical cusp", &cusp, &m, &o);
+    // 3-D: a B-spline of four pieces that turns back at an inner knot and inside a piece
+    let pts = [
+        [0.0, 0.0, 0.0],
+        [20.0, 0.0, 0.0],
+        [40.0, 5.0, 2.0],
+        [20.0, 5.0, 2.0],
+        [0.0, 5.0, 2.0],
+        [0.0, 5.0, 2.0],
+        [30.0, 10.0, 4.0],
+    ];
+    let spline = BSpline::<[f64; 3], 8, 16>::clamped_uniform(3, &pts, 0.0, 1.0).expect("b");
+    let m3 = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
+    run("3-D B-spline with reversals", &spline, &m3, &o);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -276,18 +271,16 @@ fn cusps_stop_the_motion() {
 /// ticks or more, and the samples keep the acceleration limit.
 #[test]
 fn extreme_jerk_limits_keep_the_limits() {
-    big_stack(|| {
-        let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).expect("line");
-        for j in [2e5, 1e6, 1e8, 1e10, 1e14] {
-            for v in [20.0, 200.0] {
-                for rate in [1_000.0, 10_000.0] {
-                    let m = Limits::<2>::new(v, 2_000.0, j).expect("limits");
-                    let o = PlanOptions::new().with_rate(rate);
-                    run(&format!("line v {v} j {j:e} at {rate} Hz"), &line, &m, &o);
-                }
+    let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]]).expect("line");
+    for j in [2e5, 1e6, 1e8, 1e10, 1e14] {
+        for v in [20.0, 200.0] {
+            for rate in [1_000.0, 10_000.0] {
+                let m = Limits::<2>::new(v, 2_000.0, j).expect("limits");
+                let o = PlanOptions::new().with_rate(rate);
+                run(&format!("line v {v} j {j:e} at {rate} Hz"), &line, &m, &o);
             }
         }
-    });
+    }
 }
 
 /// Limits whose motion no `u32` tick count can hold are rejected by the planner.
@@ -364,7 +357,8 @@ fn reserve_keeps_the_limits<N: Kernel>() {
     let o = PlanOptions::new();
     let curve = readme_move();
     let plan: Plan<'_, _> = PathTiming::plan(&curve, &m3, &o).expect("plan");
-    let path: Path<N, 3, PIECES> = plan.compile(&CompileOptions::new()).expect("compile");
+    let path: Box<Path<N, 3, PIECES>> =
+        compile_plan_boxed(&plan, &CompileOptions::new()).expect("compile");
     let r = feed_changes(&format!("README move {}", N::NAME), &path, &m3);
     assert!(
         r.speed <= 1.0 + velocity_allowance(&path) / m3.velocity(),
@@ -375,7 +369,8 @@ fn reserve_keeps_the_limits<N: Kernel>() {
     assert!(r.jerk <= 1.0 + ROUNDING, "{r:?}");
     let line = Bezier::new([[0.0, 0.0, 0.0], [100.0, 50.0, 20.0]]).expect("line");
     let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
-    let path: Path<N, 3, PIECES> = plan.compile(&CompileOptions::new()).expect("compile");
+    let path: Box<Path<N, 3, PIECES>> =
+        compile_plan_boxed(&plan, &CompileOptions::new()).expect("compile");
     let r = feed_changes(&format!("line at the limits {}", N::NAME), &path, &m3);
     assert!(r.acceleration <= 1.0 + ROUNDING, "{r:?}");
     assert!(r.axis_acceleration <= 1.0 + ROUNDING, "{r:?}");
@@ -384,26 +379,24 @@ fn reserve_keeps_the_limits<N: Kernel>() {
 
 #[test]
 fn feed_override_hold_and_resume_keep_the_limits() {
-    big_stack(reserve_keeps_the_limits::<f64>);
-    big_stack(reserve_keeps_the_limits::<f32>);
-    big_stack(reserve_keeps_the_limits::<strak_trajectory::Q40>);
+    reserve_keeps_the_limits::<f64>();
+    reserve_keeps_the_limits::<f32>();
+    reserve_keeps_the_limits::<strak_trajectory::Q40>();
 }
 
 /// The measurement catches a plan that does not leave the compiled path's feed share free:
 /// planned with a share of 0.1 % but compiled for the default ¼, a hold breaks the limits.
 #[test]
 fn a_plan_without_the_reserve_is_caught() {
-    big_stack(|| {
-        let m3 = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
-        let line = Bezier::new([[0.0, 0.0, 0.0], [100.0, 50.0, 20.0]]).expect("line");
-        let o = PlanOptions::new().with_feed_share(1e-3);
-        let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
-        let options = CompileOptions::new().with_path_limits(&m3);
-        let path: Path<f64, 3, PIECES> =
-            strak_trajectory::compile(&plan, plan.rate(), &options).expect("compile");
-        let r = feed_changes("line planned at the full limits", &path, &m3);
-        assert!(r.acceleration > 1.01 || r.jerk > 1.01, "{r:?}");
-    });
+    let m3 = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
+    let line = Bezier::new([[0.0, 0.0, 0.0], [100.0, 50.0, 20.0]]).expect("line");
+    let o = PlanOptions::new().with_feed_share(1e-3);
+    let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
+    let options = CompileOptions::new().with_path_limits(&m3);
+    let path: Path<f64, 3, PIECES> =
+        strak_trajectory::compile(&plan, plan.rate(), &options).expect("compile");
+    let r = feed_changes("line planned at the full limits", &path, &m3);
+    assert!(r.acceleration > 1.01 || r.jerk > 1.01, "{r:?}");
 }
 
 // ---------------------------------------------------------------------------------------------

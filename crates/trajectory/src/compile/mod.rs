@@ -491,10 +491,13 @@ fn round_state<N: Number>(s: &AxisState<f64>) -> Result<AxisState<N>, Error> {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::testing::{Linear, Quintic, Smoothstep, TestTiming, Trapezoid, exact, helix};
+    use super::testing::{
+        Linear, Quintic, Smoothstep, TestTiming, Trapezoid, compile_boxed, exact, helix,
+    };
     use super::*;
     use crate::num::Q40;
     use crate::plan::Along;
+    use std::boxed::Box;
     use strak_curves::{Bezier, I32F32, ParamCurve};
 
     fn line() -> Bezier<[f64; 2], 2> {
@@ -722,12 +725,12 @@ mod tests {
         rate: f64,
         tol: f64,
     ) -> Errors {
-        super::testing::big_stack(move || check_every_tick_on(&timing, rate, tol))
+        check_every_tick_on(&timing, rate, tol)
     }
 
     fn check_every_tick_on<T: TestTiming>(timing: &T, rate: f64, tol: f64) -> Errors {
         let curve = helix(2.0, 2.0, 1.0);
-        let path: Path<f64, 3, 4096> = compile(
+        let path: Box<Path<f64, 3, 4096>> = compile_boxed(
             &Along::new(&curve, timing),
             rate,
             &CompileOptions::new().with_tolerance(tol),
@@ -819,13 +822,13 @@ mod tests {
 
     #[test]
     fn peaks_bound_the_path() {
-        super::testing::big_stack(peaks_bound_the_path_on);
+        peaks_bound_the_path_on();
     }
 
     fn peaks_bound_the_path_on() {
         let curve = helix(2.0, 2.0, 1.0);
         let timing = Quintic(0.5);
-        let path: Path<f64, 3, 4096> = compile(
+        let path: Box<Path<f64, 3, 4096>> = compile_boxed(
             &Along::new(&curve, &timing),
             10_000.0,
             &CompileOptions::new().with_tolerance(1e-7),
@@ -849,7 +852,7 @@ mod tests {
         // default limits: the plan is assumed to have used 3/4
         assert!((path.acceleration_limit() - path.peak_acceleration() / 0.75).abs() < 1e-9);
         assert!((path.jerk_limit() - path.peak_jerk() / 0.75).abs() < 1e-6);
-        let with: Path<f64, 3, 4096> = compile(
+        let with: Box<Path<f64, 3, 4096>> = compile_boxed(
             &Along::new(&curve, &timing),
             10_000.0,
             &CompileOptions::new()
@@ -895,7 +898,8 @@ mod tests {
             breaks,
             limits,
         };
-        let path: Path<f64, 2, 4096> = compile(&Along::new(&line, &law), rate, &o).unwrap();
+        let path: Box<Path<f64, 2, 4096>> =
+            compile_boxed(&Along::new(&line, &law), rate, &o).unwrap();
         // the plan keeps the feed reserve: it uses 1 − share of the jerk limit
         let planned = (1.0 - crate::PlanOptions::DEFAULT_FEED_SHARE) * lim.jerk();
         (path.peak_jerk() / planned, path.time_scale())
@@ -903,46 +907,42 @@ mod tests {
 
     #[test]
     fn knots_on_the_breaks_keep_the_jerk() {
-        super::testing::big_stack(|| {
-            for rate in [1_000.0, 10_000.0] {
-                for tol in [1e-4, 1e-6] {
-                    let (with, _) = scurve_line_jerk(rate, tol, true, false);
-                    let (without, _) = scurve_line_jerk(rate, tol, false, false);
-                    std::println!(
-                        "{rate} Hz tol {tol:e}: jerk {with:.4} (without breaks {without:.4})"
-                    );
-                    // the breaks sit within half a tick of a knot (measured: 0.9997, 1.040
-                    // at 1 kHz; 1.0017 at 10 kHz)
-                    assert!(with > 0.99 && with < 1.05, "{rate} {tol}: {with}");
-                    // without them the spline overshoots the jerk steps (measured: 1.10,
-                    // 1.13 at 1 kHz; 1.06, 1.03 at 10 kHz)
-                    assert!(without > with + 0.02, "{rate} {tol}: {without}");
-                }
+        for rate in [1_000.0, 10_000.0] {
+            for tol in [1e-4, 1e-6] {
+                let (with, _) = scurve_line_jerk(rate, tol, true, false);
+                let (without, _) = scurve_line_jerk(rate, tol, false, false);
+                std::println!(
+                    "{rate} Hz tol {tol:e}: jerk {with:.4} (without breaks {without:.4})"
+                );
+                // the breaks sit within half a tick of a knot (measured: 0.9997, 1.040
+                // at 1 kHz; 1.0017 at 10 kHz)
+                assert!(with > 0.99 && with < 1.05, "{rate} {tol}: {with}");
+                // without them the spline overshoots the jerk steps (measured: 1.10,
+                // 1.13 at 1 kHz; 1.06, 1.03 at 10 kHz)
+                assert!(without > with + 0.02, "{rate} {tol}: {without}");
             }
-        });
+        }
     }
 
     #[test]
     fn the_laws_limits_are_kept_by_slowing_down() {
-        super::testing::big_stack(|| {
-            for rate in [1_000.0, 10_000.0] {
-                for tol in [1e-4, 1e-6] {
-                    let (free, free_scale) = scurve_line_jerk(rate, tol, true, false);
-                    let (kept, scale) = scurve_line_jerk(rate, tol, true, true);
-                    std::println!(
-                        "{rate} Hz tol {tol:e}: jerk {kept:.6} at time scale {scale:.6} \
-                         (unchecked: {free:.6})"
-                    );
-                    assert!(kept <= 1.0 + 1e-12, "{rate} {tol}: {kept}");
-                    // slowed down by the cube root of the excess (measured at most 1.3 %)
-                    let excess = libm::cbrt(free.max(1.0));
-                    assert!(scale <= free_scale && scale * excess >= 0.98 * free_scale);
-                    if free > 1.0 + 1e-9 {
-                        assert!(scale < free_scale, "{rate} {tol}: not slowed down");
-                    }
+        for rate in [1_000.0, 10_000.0] {
+            for tol in [1e-4, 1e-6] {
+                let (free, free_scale) = scurve_line_jerk(rate, tol, true, false);
+                let (kept, scale) = scurve_line_jerk(rate, tol, true, true);
+                std::println!(
+                    "{rate} Hz tol {tol:e}: jerk {kept:.6} at time scale {scale:.6} \
+                     (unchecked: {free:.6})"
+                );
+                assert!(kept <= 1.0 + 1e-12, "{rate} {tol}: {kept}");
+                // slowed down by the cube root of the excess (measured at most 1.3 %)
+                let excess = libm::cbrt(free.max(1.0));
+                assert!(scale <= free_scale && scale * excess >= 0.98 * free_scale);
+                if free > 1.0 + 1e-9 {
+                    assert!(scale < free_scale, "{rate} {tol}: not slowed down");
                 }
             }
-        });
+        }
     }
 
     /// Jerk phases of 4.25 ticks (all breaks close): with the law's limits and an `f64`
@@ -950,63 +950,60 @@ mod tests {
     /// curve (whose rounding a one-tick piece would turn into jerk), no break gets a knot.
     #[test]
     fn one_tick_pieces_hold_the_breaks_of_short_phases() {
-        super::testing::big_stack(|| {
-            let lim = crate::Limits::<2>::new(21.23, 823.0, 193_600.0).unwrap();
-            let one_tick =
-                |path: &Path<f64, 2, 4096>| path.pieces().iter().filter(|p| p.ticks() == 1).count();
-            let o = CompileOptions::new();
-            let line = Bezier::new([[0.0_f64, 0.0], [52.255, 52.255]]).unwrap();
-            // planned for 100 kHz: its jerk phases last 16 ticks there, a fraction of a tick
-            // at the 1 kHz it is compiled for
-            let fine = crate::PlanOptions::new().with_rate(100_000.0);
-            let plan = crate::PathTiming::<_, 64, 4>::plan(&line, &lim, &fine).unwrap();
-            let mut breaks = 0;
-            plan.breaks(&mut |_| breaks += 1);
-            assert_eq!(breaks, 6);
-            let kept: Path<f64, 2, 4096> = compile(&plan, 1_000.0, &o).unwrap();
-            assert_eq!(one_tick(&kept), breaks, "{:?}", kept.pieces().len());
-            let law = Forward {
-                law: &plan,
-                breaks: true,
-                limits: false,
-            };
-            let free: Path<f64, 2, 4096> = compile(&Along::new(&line, &law), 1_000.0, &o).unwrap();
-            assert_eq!(one_tick(&free), 0);
-            let line32 = Bezier::new([[0.0_f32, 0.0], [52.255, 52.255]]).unwrap();
-            let plan32 = crate::PathTiming::<_, 64, 4>::plan(&line32, &lim, &fine).unwrap();
-            let coarse: Path<f64, 2, 4096> = compile(&plan32, 1_000.0, &o).unwrap();
-            assert_eq!(one_tick(&coarse), 0);
-        });
+        let lim = crate::Limits::<2>::new(21.23, 823.0, 193_600.0).unwrap();
+        let one_tick =
+            |path: &Path<f64, 2, 4096>| path.pieces().iter().filter(|p| p.ticks() == 1).count();
+        let o = CompileOptions::new();
+        let line = Bezier::new([[0.0_f64, 0.0], [52.255, 52.255]]).unwrap();
+        // planned for 100 kHz: its jerk phases last 16 ticks there, a fraction of a tick
+        // at the 1 kHz it is compiled for
+        let fine = crate::PlanOptions::new().with_rate(100_000.0);
+        let plan = crate::PathTiming::<_, 64, 4>::plan(&line, &lim, &fine).unwrap();
+        let mut breaks = 0;
+        plan.breaks(&mut |_| breaks += 1);
+        assert_eq!(breaks, 6);
+        let kept: Box<Path<f64, 2, 4096>> = compile_boxed(&plan, 1_000.0, &o).unwrap();
+        assert_eq!(one_tick(&kept), breaks, "{:?}", kept.pieces().len());
+        let law = Forward {
+            law: &plan,
+            breaks: true,
+            limits: false,
+        };
+        let free: Box<Path<f64, 2, 4096>> =
+            compile_boxed(&Along::new(&line, &law), 1_000.0, &o).unwrap();
+        assert_eq!(one_tick(&free), 0);
+        let line32 = Bezier::new([[0.0_f32, 0.0], [52.255, 52.255]]).unwrap();
+        let plan32 = crate::PathTiming::<_, 64, 4>::plan(&line32, &lim, &fine).unwrap();
+        let coarse: Box<Path<f64, 2, 4096>> = compile_boxed(&plan32, 1_000.0, &o).unwrap();
+        assert_eq!(one_tick(&coarse), 0);
     }
 
     #[test]
     fn limit_exceeded_beyond_the_largest_slowdown() {
-        super::testing::big_stack(|| {
-            let line = Bezier::new([[0.0_f64, 0.0], [30.0, 40.0]]).unwrap();
-            let lim = crate::Limits::<2>::new(97.3, 1130.7, 21_713.0).unwrap();
-            let plan = crate::PathTiming::<_, 64, 4>::scurve(&line, &lim).unwrap();
-            // at 1 kHz the fit overshoots the law (see above): no slow-down allowed
-            let strict = CompileOptions::new().with_max_slowdown(1.0);
-            let r: Result<Path<f64, 2, 4096>, _> = compile(&plan, 1_000.0, &strict);
-            assert!(matches!(r, Err(Error::LimitExceeded { .. })), "{r:?}");
-            // a law so long that its ticks overflow to ∞ (∞ ticks, not one): the planner
-            // refuses such a plan itself, so a law of its own
-            struct Crawl;
-            impl Timing for Crawl {
-                fn duration(&self) -> f64 {
-                    1.0e305
-                }
-                fn param(&self, t: f64) -> (f64, f64) {
-                    (t / 1.0e305, 1.0 / 1.0e305)
-                }
+        let line = Bezier::new([[0.0_f64, 0.0], [30.0, 40.0]]).unwrap();
+        let lim = crate::Limits::<2>::new(97.3, 1130.7, 21_713.0).unwrap();
+        let plan = crate::PathTiming::<_, 64, 4>::scurve(&line, &lim).unwrap();
+        // at 1 kHz the fit overshoots the law (see above): no slow-down allowed
+        let strict = CompileOptions::new().with_max_slowdown(1.0);
+        let r: Result<Box<Path<f64, 2, 4096>>, _> = compile_boxed(&plan, 1_000.0, &strict);
+        assert!(matches!(r, Err(Error::LimitExceeded { .. })), "{r:?}");
+        // a law so long that its ticks overflow to ∞ (∞ ticks, not one): the planner
+        // refuses such a plan itself, so a law of its own
+        struct Crawl;
+        impl Timing for Crawl {
+            fn duration(&self) -> f64 {
+                1.0e305
             }
-            let crawl = crate::Limits::<2>::new(1.5e-304, 1130.7, 21_713.0).unwrap();
-            let planned = crate::PathTiming::<_, 64, 4>::scurve(&line, &crawl);
-            assert_eq!(planned.err(), Some(Error::TooLong));
-            let r: Result<Path<f64, 2, 8>, _> =
-                compile(&Along::new(&line, &Crawl), 1_000.0, &CompileOptions::new());
-            assert_eq!(r.err(), Some(Error::TooLong));
-        });
+            fn param(&self, t: f64) -> (f64, f64) {
+                (t / 1.0e305, 1.0 / 1.0e305)
+            }
+        }
+        let crawl = crate::Limits::<2>::new(1.5e-304, 1130.7, 21_713.0).unwrap();
+        let planned = crate::PathTiming::<_, 64, 4>::scurve(&line, &crawl);
+        assert_eq!(planned.err(), Some(Error::TooLong));
+        let r: Result<Path<f64, 2, 8>, _> =
+            compile(&Along::new(&line, &Crawl), 1_000.0, &CompileOptions::new());
+        assert_eq!(r.err(), Some(Error::TooLong));
     }
 
     #[test]

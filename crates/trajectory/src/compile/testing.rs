@@ -1,11 +1,15 @@
 //! Test support: small time laws and curves with closed-form derivatives, and the exact
-//! composition `x(t) = c(u(t))` with its time derivatives.
+//! composition `x(t) = c(u(t))` with its time derivatives; compiling into a boxed path.
+
+extern crate std;
 
 use strak_curves::{ParamCurve, ParamCurveDeriv};
 
+use super::{CompileOptions, compile_into};
+use crate::error::Error;
 use crate::num::Number;
 use crate::path::Path;
-use crate::plan::Timing;
+use crate::plan::{Timing, Trajectory};
 
 /// A time law with its second derivative (for exact accelerations).
 pub(crate) trait TestTiming: Timing {
@@ -227,13 +231,18 @@ where
     (p, v, a)
 }
 
-/// Runs `f` on a thread with a large stack (paths with thousands of pieces live on the stack).
-pub(crate) fn big_stack<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
-    extern crate std;
-    std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(f)
-        .unwrap()
-        .join()
-        .unwrap()
+/// [`compile`] into a boxed path, in place ([`compile_into`]): a path of thousands of pieces
+/// (hundreds of KB, MBs in `f64` with several axes) stays off the test thread's stack.
+pub(crate) fn compile_boxed<N, const A: usize, const P: usize, M>(
+    trajectory: &M,
+    rate_hz: f64,
+    options: &CompileOptions,
+) -> Result<std::boxed::Box<Path<N, A, P>>, Error>
+where
+    N: Number,
+    M: Trajectory + ?Sized,
+{
+    let mut path = std::boxed::Box::new(Path::new());
+    compile_into(trajectory, rate_hz, options, &mut path)?;
+    Ok(path)
 }

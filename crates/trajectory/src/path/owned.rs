@@ -51,9 +51,14 @@ use crate::num::Number;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
+// The pieces last (`repr(C)` keeps the declared order): an empty path is then the header
+// followed by unwritten storage, so that `Box::new(Path::new())` in an optimized build writes
+// the header and the length into the allocation and never the storage, and never needs a
+// stack frame the size of the path.
+#[repr(C)]
 pub struct Path<N: Number, const A: usize, const P: usize> {
-    pub(crate) pieces: Vec<Piece<N, A>, P>,
     pub(crate) header: PathHeader<N, A>,
+    pub(crate) pieces: Vec<Piece<N, A>, P>,
 }
 
 impl<N: Number, const A: usize, const P: usize> Default for Path<N, A, P> {
@@ -83,8 +88,8 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// ```
     pub const fn new() -> Self {
         Path {
-            pieces: Vec::new(),
             header: PathHeader::EMPTY,
+            pieces: Vec::new(),
         }
     }
 

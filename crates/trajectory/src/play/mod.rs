@@ -524,11 +524,12 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::compile::testing::{Quintic, Smoothstep, Wave, big_stack, exact, helix};
+    use crate::compile::testing::{Quintic, Smoothstep, Wave, compile_boxed, exact, helix};
     use crate::compile::{CompileOptions, compile};
     use crate::num::Q40;
     use crate::path::Path;
     use crate::plan::Along;
+    use std::boxed::Box;
     use strak_curves::ParamCurveDeriv;
     use strak_curves::Scalar;
 
@@ -551,7 +552,7 @@ mod tests {
             crate::NumberFormat::Q40 => 2e-6,
             crate::NumberFormat::F64 => 1e-6,
         };
-        let path: Path<N, 1, 16384> = compile(
+        let path: Box<Path<N, 1, 16384>> = compile_boxed(
             &Along::new(&curve, &timing),
             100_000.0,
             &CompileOptions::new().with_tolerance(tol),
@@ -575,7 +576,7 @@ mod tests {
         let r = |m: f64| N::rounding_error(m) + N::addition_error(m);
         let v_format = 2.0 * (n + 1.0) * r(v_peak) + n * n * r(a_peak / 1e5) + N::OUT_ERROR;
         let a_format = 2.0 * (n + 1.0) * r(a_peak) + N::OUT_ERROR;
-        let mut sampler = Sampler::new(&path);
+        let mut sampler = Sampler::new(&*path);
         let (mut ep, mut ev, mut ea, mut ee) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
         for k in 0..=path.ticks() {
             assert!(!sampler.is_finished());
@@ -618,17 +619,17 @@ mod tests {
 
     #[test]
     fn million_ticks_f32() {
-        big_stack(million_ticks::<f32>);
+        million_ticks::<f32>();
     }
 
     #[test]
     fn million_ticks_f64() {
-        big_stack(million_ticks::<f64>);
+        million_ticks::<f64>();
     }
 
     #[test]
     fn million_ticks_q40() {
-        big_stack(million_ticks::<Q40>);
+        million_ticks::<Q40>();
     }
 
     fn helix_path<N: Kernel>() -> Path<N, 3, 512> {
@@ -716,16 +717,16 @@ mod tests {
 
     #[test]
     fn velocities_catch_up_after_position_only_ticks() {
-        big_stack(|| catch_up_after_positions::<Q40>(0.0));
-        big_stack(|| catch_up_after_positions::<f64>(1e-11));
-        big_stack(|| catch_up_after_positions::<f32>(1e-4));
+        catch_up_after_positions::<Q40>(0.0);
+        catch_up_after_positions::<f64>(1e-11);
+        catch_up_after_positions::<f32>(1e-4);
     }
 
     #[test]
     fn next_position_is_next_position_bit_for_bit() {
-        big_stack(position_only::<f32>);
-        big_stack(position_only::<f64>);
-        big_stack(position_only::<Q40>);
+        position_only::<f32>();
+        position_only::<f64>();
+        position_only::<Q40>();
     }
 
     /// The control events of the entry-point comparisons: a feed override, a hold, a
@@ -793,9 +794,9 @@ mod tests {
 
     #[test]
     fn next_into_is_next_in_the_accumulators_format() {
-        big_stack(native_samples::<f32>);
-        big_stack(native_samples::<f64>);
-        big_stack(native_samples::<Q40>);
+        native_samples::<f32>();
+        native_samples::<f64>();
+        native_samples::<Q40>();
     }
 
     /// `fill` against as many `next` calls, bit for bit: batches of 1 to 300 samples (so
@@ -841,9 +842,9 @@ mod tests {
 
     #[test]
     fn fill_is_next_called_as_often() {
-        big_stack(batches::<f32>);
-        big_stack(batches::<f64>);
-        big_stack(batches::<Q40>);
+        batches::<f32>();
+        batches::<f64>();
+        batches::<Q40>();
     }
 
     fn exact_loads<N: Kernel>() {
@@ -866,9 +867,9 @@ mod tests {
 
     #[test]
     fn piece_switches_are_exact_loads() {
-        big_stack(exact_loads::<f32>);
-        big_stack(exact_loads::<f64>);
-        big_stack(exact_loads::<Q40>);
+        exact_loads::<f32>();
+        exact_loads::<f64>();
+        exact_loads::<Q40>();
     }
 
     fn end_is_exact<N: Kernel>() {
@@ -899,9 +900,9 @@ mod tests {
 
     #[test]
     fn final_sample_is_the_end_point_exactly() {
-        big_stack(end_is_exact::<f32>);
-        big_stack(end_is_exact::<f64>);
-        big_stack(end_is_exact::<Q40>);
+        end_is_exact::<f32>();
+        end_is_exact::<f64>();
+        end_is_exact::<Q40>();
     }
 
     /// Runs the sampler to the end with `control(tick, sampler)` called before each sample;
@@ -990,9 +991,9 @@ mod tests {
 
     #[test]
     fn feed_override_without_jumps_within_the_acceleration_limit() {
-        big_stack(override_run::<f32>);
-        big_stack(override_run::<f64>);
-        big_stack(override_run::<Q40>);
+        override_run::<f32>();
+        override_run::<f64>();
+        override_run::<Q40>();
     }
 
     fn back_to_full_feed<N: Kernel>() {
@@ -1033,9 +1034,9 @@ mod tests {
 
     #[test]
     fn forward_differencing_resumes_at_full_feed() {
-        big_stack(back_to_full_feed::<f32>);
-        big_stack(back_to_full_feed::<f64>);
-        big_stack(back_to_full_feed::<Q40>);
+        back_to_full_feed::<f32>();
+        back_to_full_feed::<f64>();
+        back_to_full_feed::<Q40>();
     }
 
     fn hold_and_resume<N: Kernel>() {
@@ -1067,9 +1068,9 @@ mod tests {
 
     #[test]
     fn hold_stands_still_and_resume_reaches_the_exact_end() {
-        big_stack(hold_and_resume::<f32>);
-        big_stack(hold_and_resume::<f64>);
-        big_stack(hold_and_resume::<Q40>);
+        hold_and_resume::<f32>();
+        hold_and_resume::<f64>();
+        hold_and_resume::<Q40>();
     }
 
     fn held_samples_do_not_move<N: Kernel>() {
@@ -1100,8 +1101,8 @@ mod tests {
 
     #[test]
     fn held_samples_repeat_bit_for_bit() {
-        big_stack(held_samples_do_not_move::<f32>);
-        big_stack(held_samples_do_not_move::<Q40>);
+        held_samples_do_not_move::<f32>();
+        held_samples_do_not_move::<Q40>();
     }
 
     fn abort_stops<N: Kernel>() {
@@ -1134,49 +1135,45 @@ mod tests {
 
     #[test]
     fn abort_ramps_down_and_finishes_on_the_path() {
-        big_stack(abort_stops::<f32>);
-        big_stack(abort_stops::<f64>);
-        big_stack(abort_stops::<Q40>);
+        abort_stops::<f32>();
+        abort_stops::<f64>();
+        abort_stops::<Q40>();
     }
 
     #[test]
     fn set_feed_clamps_and_ignores_nan() {
-        big_stack(|| {
-            let path = helix_path::<f64>();
-            let mut s = Sampler::new(&path);
-            s.set_feed(f32::NAN);
-            assert_eq!(s.feed_override(), 1.0);
-            s.set_feed(-3.0);
-            assert_eq!(s.feed_override(), 0.0);
-            s.set_feed(7.0);
-            assert_eq!(s.feed_override(), 1.0);
-            s.set_feed(0.25);
-            assert_eq!(s.feed_override(), 0.25);
-            assert_eq!(s.feed(), 1.0); // the ramp has not started yet
-            s.next();
-            assert!(s.feed() < 1.0);
-        });
+        let path = helix_path::<f64>();
+        let mut s = Sampler::new(&path);
+        s.set_feed(f32::NAN);
+        assert_eq!(s.feed_override(), 1.0);
+        s.set_feed(-3.0);
+        assert_eq!(s.feed_override(), 0.0);
+        s.set_feed(7.0);
+        assert_eq!(s.feed_override(), 1.0);
+        s.set_feed(0.25);
+        assert_eq!(s.feed_override(), 0.25);
+        assert_eq!(s.feed(), 1.0); // the ramp has not started yet
+        s.next();
+        assert!(s.feed() < 1.0);
     }
 
     #[test]
     fn zero_feed_from_the_start_stops_and_stands() {
-        big_stack(|| {
-            let path = helix_path::<Q40>();
-            let mut s = Sampler::new(&path);
-            s.set_feed(0.0);
-            for _ in 0..20_000 {
-                s.next();
-            }
-            // the ramp to feed 0 took a while; then it stands
-            let stop = s.progress();
-            assert!(stop > 10.0 && stop < 2000.0, "{stop}");
-            for _ in 0..100_000 {
-                s.next();
-            }
-            assert_eq!(s.progress(), stop);
-            assert_eq!(f(s.next().velocity), [0.0; 3]);
-            assert!(!s.is_finished());
-        });
+        let path = helix_path::<Q40>();
+        let mut s = Sampler::new(&path);
+        s.set_feed(0.0);
+        for _ in 0..20_000 {
+            s.next();
+        }
+        // the ramp to feed 0 took a while; then it stands
+        let stop = s.progress();
+        assert!(stop > 10.0 && stop < 2000.0, "{stop}");
+        for _ in 0..100_000 {
+            s.next();
+        }
+        assert_eq!(s.progress(), stop);
+        assert_eq!(f(s.next().velocity), [0.0; 3]);
+        assert!(!s.is_finished());
     }
 
     /// A line at constant speed (no planned acceleration): a feed change may use the whole
@@ -1229,8 +1226,8 @@ mod tests {
 
     #[test]
     fn feed_ramps_reach_but_never_exceed_the_limits() {
-        big_stack(ramp_uses_and_respects_the_limits::<f32>);
-        big_stack(ramp_uses_and_respects_the_limits::<f64>);
-        big_stack(ramp_uses_and_respects_the_limits::<Q40>);
+        ramp_uses_and_respects_the_limits::<f32>();
+        ramp_uses_and_respects_the_limits::<f64>();
+        ramp_uses_and_respects_the_limits::<Q40>();
     }
 }
