@@ -223,9 +223,12 @@ pub struct Bounds<const A: usize> {
     pub axis_velocity: [f64; A],
     /// Per axis `|ẍᵢ|` (`∞`: none).
     pub axis_acceleration: [f64; A],
-    /// Only the tangential acceleration `ẍ·ẋ/|ẋ|` is limited
+    /// Only the tangential acceleration `d|ẋ|/dt = ẍ·ẋ/|ẋ|` is limited
     /// ([`PathTiming::trapezoid`](strak_trajectory::PathTiming::trapezoid): no curvature
-    /// limits).
+    /// limits), measured as `(|ẋ_{k+1}| − |ẋ_k|)/T` from the sampled velocities: its mean
+    /// over the tick, exactly. (The mean of `ẍ` projected on the direction at the tick's
+    /// start is not the tangential acceleration: it adds the centripetal part times the
+    /// turn within the tick, `|ẍ_n|·θ/2`.)
     pub tangential: bool,
 }
 
@@ -358,12 +361,7 @@ pub fn check_limits<const A: usize>(
             allow.velocity,
         );
         let acc = if bounds.tangential {
-            let v = norm(s.velocity.into_iter());
-            if v > 0.0 {
-                (dv.iter().zip(&s.velocity).map(|(a, v)| a * v).sum::<f64>() / v).abs()
-            } else {
-                norm(dv.into_iter())
-            }
+            ((norm(t.velocity.into_iter()) - norm(s.velocity.into_iter())) * rate).abs()
         } else {
             norm(dv.into_iter())
         };

@@ -16,17 +16,7 @@ use strak_fuzz::{TARGETS, Target};
 /// Inputs under `fuzz/artifacts-kept/<target>/` that fail today: target, file name, and a
 /// fragment of the failure message. Each is a bug in the library, reported with the
 /// input; remove the entry when it is fixed.
-const KNOWN_FAILURES: &[(&str, &str, &str)] = &[
-    // A planned trapezoid on a 3-axis cubic B-spline, f64: axis velocity +21.3 %.
-    (
-        "pipeline",
-        "axis-velocity-f64",
-        "limits exceeded: axis velocity",
-    ),
-    // A compiled sample 2.165e-3 from c(u(t)) with a tolerance of 1.918e-3 (f64, a
-    // quadratic Bézier curve, global trapezoid, pieces of at most 55 ticks).
-    ("pipeline", "accuracy-f64", "from c(u(t))"),
-];
+const KNOWN_FAILURES: &[(&str, &str, &str)] = &[];
 
 fn fuzz_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz")

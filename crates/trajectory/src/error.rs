@@ -157,6 +157,7 @@ impl fmt::Display for BlobFormat {
 /// ```
 /// use strak_trajectory::Quantity;
 /// assert_eq!(Quantity::Jerk.to_string(), "jerk");
+/// assert_eq!(Quantity::AxisVelocity { axis: 2 }.to_string(), "axis 2 velocity");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -167,15 +168,30 @@ pub enum Quantity {
     Acceleration,
     /// The jerk `|x⃛|`.
     Jerk,
+    /// The tangential acceleration `d|ẋ|/dt`.
+    TangentialAcceleration,
+    /// The velocity `|ẋᵢ|` of one axis.
+    AxisVelocity {
+        /// The axis (0 for the first).
+        axis: usize,
+    },
+    /// The acceleration `|ẍᵢ|` of one axis.
+    AxisAcceleration {
+        /// The axis (0 for the first).
+        axis: usize,
+    },
 }
 
 impl fmt::Display for Quantity {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Quantity::Velocity => "velocity",
-            Quantity::Acceleration => "acceleration",
-            Quantity::Jerk => "jerk",
-        })
+        match self {
+            Quantity::Velocity => f.write_str("velocity"),
+            Quantity::Acceleration => f.write_str("acceleration"),
+            Quantity::Jerk => f.write_str("jerk"),
+            Quantity::TangentialAcceleration => f.write_str("tangential acceleration"),
+            Quantity::AxisVelocity { axis } => write!(f, "axis {axis} velocity"),
+            Quantity::AxisAcceleration { axis } => write!(f, "axis {axis} acceleration"),
+        }
     }
 }
 

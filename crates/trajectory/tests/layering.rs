@@ -26,8 +26,9 @@ const LAYERS: [(&str, u8); 6] = [
 
 /// The modules of `plan` in dependency order (`mod` is the layer's own helpers): a module
 /// names only the modules before it.
-const PLAN_ORDER: [&str; 14] = [
+const PLAN_ORDER: [&str; 15] = [
     "mod",
+    "arc_inverse",
     "limits",
     "timing",
     "trajectory",

@@ -71,18 +71,23 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// 4. **Adaptive knots.** Each piece is checked at its quarter points (`n/4, n/2, 3n/4`)
 ///    against half the tolerance; pieces that fail are split at their middle tick, the
 ///    spline is solved again, until every piece passes. At the knots the spline is exact;
-///    a spline's error between two knots is dominated by the bump
+///    where the law is smooth, a spline's error between two knots is dominated by the bump
 ///    `∝ (i − k_j)²(k_{j+1} − i)²` (largest in the middle, 9/16 of it at the quarter
-///    points) plus terms from the knot slopes; checking three points against `tol/2` keeps
-///    every tick within `tol` with a margin of 2.
+///    points) plus terms from the knot slopes, so the quarter points find most of what
+///    needs splitting. Then every tick is checked against the tolerance itself (a law need
+///    not be smooth between knots: a trapezoid's acceleration steps, the arc-length
+///    inverse near a point where the curve's speed vanishes), and the pieces that fail are
+///    split and both checks repeated: every tick is within the tolerance.
 /// 5. **Limits.** When the time law promises limits ([`Timing::limits`]: the planned laws
 ///    of [`PathTiming`](crate::PathTiming)), the compiled pieces keep them: the spline only
 ///    approximates the law (within the tolerance in position), so its speed, acceleration
 ///    and jerk can exceed the law's by the fit's error (most where the law's jerk steps lie
 ///    between ticks or its phases last a few ticks). The peaks of every piece (the speed
-///    exactly, from the roots of `d|ẋ|²/dt`; the acceleration at the piece ends; the
-///    constant jerk) are compared with the limits, and if one is exceeded by the factor
-///    `r` (speed `r`, acceleration `r²`, jerk `r³`) the whole motion is slowed down by `r`
+///    exactly, from the roots of `d|ẋ|²/dt`; per axis the velocity at the ends and the
+///    vertex; the accelerations at the piece ends; the constant jerk; for a law that bounds
+///    the tangential acceleration, its mean over every tick) are compared with the limits,
+///    the per-axis ones included, and if one is exceeded by the factor `r` (a
+///    velocity `r`, an acceleration `r²`, the jerk `r³`) the whole motion is slowed down by `r`
 ///    and a small margin (more ticks, steps 1–4 again), up to
 ///    [`CompileOptions::max_slowdown`] in all (and a tick); otherwise
 ///    [`Error::LimitExceeded`]. [`Path::time_scale`](crate::PathHeader::time_scale) reports the slow-down. The same check
@@ -221,7 +226,8 @@ where
     for _ in 0..SLOWDOWN_ATTEMPTS {
         let law = TickLaw::new(curve, timing, rate_hz, stretch, min_ticks)?;
         let tolerance = fit_law(&law, options, &mut fit)?;
-        let peaks = fit_peaks(&fit, period);
+        let tangential = limits.is_some_and(|l| l.tangential_acceleration.is_finite());
+        let peaks = fit_peaks(&fit, period, tangential);
         let (factor, quantity) = match &limits {
             Some(limits) => peaks.slowdown(limits)?,
             None => (1.0, None),
@@ -318,7 +324,7 @@ where
         Tolerance::Absolute(t) => t,
         Tolerance::Relative(r) => relative_tolerance(r, fit),
     };
-    fit.refine(tolerance * CHECK_FRACTION, &mut exact)?;
+    fit.refine_every_tick(tolerance * CHECK_FRACTION, tolerance, &mut exact)?;
     Ok(tolerance)
 }
 
@@ -346,11 +352,20 @@ fn relative_tolerance<const A: usize, K: Knots<A>>(r: f64, fit: &SplineFit<A, K>
     (r * extent).max(1e-12 * (1.0 + big))
 }
 
-/// The peaks of the fitted spline's pieces.
-fn fit_peaks<const A: usize, K: Knots<A>>(fit: &SplineFit<A, K>, period: f64) -> Peaks {
+/// The peaks of the fitted spline's pieces (with the tangential acceleration when
+/// `tangential`).
+fn fit_peaks<const A: usize, K: Knots<A>>(
+    fit: &SplineFit<A, K>,
+    period: f64,
+    tangential: bool,
+) -> Peaks {
     (0..fit.pieces()).fold(Peaks::default(), |m, j| {
         let (coeffs, n) = fit.piece(j);
-        m.max(Peaks::of_piece(&coeffs, f64::from(n), period))
+        let mut piece = Peaks::of_piece(&coeffs, f64::from(n), period);
+        if tangential {
+            piece.tangential = peaks::tangential_peak(&coeffs, n, period);
+        }
+        m.max(piece)
     })
 }
 

@@ -1,6 +1,8 @@
 //! The kinematic peaks of the compiled pieces and the slow-down that keeps them within a
 //! time law's limits.
 
+use strak_curves::MAX_DIM;
+
 use crate::error::{Error, Quantity};
 use crate::plan::MotionLimits;
 
@@ -13,7 +15,8 @@ const BISECTION_STEPS: usize = 64;
 const LIMIT_SLACK: f64 = 1e-12;
 
 /// The largest speed `|ẋ|`, acceleration `|ẍ|` and jerk `|x⃛|` (Euclidean norms over the
-/// axes) of a motion, in units/s, units/s², units/s³.
+/// axes) of a motion, in units/s, units/s², units/s³, and per axis the largest `|ẋᵢ|` and
+/// `|ẍᵢ|` (the first [`MAX_DIM`] axes: a point has no more).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(super) struct Peaks {
     pub(super) velocity: f64,
@@ -22,16 +25,25 @@ pub(super) struct Peaks {
     /// An upper bound of the speed from three samples per piece (see
     /// [`Peaks::of_piece`]), which the feed ramps are derived from.
     pub(super) velocity_bound: f64,
+    /// The largest mean of the tangential acceleration `d|ẋ|/dt` over one tick (computed
+    /// only when asked for: [`tangential_peak`]; 0 otherwise).
+    pub(super) tangential: f64,
+    pub(super) axis_velocity: [f64; MAX_DIM],
+    pub(super) axis_acceleration: [f64; MAX_DIM],
 }
 
 impl Peaks {
     /// The larger of each.
     pub(super) fn max(self, other: Peaks) -> Peaks {
+        let each = |a: [f64; MAX_DIM], b: [f64; MAX_DIM]| core::array::from_fn(|i| a[i].max(b[i]));
         Peaks {
             velocity: self.velocity.max(other.velocity),
             acceleration: self.acceleration.max(other.acceleration),
             jerk: self.jerk.max(other.jerk),
             velocity_bound: self.velocity_bound.max(other.velocity_bound),
+            tangential: self.tangential.max(other.tangential),
+            axis_velocity: each(self.axis_velocity, other.axis_velocity),
+            axis_acceleration: each(self.axis_acceleration, other.axis_acceleration),
         }
     }
 
@@ -44,6 +56,9 @@ impl Peaks {
     /// an end or at a root of `g`. The roots of `g'` split `[0, n]` into at most three
     /// intervals on which `g` is monotone; a sign change of `g` on one of them brackets one
     /// root, found by bisection. So the speed peak is exact up to rounding.
+    ///
+    /// Per axis the velocity `(b + 2ci + 3di²)/T` is largest in magnitude at an end or at
+    /// its vertex `i = −c/(3d)`, the acceleration `(2c + 6di)/T²` at an end.
     ///
     /// The speed bound: `ẋ(s + δ) = ẋ(s) + δ·ẍ(s) + ½δ²·x⃛` exactly; around the samples
     /// `s ∈ {0, n/2, n}` with `|δ| ≤ Δ = (n/4)·T`,
@@ -63,11 +78,15 @@ impl Peaks {
         }
         let mut best = speed2(0.0).max(speed2(n));
         for_each_root(g, n, &mut |i| best = best.max(speed2(i)));
+        let (axis_velocity, axis_acceleration) = axis_peaks(coeffs, n, period);
         Peaks {
             velocity: libm::sqrt(best) / period,
             acceleration: acc(0.0).max(acc(n)),
             jerk: libm::sqrt(sq(&|c| 6.0 * c[3] / (tt * period))),
             velocity_bound: speed_bound(coeffs, n, period),
+            tangential: 0.0,
+            axis_velocity,
+            axis_acceleration,
         }
     }
 
@@ -79,30 +98,82 @@ impl Peaks {
     /// # Errors
     /// [`Error::Curve`] when a peak is not finite.
     pub(super) fn slowdown(&self, limits: &MotionLimits) -> Result<(f64, Option<Quantity>), Error> {
-        if !(self.velocity.is_finite() && self.acceleration.is_finite() && self.jerk.is_finite()) {
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        if !(finite(&[self.velocity, self.acceleration, self.jerk, self.tangential])
+            && finite(&self.axis_velocity)
+            && finite(&self.axis_acceleration))
+        {
             return Err(Error::Curve(strak_curves::Error::NonFinite));
         }
-        let rows = [
-            (Quantity::Velocity, self.velocity, limits.velocity, 1.0),
-            (
-                Quantity::Acceleration,
-                self.acceleration,
-                limits.acceleration,
-                0.5,
-            ),
-            (Quantity::Jerk, self.jerk, limits.jerk, 1.0 / 3.0),
-        ];
         let mut worst = (1.0, None);
-        for (quantity, peak, limit, power) in rows {
+        let mut consider = |quantity, peak: f64, limit: f64, power: f64| {
             if peak > limit * (1.0 + LIMIT_SLACK) {
                 let factor = libm::pow(peak / limit, power);
                 if factor > worst.0 {
                     worst = (factor, Some(quantity));
                 }
             }
+        };
+        consider(Quantity::Velocity, self.velocity, limits.velocity, 1.0);
+        let (a, a_limit) = (self.acceleration, limits.acceleration);
+        consider(Quantity::Acceleration, a, a_limit, 0.5);
+        consider(Quantity::Jerk, self.jerk, limits.jerk, 1.0 / 3.0);
+        let (a, a_limit) = (self.tangential, limits.tangential_acceleration);
+        consider(Quantity::TangentialAcceleration, a, a_limit, 0.5);
+        for axis in 0..MAX_DIM {
+            let (v, v_limit) = (self.axis_velocity[axis], limits.axis_velocity[axis]);
+            consider(Quantity::AxisVelocity { axis }, v, v_limit, 1.0);
+            let (a, a_limit) = (self.axis_acceleration[axis], limits.axis_acceleration[axis]);
+            consider(Quantity::AxisAcceleration { axis }, a, a_limit, 0.5);
         }
         Ok(worst)
     }
+}
+
+/// The largest mean tangential acceleration over one tick of a piece of `n` ticks,
+/// `|(|ẋ(i + 1)| − |ẋ(i)|)/T|` for `i = 0 … n − 1`: the mean of `d|ẋ|/dt` over the tick,
+/// exactly, which is what the differences of the sampled velocities' norms measure. (The
+/// continuous maximum of `ẋ·ẍ/|ẋ|` over a piece is that of a rational function; the means
+/// over the ticks are what playback shows.)
+pub(super) fn tangential_peak<const A: usize>(coeffs: &[[f64; 4]; A], n: u32, period: f64) -> f64 {
+    let speed = |i: f64| {
+        let sq: f64 = coeffs
+            .iter()
+            .map(|&[_, b, c, d]| {
+                let v = b + i * (2.0 * c + 3.0 * d * i);
+                v * v
+            })
+            .sum();
+        libm::sqrt(sq) / period
+    };
+    let mut prev = speed(0.0);
+    let mut peak = 0.0_f64;
+    for i in 1..=n {
+        let next = speed(f64::from(i));
+        peak = peak.max(libm::fabs(next - prev) / period);
+        prev = next;
+    }
+    peak
+}
+
+/// The per-axis velocity and acceleration peaks of [`Peaks::of_piece`].
+fn axis_peaks<const A: usize>(
+    coeffs: &[[f64; 4]; A],
+    n: f64,
+    period: f64,
+) -> ([f64; MAX_DIM], [f64; MAX_DIM]) {
+    let (mut velocity, mut acceleration) = ([0.0; MAX_DIM], [0.0; MAX_DIM]);
+    for ((&[_, b, c, d], v), a) in coeffs.iter().zip(&mut velocity).zip(&mut acceleration) {
+        let slope = |i: f64| libm::fabs(b + i * (2.0 * c + 3.0 * d * i));
+        let mut peak = slope(0.0).max(slope(n));
+        let vertex = -c / (3.0 * d);
+        if vertex > 0.0 && vertex < n {
+            peak = peak.max(slope(vertex));
+        }
+        *v = peak / period;
+        *a = libm::fabs(2.0 * c).max(libm::fabs(2.0 * c + 6.0 * d * n)) / (period * period);
+    }
+    (velocity, acceleration)
 }
 
 /// The speed bound of [`Peaks::of_piece`].
@@ -250,16 +321,13 @@ mod tests {
 
     #[test]
     fn slowdown_per_quantity() {
-        let limits = MotionLimits {
-            velocity: 10.0,
-            acceleration: 100.0,
-            jerk: 1000.0,
-        };
+        let limits = MotionLimits::new(10.0, 100.0, 1000.0);
         let within = Peaks {
             velocity: 10.0,
             acceleration: 50.0,
             jerk: 1000.0,
             velocity_bound: 10.0,
+            ..Peaks::default()
         };
         assert_eq!(within.slowdown(&limits), Ok((1.0, None)));
         let fast = Peaks {
@@ -267,6 +335,7 @@ mod tests {
             acceleration: 121.0,
             jerk: 1000.0,
             velocity_bound: 11.0,
+            ..Peaks::default()
         };
         // √(121/100) = 1.1 > 1.05
         let (f, q) = fast.slowdown(&limits).unwrap();
@@ -287,5 +356,43 @@ mod tests {
             ..within
         };
         assert!(bad.slowdown(&limits).is_err());
+        // per axis: axis 1 at 1.2× its velocity limit, axis 0 at 1.21× its acceleration limit
+        let mut per_axis = limits;
+        per_axis.axis_velocity[1] = 5.0;
+        per_axis.axis_acceleration[0] = 40.0;
+        let mut axes = within;
+        axes.axis_velocity[1] = 6.0;
+        axes.axis_acceleration[0] = 48.4;
+        let (f, q) = axes.slowdown(&per_axis).unwrap();
+        assert!((f - 1.2).abs() < 1e-12 && q == Some(Quantity::AxisVelocity { axis: 1 }));
+        axes.axis_velocity[1] = 5.0;
+        let (f, q) = axes.slowdown(&per_axis).unwrap();
+        assert!((f - 1.1).abs() < 1e-12 && q == Some(Quantity::AxisAcceleration { axis: 0 }));
+        assert_eq!(axes.slowdown(&limits), Ok((1.0, None)));
+    }
+
+    /// The per-axis peaks of a piece against the piece sampled densely.
+    #[test]
+    fn axis_peaks_are_exact() {
+        let period = 1e-3;
+        // axis 0 with a velocity vertex inside, axis 1 monotone, axis 2 at rest
+        let coeffs = [[0.0, 0.1, 0.01, -1e-4], [1.0, -0.05, 0.002, 1e-6], [3.0, 0.0, 0.0, 0.0]];
+        let n = 60.0;
+        let p = Peaks::of_piece(&coeffs, n, period);
+        for (a, &[_, b, c, d]) in coeffs.iter().enumerate() {
+            let (mut v, mut acc) = (0.0_f64, 0.0_f64);
+            for k in 0..=6_000 {
+                let i = n * f64::from(k) / 6_000.0;
+                v = v.max((b + i * (2.0 * c + 3.0 * d * i)).abs() / period);
+                acc = acc.max((2.0 * c + 6.0 * d * i).abs() / (period * period));
+            }
+            let peak = p.axis_velocity[a];
+            assert!(peak >= v * (1.0 - 1e-12) && peak <= v * (1.0 + 1e-7), "{a}: {peak} {v}");
+            assert!((p.axis_acceleration[a] - acc).abs() <= 1e-9 * acc, "{a}");
+        }
+        // the vertex of axis 0: i = −c/(3d) = 33.3, v = (0.1 + c²/(3d))/T
+        let want = (0.1 + 0.01 * 0.01 / (3.0 * 1e-4)) / period;
+        assert!((p.axis_velocity[0] - want).abs() < 1e-9 * want);
+        assert_eq!(p.axis_velocity[3..], [0.0; MAX_DIM - 3]);
     }
 }

@@ -324,12 +324,38 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
         tol: f64,
         exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
     ) -> Result<usize, Error> {
+        self.mark_at(tol, exact, false)
+    }
+
+    /// [`mark`](Self::mark) at every inner tick of every piece instead of its quarter points.
+    fn mark_every_tick(
+        &mut self,
+        tol: f64,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<usize, Error> {
+        self.mark_at(tol, exact, true)
+    }
+
+    /// Marks the pieces whose error at the quarter points (or at every inner tick) exceeds
+    /// `tol` on some axis; returns how many.
+    fn mark_at(
+        &mut self,
+        tol: f64,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+        every_tick: bool,
+    ) -> Result<usize, Error> {
         let mut count = 0;
         for j in 0..self.m {
             let (coeffs, n) = self.piece(j);
             let k0 = self.knot(j);
             let mut bad = false;
-            for i in check_points(n) {
+            let (mut quarters, mut ticks) = (check_points(n), 1..n);
+            let points: &mut dyn Iterator<Item = u32> = if every_tick {
+                &mut ticks
+            } else {
+                &mut quarters
+            };
+            for i in points {
                 let want = exact(k0 + i)?;
                 let x = f64::from(i);
                 for (c, w) in coeffs.iter().zip(want) {
@@ -394,6 +420,32 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
         loop {
             self.solve();
             let count = self.mark(tol, exact)?;
+            if count == 0 {
+                return Ok(());
+            }
+            self.split_marked(count, exact)?;
+        }
+    }
+
+    /// Fits until every tick is within `tol` of `exact`: [`refine`](Self::refine) at the
+    /// quarter points against `quarter_tol ≤ tol` (cheap, and enough where the motion is
+    /// smooth: the error between two knots is then dominated by the bump
+    /// `∝ (i − k_j)²(k_{j+1} − i)²`), then every inner tick against `tol` (a time law need
+    /// not be smooth between the knots: acceleration steps, the arc-length inverse near a
+    /// point where the curve's speed vanishes); the pieces that fail are split and both
+    /// checks run again. Ends after at most `capacity` splits.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the pieces do not fit the storage; errors of `exact`.
+    pub(crate) fn refine_every_tick(
+        &mut self,
+        quarter_tol: f64,
+        tol: f64,
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        loop {
+            self.refine(quarter_tol, exact)?;
+            let count = self.mark_every_tick(tol, exact)?;
             if count == 0 {
                 return Ok(());
             }

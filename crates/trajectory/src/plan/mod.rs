@@ -16,6 +16,7 @@
 //! in `f64` without fused multiply-add, so the same inputs give the same bits on every
 //! target.
 
+mod arc_inverse;
 mod constant_speed;
 mod joins;
 mod limits;

@@ -8,6 +8,7 @@ use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion_into;
 use super::timing::{MotionLimits, Timing};
 use super::trajectory::Trajectory;
+use super::arc_inverse::param_at_length;
 use super::{greater, norm64, to_param};
 use crate::error::Error;
 
@@ -129,7 +130,7 @@ fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
 /// onto the curve's parameter through an [`ArcLengthTable`] of `N` samples: the [`Timing`]
 ///
 /// ```text
-/// u(t) = u(s(t))  (C¹ cubic Hermite inverse of the arc length, never linear),
+/// u(t) = u(s(t))  (the root of the table's C¹ cubic Hermite interpolant of s(u)),
 /// du/dt = ṡ(t) / |c'(u(t))|.
 /// ```
 ///
@@ -256,9 +257,8 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         let motion = MotionProfile::trapezoid(table.length(), v_max, a_max)?;
         // The speed along the path; the acceleration only tangentially (not in curves).
         let limits = Some(MotionLimits {
-            velocity: v_max,
-            acceleration: f64::INFINITY,
-            jerk: f64::INFINITY,
+            tangential_acceleration: a_max,
+            ..MotionLimits::new(v_max, f64::INFINITY, f64::INFINITY)
         });
         Ok(PathTiming {
             curve,
@@ -435,11 +435,21 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
             ProfileShape::SCurve => keep * limits.jerk(),
             ProfileShape::Trapezoid => f64::INFINITY,
         };
-        self.limits = Some(MotionLimits {
-            velocity: limits.velocity(),
-            acceleration: keep * limits.acceleration(),
-            jerk,
-        });
+        let mut promised = MotionLimits::new(limits.velocity(), keep * limits.acceleration(), jerk);
+        for (i, (v, a)) in limits
+            .axis_velocity()
+            .into_iter()
+            .zip(limits.axis_acceleration())
+            .enumerate()
+        {
+            if let (Some(pv), Some(pa)) = (
+                promised.axis_velocity.get_mut(i),
+                promised.axis_acceleration.get_mut(i),
+            ) {
+                (*pv, *pa) = (v, keep * a);
+            }
+        }
+        self.limits = Some(promised);
         self.rate = options.rate();
         self.feed = Some(FeedReserve {
             acceleration: limits.ramp_acceleration(),
@@ -486,13 +496,14 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
         self.motion.duration()
     }
 
-    /// `u = u(s(t))` by the table's Hermite inverse, `du/dt = ṡ/|c'(u)|` (0 where
-    /// `|c'(u)| = 0`); `t` is clamped to `[0, duration]`, and the domain ends are returned
-    /// exactly at the ends. Binary searches only; no panic path.
+    /// `u = u(s(t))`, the root of the table's interpolant `s(u) = s(t)` (a safeguarded
+    /// Newton iteration from the table's inverse, accurate where the curve's speed
+    /// vanishes), `du/dt = ṡ/|c'(u)|` (0 where `|c'(u)| = 0`); `t` is clamped to
+    /// `[0, duration]`, and the domain ends are returned exactly at the ends. Bounded
+    /// iterations only; no panic path.
     fn param(&self, t: f64) -> (f64, f64) {
         let st = self.motion.state(t);
-        let u = self.table.param_at(st.s);
-        let speed = norm64(&self.curve.deriv(to_param(self.curve, u), 1));
+        let (u, speed) = param_at_length(self.curve, &self.table, st.s);
         let rate = st.v / speed;
         if speed > 0.0 && rate.is_finite() {
             (u, rate)
@@ -502,9 +513,9 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
     }
 
     /// The planned laws ([`plan`](Self::plan), [`scurve`](Self::scurve)) promise the path
-    /// limits they were planned with (the jerk only for the S-curve);
-    /// [`trapezoid`](Self::trapezoid) the speed; [`constant_speed`](Self::constant_speed)
-    /// nothing.
+    /// and per-axis limits they were planned with, less the feed reserve (the jerk only for
+    /// the S-curve); [`trapezoid`](Self::trapezoid) the speed and the tangential
+    /// acceleration; [`constant_speed`](Self::constant_speed) nothing.
     fn limits(&self) -> Option<MotionLimits> {
         self.limits
     }

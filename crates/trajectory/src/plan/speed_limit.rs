@@ -50,6 +50,7 @@
 use heapless::Vec;
 use strak_curves::{ArcLengthTable, ParamCurveDeriv, Point, Scalar};
 
+use super::arc_inverse::param_at_length;
 use super::joins::{JoinRule, locate_reversal, reverses};
 use super::limits::Limits;
 use super::motion::ProfileZone;
@@ -400,27 +401,31 @@ impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
     }
 }
 
-/// Bisection steps of [`arc_at`] (it stops earlier when the bracket no longer shrinks).
-const ARC_STEPS: usize = 200;
+/// How many times [`arc_at`] moves its arc length up by one unit of `f64` at most.
+const ARC_NUDGES: usize = 8;
 
-/// The arc length at which the table's inverse reaches the parameter `u`: the smallest `s`
-/// with `param_at(s) ≥ u`, by bisection (`param_at` is monotone). A motion that rests at this
-/// `s` rests at `u` itself, whatever the table's interpolation error between its samples
-/// (near a cusp, where `|c'|` has a kink, `length_at(u)` maps back to a parameter past it).
-fn arc_at<const N: usize>(table: &ArcLengthTable<f64, N>, u: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, table.length());
-    for _ in 0..ARC_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if !(mid > lo && mid < hi) {
+/// The arc length at which the motion's parameter ([`param_at_length`], the root of the
+/// table's interpolant `s(u)`) reaches `u`: `length_at(u)`, moved up by a few units of
+/// `f64` where rounding leaves the root below `u`. A motion that rests at this `s` rests at
+/// `u` itself (a cusp is passed at rest).
+fn arc_at<C: ParamCurveDeriv, const N: usize>(
+    curve: &C,
+    table: &ArcLengthTable<f64, N>,
+    u: f64,
+) -> f64 {
+    let mut s = table.length_at(u);
+    for _ in 0..ARC_NUDGES {
+        if param_at_length(curve, table, s).0 >= u || s >= table.length() {
             break;
         }
-        if table.param_at(mid) >= u {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
+        s = next_up(s);
     }
-    hi
+    s
+}
+
+/// The next `f64` above a finite, non-negative `x`.
+fn next_up(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() + 1)
 }
 
 /// The cusps in the two halves of a sampling interval: where the tangent of a sample points
@@ -478,10 +483,10 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usiz
         };
         if let (true, Some(uj)) = (join_first, u_join) {
             let cap = joins.rule.cap(curve, joins.next);
-            zones.cap_at(|| arc_at(table, uj), cap, worst);
+            zones.cap_at(|| arc_at(curve, table, uj), cap, worst);
             joins.next += 1;
         } else if let Some(uc) = cusps.iter_mut().find_map(Option::take) {
-            zones.cap_at(|| arc_at(table, uc), 0.0, worst);
+            zones.cap_at(|| arc_at(curve, table, uc), 0.0, worst);
         }
     }
 }

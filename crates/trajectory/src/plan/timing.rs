@@ -1,15 +1,28 @@
 //! The interface between planning and compiling: where on the curve the motion is at time t.
 
+use strak_curves::MAX_DIM;
+
 /// The limits a time law keeps along its curve: the speed `|ẋ|` and the Euclidean norms of
-/// the acceleration `|ẍ|` and the jerk `|x⃛|` of the motion in space (path units and
-/// seconds), `f64::INFINITY` for a quantity the law does not bound. A planned law reports
-/// them through [`Timing::limits`], and [`compile`](crate::compile) keeps its pieces within
-/// them.
+/// the acceleration `|ẍ|` and the jerk `|x⃛|` of the motion in space, the tangential
+/// acceleration `d|ẋ|/dt`, and per axis `i` the
+/// velocity `|ẋᵢ|` and the acceleration `|ẍᵢ|` (path units and seconds; `f64::INFINITY`
+/// for a quantity the law does not bound, and for the entries beyond the curve's axes: a
+/// point has at most [`MAX_DIM`] coordinates). A planned law reports them through
+/// [`Timing::limits`], and [`compile`](crate::compile) keeps its pieces within them.
 ///
 /// ```
 /// use strak_trajectory::MotionLimits;
-/// let trapezoid = MotionLimits { velocity: 200.0, acceleration: 2_000.0, jerk: f64::INFINITY };
-/// assert!(trapezoid.jerk.is_infinite());
+/// let planned = MotionLimits::new(200.0, 2_000.0, f64::INFINITY);
+/// assert!(planned.jerk.is_infinite() && planned.axis_velocity[0].is_infinite());
+/// let mut z_slow = planned;
+/// z_slow.axis_velocity[2] = 20.0;
+/// assert_eq!(z_slow.axis_velocity[..3], [f64::INFINITY, f64::INFINITY, 20.0]);
+/// // speed and tangential acceleration only
+/// let along = MotionLimits {
+///     tangential_acceleration: 2_000.0,
+///     ..MotionLimits::new(200.0, f64::INFINITY, f64::INFINITY)
+/// };
+/// assert!(along.acceleration.is_infinite());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -20,6 +33,36 @@ pub struct MotionLimits {
     pub acceleration: f64,
     /// The largest jerk `|x⃛|`.
     pub jerk: f64,
+    /// The largest tangential acceleration `|d|ẋ|/dt|` (the change of speed along the path,
+    /// without the centripetal part), for a law that bounds only that (a trapezoid along
+    /// the arc length); `|ẍ| ≤ acceleration` implies it.
+    pub tangential_acceleration: f64,
+    /// The largest velocity `|ẋᵢ|` of axis `i`.
+    pub axis_velocity: [f64; MAX_DIM],
+    /// The largest acceleration `|ẍᵢ|` of axis `i`.
+    pub axis_acceleration: [f64; MAX_DIM],
+}
+
+impl MotionLimits {
+    /// Limits along the path, none per axis and none of the tangential acceleration beyond
+    /// `acceleration`.
+    ///
+    /// ```
+    /// use strak_trajectory::MotionLimits;
+    /// let l = MotionLimits::new(1.0, 2.0, 3.0);
+    /// assert_eq!((l.velocity, l.acceleration, l.jerk), (1.0, 2.0, 3.0));
+    /// assert!(l.axis_acceleration.iter().all(|a| a.is_infinite()));
+    /// ```
+    pub const fn new(velocity: f64, acceleration: f64, jerk: f64) -> Self {
+        MotionLimits {
+            velocity,
+            acceleration,
+            jerk,
+            tangential_acceleration: f64::INFINITY,
+            axis_velocity: [f64::INFINITY; MAX_DIM],
+            axis_acceleration: [f64::INFINITY; MAX_DIM],
+        }
+    }
 }
 
 /// A time law mapped onto a curve: the curve parameter `u(t)` and its rate `du/dt` over
