@@ -34,7 +34,7 @@ pub(crate) fn param_at_length<C: ParamCurveDeriv, const N: usize>(
     let speed = |u: f64| norm64(&curve.deriv(to_param(curve, u), 1));
     let (start, end) = table.domain();
     let length = table.length();
-    if !(s > 0.0) {
+    if s.is_nan() || s <= 0.0 {
         return (start, speed(start));
     }
     if s >= length {
@@ -46,7 +46,7 @@ pub(crate) fn param_at_length<C: ParamCurveDeriv, const N: usize>(
     for _ in 0..MAX_STEPS {
         let f = table.length_at(u) - s;
         let v = speed(u);
-        if !(f.abs() > resolution) {
+        if f.is_nan() || f.abs() <= resolution {
             return (u, v);
         }
         if f > 0.0 {

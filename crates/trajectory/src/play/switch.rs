@@ -210,7 +210,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::compile::testing::{Quintic, big_stack, helix};
+    use crate::compile::testing::{Quintic, helix};
     use crate::compile::{CompileOptions, compile};
     use crate::num::Q40;
     use crate::path::{Path, PathBlob, PathView};
@@ -278,9 +278,9 @@ mod tests {
 
     #[test]
     fn every_switch_at_full_feed_takes_the_next_piece_in_order() {
-        big_stack(full_feed::<f32>);
-        big_stack(full_feed::<f64>);
-        big_stack(full_feed::<Q40>);
+        full_feed::<f32>();
+        full_feed::<f64>();
+        full_feed::<Q40>();
     }
 
     /// Off the tick grid (full feed again at a fractional offset) the inline switch gets no
@@ -327,8 +327,8 @@ mod tests {
 
     #[test]
     fn off_the_tick_grid_the_pieces_are_withheld_from_the_inline_switch() {
-        big_stack(off_the_grid::<f32>);
-        big_stack(off_the_grid::<f64>);
-        big_stack(off_the_grid::<Q40>);
+        off_the_grid::<f32>();
+        off_the_grid::<f64>();
+        off_the_grid::<Q40>();
     }
 }
