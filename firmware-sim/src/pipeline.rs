@@ -18,15 +18,16 @@
 //!    playback format (`f64`, `f32`, [`Q40`]).
 //!
 //! # Stack
-//! The large values live on the heap and are filled in place, so that the pipeline runs on a
-//! default thread stack (2 MiB), whatever the job: the plan ([`PathTiming::empty`], then
-//! [`PathTiming::plan_into`]) and the path ([`Path::new`], then [`compile_into`]) are boxed
-//! empty and written where they lie; neither is returned by value. Planning and compiling
-//! themselves need small fixed frames. A path of 6 axes in `f64` holds about 7 MB, more than
-//! such a stack: it is never built on the stack first because an empty path is its header
-//! followed by unwritten storage, which an optimized build allocates and writes in place
-//! (strak-sim's own debug builds are optimized for that reason: see the workspace's
-//! `Cargo.toml`).
+//! The plan and the path live on the heap and are filled in place: the plan
+//! ([`PathTiming::empty`], then [`PathTiming::plan_into`]) and the path ([`Path::new`], then
+//! [`compile_into`]) are boxed empty and written where they lie; neither is returned by
+//! value, and planning and compiling need small fixed frames. A path of 6 axes in `f64` holds
+//! about 7 MB, more than a thread's default stack (2 MiB): it is never built on the stack
+//! first because an empty path is its header followed by unwritten storage, which an
+//! optimized build allocates and writes in place (strak-sim's own debug builds are optimized
+//! for that reason: see the workspace's `Cargo.toml`). What the stack holds at most is the
+//! curve being built ([`build_dyn`]: a curve's constructor returns it by value, up to about
+//! 0.5 MB at 4 096 points and 6 axes, with its own work arrays).
 //!
 //! Every error is a [`JobError`] on the field that causes it.
 
