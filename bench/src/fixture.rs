@@ -137,7 +137,7 @@ pub struct Paths {
 pub fn strak_paths(n: usize) -> Paths {
     let curve = strak_curve::<[f64; 3]>(n);
     let limits = limits();
-    let mut timing = Box::new(PathTiming::<_, ARC_TABLE, ZONES>::empty(&*curve));
+    let mut timing = boxed_plan(&*curve);
     timing
         .plan_into(&limits, &PlanOptions::new())
         .expect("plan");
@@ -156,9 +156,23 @@ fn compiled<N: Number, C: ParamCurveDeriv, const T: usize, const Z: usize>(
     timing: &PathTiming<'_, C, T, Z>,
     options: &CompileOptions,
 ) -> Box<Path<N, 3, PIECES>> {
-    let mut path = Box::new(Path::new());
+    let mut path = boxed_path();
     compile_into(timing, RATE_HZ, options, &mut path).expect("compile");
     path
+}
+
+/// An empty path on the heap, written in place: in a small function of its own an
+/// optimized build allocates first and writes only the header and the length (the storage
+/// stays unwritten), so that the path never lies on the stack.
+#[inline(never)]
+fn boxed_path<N: Number>() -> Box<Path<N, 3, PIECES>> {
+    Box::new(Path::new())
+}
+
+/// An empty plan on the heap (1.7 MB of zeros): not inlined, as [`boxed_path`].
+#[inline(never)]
+fn boxed_plan<C: ParamCurveDeriv>(curve: &C) -> Box<PathTiming<'_, C, ARC_TABLE, ZONES>> {
+    Box::new(PathTiming::empty(curve))
 }
 
 /// A sampler of `path` advanced by `ticks` calls of [`Sampler::next`].

@@ -20,7 +20,7 @@ use strak_trajectory::{
 use crate::curve_file::CurveFile;
 use crate::job::{Job, JobError};
 use crate::number::NumberFormat;
-use crate::pipeline::{PIECES, Prepared, compile_options, is_planned, plan_options};
+use crate::pipeline::{PIECES, Prepared, boxed_path, compile_options, is_planned, plan_options};
 
 /// A sample value's raw bits, widened to `u64` (`f32`, `f64`: `to_bits`; `I32F32`: the `i64`
 /// bits reinterpreted).
@@ -150,7 +150,7 @@ fn to_blob<N: Number, const D: usize>(
         .to_bytes(&mut blob)
         .map_err(|e| JobError::new("path", format!("cannot serialize the path: {e}")))?;
     blob.truncate(written);
-    let mut back: Box<Path<N, D, PIECES>> = Box::new(Path::new());
+    let mut back = boxed_path::<N, D>();
     back.read_bytes(&blob)
         .map_err(|e| JobError::new("path", format!("the blob does not read back: {e}")))?;
     if *back != *path {

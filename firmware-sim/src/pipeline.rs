@@ -18,21 +18,22 @@
 //!    playback format (`f64`, `f32`, [`Q40`]).
 //!
 //! # Stack
-//! The large values live on the heap and are filled in place, so that the pipeline runs on a
-//! default thread stack (2 MiB), whatever the job: the plan ([`PathTiming::empty`], then
-//! [`PathTiming::plan_into`]) and the path ([`Path::new`], then [`compile_into`]) are boxed
-//! empty and written where they lie; neither is returned by value. Planning and compiling
-//! themselves need small fixed frames. A path of 6 axes in `f64` holds about 7 MB, more than
-//! such a stack: it is never built on the stack first because an empty path is its header
-//! followed by unwritten storage, which an optimized build allocates and writes in place
-//! (strak-sim's own debug builds are optimized for that reason: see the workspace's
-//! `Cargo.toml`).
+//! The plan and the path live on the heap and are filled in place: the plan
+//! ([`PathTiming::empty`], then [`PathTiming::plan_into`]) and the path ([`Path::new`], then
+//! [`compile_into`]) are boxed empty and written where they lie; neither is returned by
+//! value, and planning and compiling need small fixed frames. A path of 6 axes in `f64` holds
+//! about 7 MB, more than a thread's default stack (2 MiB): it is never built on the stack
+//! first because an empty path is its header followed by unwritten storage, which an
+//! optimized build allocates and writes in place (strak-sim's own debug builds are optimized
+//! for that reason: see the workspace's `Cargo.toml`). What the stack holds at most is the
+//! curve being built ([`build_dyn`]: a curve's constructor returns it by value, up to about
+//! 0.5 MB at 4 096 points and 6 axes, with its own work arrays).
 //!
 //! Every error is a [`JobError`] on the field that causes it.
 
 use std::time::{Duration, Instant};
 
-use strak_curves::Scalar;
+use strak_curves::{ParamCurveDeriv, Scalar};
 use strak_trajectory::{
     Along, CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
     PlanOptions, ProfileShape, Q40, Timing, compile_into,
@@ -176,7 +177,7 @@ fn planned<'c, S: Scalar, const D: usize>(
     limits: &Limits<D>,
     options: &PlanOptions,
 ) -> Result<Box<dyn Timing + 'c>, TrajError> {
-    let mut plan = Box::new(PathTiming::<_, TABLE, ZONES>::empty(curve));
+    let mut plan = boxed_plan(curve);
     plan.plan_into(limits, options)?;
     Ok(plan)
 }
@@ -383,7 +384,7 @@ impl<S: Scalar, const D: usize> Prepared<S, D> {
         let started = Instant::now();
         let timing = plan_timing(job, &self.curve, &self.limits)?;
         let plan_time = started.elapsed();
-        let mut path: Box<Path<N, D, PIECES>> = Box::new(Path::new());
+        let mut path = boxed_path::<N, D>();
         compile_into(
             &Along::new(&self.curve, &*timing),
             job.rate_hz,
@@ -398,6 +399,23 @@ impl<S: Scalar, const D: usize> Prepared<S, D> {
             compile_time: started.elapsed() - plan_time,
         })
     }
+}
+
+/// An empty path of [`PIECES`] pieces on the heap, for [`compile_into`] or
+/// [`Path::read_bytes`]. An empty path is its header and length followed by unwritten
+/// storage; in this small function of its own an optimized build allocates and writes only
+/// those, so that the path (about 7 MB for 6 axes in `f64`) never lies on the stack. Not
+/// inlined: inside a larger caller the optimizer may build the value on the stack first.
+#[inline(never)]
+pub fn boxed_path<N: Number, const D: usize>() -> Box<Path<N, D, PIECES>> {
+    Box::new(Path::new())
+}
+
+/// An empty plan of [`TABLE`] samples and [`ZONES`] zones along `curve` on the heap, for
+/// [`PathTiming::plan_into`] (about 0.5 MB, zeros): not inlined, as [`boxed_path`].
+#[inline(never)]
+pub fn boxed_plan<C: ParamCurveDeriv>(curve: &C) -> Box<PathTiming<'_, C, TABLE, ZONES>> {
+    Box::new(PathTiming::empty(curve))
 }
 
 /// Whether the job's time law is planned under its limits.

@@ -17,7 +17,8 @@
 //!    constant-speed laws plan none of the limits: the summary reports them without failing.
 //!
 //! Everything runs on the caller's thread: the plan and the path are on the heap, filled in
-//! place (see [`pipeline`](crate::pipeline#stack)), so a default thread stack is enough.
+//! place, and the stack holds small frames and the curve being built (see
+//! [`pipeline`](crate::pipeline#stack)).
 
 use std::fs::{self, File};
 use std::io::{BufWriter, IsTerminal, Write};

@@ -16,11 +16,10 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_trajectory::{
-    Along, CompileOptions, Kernel, Limits, Path, PathTiming, PlanOptions, Q40, Sampler,
-    compile_into,
+    Along, CompileOptions, Kernel, Limits, PlanOptions, Q40, Sampler, compile_into,
 };
 
-use strak_sim::pipeline::{PIECES, TABLE, ZONES};
+use strak_sim::pipeline::{boxed_path, boxed_plan};
 
 /// Runs the binary; `job` `None` runs the bundled example. Returns the output folder.
 fn run_binary(job: Option<&str>, out: &FsPath) -> String {
@@ -145,13 +144,13 @@ where
         .with_rate(rate)
         .with_feed_share(feed_share);
     // boxed and filled in place, as strak-sim does (on the test's default thread stack)
-    let mut timing = Box::new(PathTiming::<_, TABLE, ZONES>::empty(curve));
+    let mut timing = boxed_plan(curve);
     timing.plan_into(&plan_limits, &plan).unwrap();
     let a_feed = axis_a.iter().fold(limits[1], |m, a| m.min(*a));
     let options = CompileOptions::new()
         .with_feed_share(feed_share)
         .with_limits(a_feed, limits[2]);
-    let mut path: Box<Path<N, A, PIECES>> = Box::new(Path::new());
+    let mut path = boxed_path::<N, A>();
     compile_into(&Along::new(curve, &*timing), rate, &options, &mut path).unwrap();
     let mut sampler = Sampler::new(&*path);
     let mut k = 0_u64;

@@ -4,7 +4,12 @@
 //! of [`PIECES`] pieces, in `f64` and in fixed point (Q40 playback), through `run_job` (what
 //! `strak-sim run` calls) and `export` (what `strak-sim compile` calls). The plan and the path
 //! are boxed and filled in place (a 6-axis `f64` path of that capacity holds about 7 MB); a
-//! frame that held either would overflow the stack and abort this test binary.
+//! frame that held either would overflow the stack and abort this test binary. And the
+//! `strak-sim` binary runs the bundled jobs with its main thread's stack limited to as much.
+
+mod common;
+
+use std::process::Command;
 
 use strak_sim::export::export;
 use strak_sim::job::Job;
@@ -126,4 +131,34 @@ fn export_f64_on_the_default_stack() {
 #[test]
 fn export_q40_on_the_default_stack() {
     export_on_default_stack("fixed", NumberFormat::Q40);
+}
+
+/// `strak-sim run` on every bundled job with the stack limit (`ulimit -s`, which bounds the
+/// main thread's stack) set to [`STACK_BYTES`].
+#[cfg(unix)]
+#[test]
+fn the_binary_runs_the_bundled_jobs_within_the_default_stack() {
+    let dir = tempfile::tempdir().unwrap();
+    for job in common::bundled_jobs() {
+        let out = dir.path().join(common::stem(&job));
+        let output = Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "ulimit -s {} && exec \"$0\" run \"$1\" --out \"$2\"",
+                STACK_BYTES >> 10
+            ))
+            .arg(env!("CARGO_BIN_EXE_strak-sim"))
+            .arg(&job)
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "{}: {:?}\n{}",
+            job.display(),
+            output.status,
+            String::from_utf8_lossy(&output.stderr)
+        );
+        assert!(out.join("summary.json").exists(), "{}", job.display());
+    }
 }

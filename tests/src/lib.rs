@@ -179,9 +179,17 @@ use strak_trajectory::{
     compile_into,
 };
 
-/// [`compile_into`] a boxed empty path: the path is written in place on the heap, so that a
-/// path of thousands of pieces (MBs in `f64`) never lies on the test thread's stack (libtest's
-/// default 2 MiB).
+/// An empty path on the heap. An empty path is its header and length followed by unwritten
+/// storage; in this small function of its own an optimized build (the test profile) allocates
+/// and writes only those, so that a path of thousands of pieces (MBs in `f64`) never lies on
+/// the test thread's stack (libtest's default 2 MiB). Not inlined: inside a larger caller the
+/// optimizer may build the value on the stack first.
+#[inline(never)]
+pub fn boxed_path<N: Number, const A: usize, const P: usize>() -> Box<Path<N, A, P>> {
+    Box::new(Path::new())
+}
+
+/// [`compile_into`] a [`boxed_path`]: the path is written in place on the heap.
 ///
 /// # Errors
 /// As [`compile_into`].
@@ -193,7 +201,7 @@ pub fn compile_boxed<N: Number, const A: usize, const P: usize, M>(
 where
     M: Trajectory + ?Sized,
 {
-    let mut path = Box::new(Path::new());
+    let mut path = boxed_path();
     compile_into(trajectory, rate, options, &mut path)?;
     Ok(path)
 }
@@ -217,7 +225,7 @@ pub fn compile_plan_boxed<
 where
     C: ParamCurveDeriv,
 {
-    let mut path = Box::new(Path::new());
+    let mut path = boxed_path();
     plan.compile_into(options, &mut path)?;
     Ok(path)
 }

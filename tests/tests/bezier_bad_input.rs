@@ -228,7 +228,7 @@ fn basis_matrices_out_of_range() {
 fn monomial_to_bernstein_matrix_out_of_range_for_absurd_degree() {
     let r = basis::monomial_to_bernstein(&[[1.0_f32]; 1031]).map(|b| b[0]);
     assert_eq!(r, Err(Error::OutOfRange));
-    assert!(basis::monomial_to_bernstein(&[[1.0_f32]; 1030]).is_ok());
+    assert!(basis::monomial_to_bernstein(&[[1.0_f32]; 1020]).is_ok());
     assert!(basis::monomial_to_bernstein_matrix::<I16F16, 40>().is_ok());
     assert!(basis::monomial_to_bernstein_matrix::<f32, 200>().is_ok());
 }

@@ -34,7 +34,7 @@ use strak_tests::compile_boxed;
 use strak_tests::limits_check::measure;
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
-    Quantity, compile,
+    Quantity,
 };
 
 /// Piece capacity of the compiled paths.
@@ -106,7 +106,7 @@ where
         Ok(p) => p,
         Err(e) => return failed(what, format!("plan: {e:?}")),
     };
-    let compiled: Result<Path<N, D, PIECES>, Error> = compile(
+    let compiled: Result<Box<Path<N, D, PIECES>>, Error> = compile_boxed(
         &Along::new(curve, &plan),
         rate,
         &CompileOptions::new().with_path_limits(&limits),

@@ -33,7 +33,7 @@
 //!   for it (the test would catch it).
 
 use strak_curves::{BSpline, Bezier, ParamCurveDeriv, Scalar};
-use strak_tests::compile_plan_boxed;
+use strak_tests::{compile_boxed, compile_plan_boxed};
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Sampler, Timing,
 };
@@ -215,9 +215,8 @@ fn a_join_at_speed_is_caught() {
     }
     let m = machine2();
     let c = polyline(30.0_f64.to_radians());
-    let path: Path<f64, 2, PIECES> =
-        strak_trajectory::compile(&Along::new(&c, &Through), 1_000.0, &CompileOptions::new())
-            .expect("compile");
+    let path: Box<Path<f64, 2, PIECES>> =
+        compile_boxed(&Along::new(&c, &Through), 1_000.0, &CompileOptions::new()).expect("compile");
     let (r, _) = play(&path, &m, |_, _| {});
     println!("30° at 150 mm/s: |a| {:.1} × the limit", r.acceleration);
     assert!(r.acceleration > 5.0, "{}", r.acceleration);
@@ -393,8 +392,8 @@ fn a_plan_without_the_reserve_is_caught() {
     let o = PlanOptions::new().with_feed_share(1e-3);
     let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
     let options = CompileOptions::new().with_path_limits(&m3);
-    let path: Path<f64, 3, PIECES> =
-        strak_trajectory::compile(&plan, plan.rate(), &options).expect("compile");
+    let path: Box<Path<f64, 3, PIECES>> =
+        compile_boxed(&plan, plan.rate(), &options).expect("compile");
     let r = feed_changes("line planned at the full limits", &path, &m3);
     assert!(r.acceleration > 1.01 || r.jerk > 1.01, "{r:?}");
 }

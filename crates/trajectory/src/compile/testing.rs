@@ -242,7 +242,14 @@ where
     N: Number,
     M: Trajectory + ?Sized,
 {
-    let mut path = std::boxed::Box::new(Path::new());
+    let mut path = boxed_path();
     compile_into(trajectory, rate_hz, options, &mut path)?;
     Ok(path)
+}
+
+/// An empty path on the heap, written in place: in a small function of its own the optimized
+/// test build allocates first and writes only the header and the length.
+#[inline(never)]
+fn boxed_path<N: Number, const A: usize, const P: usize>() -> std::boxed::Box<Path<N, A, P>> {
+    std::boxed::Box::new(Path::new())
 }

@@ -62,6 +62,7 @@ pub struct Path<N: Number, const A: usize, const P: usize> {
 }
 
 impl<N: Number, const A: usize, const P: usize> Default for Path<N, A, P> {
+    #[inline]
     fn default() -> Self {
         Self::new()
     }
@@ -86,6 +87,9 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
     /// let empty: Path<f64, 2, 8> = Path::new();
     /// assert_eq!((empty.ticks(), empty.pieces().len()), (0, 0));
     /// ```
+    // Inlined into the caller (never a shared out-of-line copy), so that `Box::new(Path::new())`
+    // writes the header and the length straight into the allocation.
+    #[inline]
     pub const fn new() -> Self {
         Path {
             header: PathHeader::EMPTY,
