@@ -28,16 +28,24 @@ use strak_trajectory::{
     ProfileShape, Q40, Sample, Timing, compile,
 };
 
-use crate::check::{self, Allowance, Bounds, FeedEvent, MAX_SAMPLES, MAX_TICKS};
+use crate::check::{self, Allowance, Bounds, FeedEvent, MAX_SAMPLES};
 use crate::decode::Bytes;
 use crate::dyn_curve::Dyn;
 use crate::{Violation, violation};
 
-/// Arc-length table size and zone capacity of the plans.
-const TABLE: usize = 64;
+/// Arc-length table size of the plans: more intervals than any curve here has pieces (at
+/// most 7), and building the table is most of an execution (each interval costs two
+/// adaptive integrals), so 16 samples run about 2.6 times as many executions as 64.
+const TABLE: usize = 16;
+/// Zone capacity of the plans.
 const ZONES: usize = 64;
 /// Piece capacity of the compiled paths.
 pub const PIECES: usize = 64;
+
+/// Plans of more ticks than this are not compiled: the compiler's check of every tick and
+/// the harness's own (the accuracy against `c(u(t))`) each evaluate the time law once per
+/// tick.
+pub const MAX_TICKS: f64 = 5_000.0;
 
 /// The harness.
 ///

@@ -611,7 +611,10 @@ fn pick_and_place_trapezoid() {
         Law::Trapezoid,
         &pick_and_place_machine(),
     );
-    assert!(r.axis_velocity > 0.99, "{r:?}");
+    // the plan uses its limits: the compiled spline overshoots the trapezoid's acceleration
+    // steps on the z axis, and the compiler slows down (measured 5 %) until the z axis
+    // keeps its planned acceleration, which it then reaches
+    assert!(r.axis_acceleration > 0.99 && r.axis_velocity > 0.9, "{r:?}");
 }
 
 #[test]

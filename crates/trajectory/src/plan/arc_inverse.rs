@@ -1,13 +1,13 @@
 //! The curve parameter at an arc length: the root of the arc-length table's interpolant
-//! `s(u)`, found by a safeguarded Newton iteration.
+//! `s(u)`, found by a safeguarded secant iteration.
 
 use strak_curves::{ArcLengthTable, ParamCurveDeriv};
 
 use super::{norm64, to_param};
 
-/// The most Newton or bisection steps: bisection alone halves the bracket each step, and 64
-/// steps exhaust the `f64` resolution of any interval.
-const MAX_STEPS: usize = 64;
+/// The most iterations: the bracket at least halves every second one (Illinois), and 128
+/// exhaust the `f64` resolution of any interval.
+const MAX_STEPS: usize = 128;
 
 /// The parameter `u` at which the table's interpolant of the arc length reaches `s`, and the
 /// curve's speed `|c'(u)|` there: the root of `length_at(u) = s`
@@ -22,10 +22,10 @@ const MAX_STEPS: usize = 64;
 /// `ṡ` by tens of percent, with accelerations several times the plan's. The interpolant
 /// of `s(u)` has the slope `|c'|` itself and follows `s(u) ≈ L − k·(u_end − u)²` there.
 ///
-/// The iteration is Newton's method for `length_at(u) − s` with the slope `|c'(u)|`,
-/// starting at the table's inverse and kept inside the sampling interval that holds `s`
-/// (a step leaving the current bracket bisects it instead: Press, Teukolsky, Vetterling &
-/// Flannery, *Numerical Recipes*, 3rd ed., §9.4, "rtsafe").
+/// The iteration is the Illinois variant of regula falsi on the sampling interval that
+/// holds `s`, starting from the table's inverse (Dahlquist & Björck, *Numerical Methods*,
+/// §6.2.3): superlinear, the root always bracketed, and no derivative of the curve but the
+/// one of the answer.
 pub(crate) fn param_at_length<C: ParamCurveDeriv, const N: usize>(
     curve: &C,
     table: &ArcLengthTable<f64, N>,
@@ -40,23 +40,33 @@ pub(crate) fn param_at_length<C: ParamCurveDeriv, const N: usize>(
     if s >= length {
         return (end, speed(end));
     }
-    let (mut lo, mut hi) = bracket(table, s);
-    let mut u = table.param_at(s).clamp(lo, hi);
+    let ((mut lo, s_lo), (mut hi, s_hi)) = bracket(table, s);
+    let (mut f_lo, mut f_hi) = (s_lo - s, s_hi - s);
     let resolution = 4.0 * f64::EPSILON * length;
+    // The table's inverse first, then secants of the bracket.
+    let mut u = table.param_at(s).clamp(lo, hi);
+    let mut kept = 0_i8; // which end stayed last time: −1 low, 1 high
     for _ in 0..MAX_STEPS {
         let f = table.length_at(u) - s;
-        let v = speed(u);
         if f.is_nan() || f.abs() <= resolution {
-            return (u, v);
+            break;
         }
-        if f > 0.0 {
-            hi = u;
+        if f < 0.0 {
+            (lo, f_lo) = (u, f);
+            if kept == 1 {
+                f_hi *= 0.5;
+            }
+            kept = 1;
         } else {
-            lo = u;
+            (hi, f_hi) = (u, f);
+            if kept == -1 {
+                f_lo *= 0.5;
+            }
+            kept = -1;
         }
-        let newton = u - f / v;
-        let next = if newton > lo && newton < hi {
-            newton
+        let secant = lo - f_lo * (hi - lo) / (f_hi - f_lo);
+        let next = if secant > lo && secant < hi {
+            secant
         } else {
             0.5 * (lo + hi)
         };
@@ -68,22 +78,25 @@ pub(crate) fn param_at_length<C: ParamCurveDeriv, const N: usize>(
     (u, speed(u))
 }
 
-/// The parameters of the table's sampling interval that holds the arc length `s`
-/// (`0 < s < L`), by binary search over the samples.
-fn bracket<const N: usize>(table: &ArcLengthTable<f64, N>, s: f64) -> (f64, f64) {
-    let arc = |i: usize| table.sample(i).map_or(f64::INFINITY, |(_, si)| si);
-    let param = |i: usize| table.sample(i).map_or(table.domain().1, |(ui, _)| ui);
+/// The sampling interval of the table that holds the arc length `s` (`0 < s < L`), as
+/// `(u, s)` at its ends, by binary search over the samples.
+fn bracket<const N: usize>(table: &ArcLengthTable<f64, N>, s: f64) -> ((f64, f64), (f64, f64)) {
+    let sample = |i: usize| {
+        table
+            .sample(i)
+            .unwrap_or((table.domain().1, table.length()))
+    };
     // The last sample with an arc length ≤ s (sample 0 has s = 0).
     let (mut lo, mut hi) = (0, N.saturating_sub(1));
     while hi - lo > 1 {
         let mid = lo + (hi - lo) / 2;
-        if arc(mid) <= s {
+        if sample(mid).1 <= s {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    (param(lo), param(hi))
+    (sample(lo), sample(hi))
 }
 
 #[cfg(test)]
