@@ -2,13 +2,13 @@
 
 use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, ScalarOf};
 
+use super::arc_inverse::param_at_length;
 use super::limits::Limits;
 use super::motion::{MotionProfile, Phase};
 use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion_into;
 use super::timing::{MotionLimits, Timing};
 use super::trajectory::Trajectory;
-use super::arc_inverse::param_at_length;
 use super::{greater, norm64, to_param};
 use crate::error::Error;
 
