@@ -87,7 +87,10 @@ impl Timing for Bump {
         let t = t.clamp(0.0, Self::DURATION);
         let z = (t - Self::CENTRE) / Self::WIDTH;
         let g = Self::HEIGHT * (-z * z).exp();
-        (t / Self::DURATION + g, 1.0 / Self::DURATION - 2.0 * z / Self::WIDTH * g)
+        (
+            t / Self::DURATION + g,
+            1.0 / Self::DURATION - 2.0 * z / Self::WIDTH * g,
+        )
     }
 }
 
@@ -124,7 +127,11 @@ fn every_tick_within_the_tolerance_on_a_stalling_curve() {
     let law = PathTiming::<_, 64, 64>::trapezoid(&curve, TRAPEZOID.0, TRAPEZOID.1).unwrap();
     let path: Path<f64, 2, 64> = compile(&law, 1_000.0, &stalling_options()).unwrap();
     let worst = largest_error(&curve, &law, &path);
-    assert!(worst <= path.tolerance(), "{worst:e} > {:e}", path.tolerance());
+    assert!(
+        worst <= path.tolerance(),
+        "{worst:e} > {:e}",
+        path.tolerance()
+    );
 }
 
 /// The motion along the stalling curve moves at the planned speed `ṡ` up to its end: the
@@ -165,7 +172,10 @@ fn the_global_trapezoid_keeps_its_tangential_acceleration() {
     let s = samples(&path);
     let (mut speed, mut tangential) = (0.0_f64, 0.0_f64);
     for w in s.windows(2) {
-        let dx = [w[1].position[0] - w[0].position[0], w[1].position[1] - w[0].position[1]];
+        let dx = [
+            w[1].position[0] - w[0].position[0],
+            w[1].position[1] - w[0].position[1],
+        ];
         speed = speed.max(norm(&dx) * rate);
         let dv = norm(&w[1].velocity) - norm(&w[0].velocity);
         tangential = tangential.max(dv.abs() * rate);
@@ -220,9 +230,16 @@ fn the_compiled_pieces_keep_the_per_axis_velocity() {
             *m = m.max((w[1].position[i] - w[0].position[i]).abs() * rate);
         }
     }
-    println!("axis velocities {worst:?} of {axis_v:?}, time scale {:.4}", path.time_scale());
+    println!(
+        "axis velocities {worst:?} of {axis_v:?}, time scale {:.4}",
+        path.time_scale()
+    );
     for i in 0..3 {
-        assert!(worst[i] <= axis_v[i] * (1.0 + RELATIVE), "axis {i}: {}", worst[i]);
+        assert!(
+            worst[i] <= axis_v[i] * (1.0 + RELATIVE),
+            "axis {i}: {}",
+            worst[i]
+        );
     }
     assert!(path.time_scale() < 1.0);
 }

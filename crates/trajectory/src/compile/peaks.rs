@@ -376,7 +376,11 @@ mod tests {
     fn axis_peaks_are_exact() {
         let period = 1e-3;
         // axis 0 with a velocity vertex inside, axis 1 monotone, axis 2 at rest
-        let coeffs = [[0.0, 0.1, 0.01, -1e-4], [1.0, -0.05, 0.002, 1e-6], [3.0, 0.0, 0.0, 0.0]];
+        let coeffs = [
+            [0.0, 0.1, 0.01, -1e-4],
+            [1.0, -0.05, 0.002, 1e-6],
+            [3.0, 0.0, 0.0, 0.0],
+        ];
         let n = 60.0;
         let p = Peaks::of_piece(&coeffs, n, period);
         for (a, &[_, b, c, d]) in coeffs.iter().enumerate() {
@@ -387,7 +391,10 @@ mod tests {
                 acc = acc.max((2.0 * c + 6.0 * d * i).abs() / (period * period));
             }
             let peak = p.axis_velocity[a];
-            assert!(peak >= v * (1.0 - 1e-12) && peak <= v * (1.0 + 1e-7), "{a}: {peak} {v}");
+            assert!(
+                peak >= v * (1.0 - 1e-12) && peak <= v * (1.0 + 1e-7),
+                "{a}: {peak} {v}"
+            );
             assert!((p.axis_acceleration[a] - acc).abs() <= 1e-9 * acc, "{a}");
         }
         // the vertex of axis 0: i = −c/(3d) = 33.3, v = (0.1 + c²/(3d))/T

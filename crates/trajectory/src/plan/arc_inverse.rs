@@ -119,7 +119,10 @@ mod tests {
         for k in 0..=1000 {
             let s = length * f64::from(k) / 1000.0;
             let (u, v) = param_at_length(&c, &table, s);
-            assert!((table.length_at(u) - s).abs() <= 4.0 * f64::EPSILON * length, "{k}");
+            assert!(
+                (table.length_at(u) - s).abs() <= 4.0 * f64::EPSILON * length,
+                "{k}"
+            );
             assert_eq!(v, norm64(&c.deriv(u, 1)));
         }
         assert_eq!(param_at_length(&c, &table, 0.0).0, 0.0);

@@ -2,13 +2,13 @@
 
 use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, ScalarOf};
 
+use super::arc_inverse::param_at_length;
 use super::limits::Limits;
 use super::motion::{MotionProfile, Phase};
 use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion_into;
 use super::timing::{MotionLimits, Timing};
 use super::trajectory::Trajectory;
-use super::arc_inverse::param_at_length;
 use super::{greater, norm64, to_param};
 use crate::error::Error;
 
@@ -497,7 +497,7 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
     }
 
     /// `u = u(s(t))`, the root of the table's interpolant `s(u) = s(t)` (a safeguarded
-    /// Newton iteration from the table's inverse, accurate where the curve's speed
+    /// secant iteration from the table's inverse, accurate where the curve's speed
     /// vanishes), `du/dt = ṡ/|c'(u)|` (0 where `|c'(u)| = 0`); `t` is clamped to
     /// `[0, duration]`, and the domain ends are returned exactly at the ends. Bounded
     /// iterations only; no panic path.
