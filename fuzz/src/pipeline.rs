@@ -9,7 +9,8 @@
 //! number format of the path (`f32`, `f64`, `Q40`) and up to four feed events. Plans of
 //! more than [`MAX_TICKS`] ticks are not compiled. Invariants:
 //!
-//! * planning, compiling and playing never panic;
+//! * planning, compiling and playing never panic; a compile never fails with a blob's
+//!   error ([`Error::CorruptBlob`]: its own path rejected by the path's validation);
 //! * every sample is finite; the last is the curve's end point converted once into the
 //!   sample type, with the path's end velocity (zero for planned laws) and acceleration;
 //! * at feed 1 every sample is within the path's tolerance and playback bound of the exact
@@ -24,8 +25,8 @@ use strak_curves::{
     Scalar, ScalarOf, SplineBoundary,
 };
 use strak_trajectory::{
-    Along, CompileOptions, Kernel, Limits, Number, ParameterTiming, Path, PathTiming, PlanOptions,
-    ProfileShape, Q40, Sample, Timing, compile,
+    Along, CompileOptions, Error, Kernel, Limits, Number, ParameterTiming, Path, PathTiming,
+    PlanOptions, ProfileShape, Q40, Sample, Timing, compile,
 };
 
 use crate::check::{self, Allowance, Bounds, FeedEvent, MAX_SAMPLES};
@@ -358,11 +359,15 @@ fn pipeline<N: Kernel, const A: usize>(
     if !(duration * case.rate <= MAX_TICKS) {
         return Ok(());
     }
-    let Ok(path) =
-        compile::<N, A, PIECES, _>(&Along::new(curve, &*timing), case.rate, &case.compile)
-    else {
-        return Ok(());
-    };
+    let path =
+        match compile::<N, A, PIECES, _>(&Along::new(curve, &*timing), case.rate, &case.compile) {
+            Ok(path) => path,
+            // A serialized blob's error: a compile that returns it names the wrong cause.
+            Err(e @ Error::CorruptBlob) => {
+                return Err(violation!("{}: compile returned {e:?} ({e})", N::NAME));
+            }
+            Err(_) => return Ok(()),
+        };
     let limited = matches!(
         case.law,
         Law::SCurve | Law::PlannedTrapezoid | Law::Trapezoid

@@ -75,9 +75,9 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///    `∝ (i − k_j)²(k_{j+1} − i)²` (largest in the middle, 9/16 of it at the quarter
 ///    points) plus terms from the knot slopes, so the quarter points find most of what
 ///    needs splitting. Then every tick is checked against the tolerance itself (a law need
-///    not be smooth between knots: a trapezoid's acceleration steps, the arc-length
-///    inverse near a point where the curve's speed vanishes), and the pieces that fail are
-///    split and both checks repeated: every tick is within the tolerance.
+///    not be smooth between knots: a trapezoid's acceleration steps, any law's features
+///    shorter than a piece), and the pieces that fail are split and both checks repeated:
+///    every tick is within the tolerance.
 /// 5. **Limits.** When the time law promises limits ([`Timing::limits`]: the planned laws
 ///    of [`PathTiming`](crate::PathTiming)), the compiled pieces keep them: the spline only
 ///    approximates the law (within the tolerance in position), so its speed, acceleration

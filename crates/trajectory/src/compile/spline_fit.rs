@@ -431,9 +431,9 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
     /// quarter points against `quarter_tol ≤ tol` (cheap, and enough where the motion is
     /// smooth: the error between two knots is then dominated by the bump
     /// `∝ (i − k_j)²(k_{j+1} − i)²`), then every inner tick against `tol` (a time law need
-    /// not be smooth between the knots: acceleration steps, the arc-length inverse near a
-    /// point where the curve's speed vanishes); the pieces that fail are split and both
-    /// checks run again. Ends after at most `capacity` splits.
+    /// not be smooth between the knots: acceleration steps, features shorter than a
+    /// piece); the pieces that fail are split and both checks run again. Ends after at
+    /// most `capacity` splits.
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when the pieces do not fit the storage; errors of `exact`.

@@ -136,7 +136,8 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
 /// which a ramp of `φ` from 1 to 0, about `1/φ̇_max + φ̇_max/φ̈_max` seconds, is fastest
 /// (without the cross term, `c = 0`, `A ≤ √(v·R)`, the rate a jerk-limited ramp over 1
 /// reaches anyway). Per tick: `ω_max = A/(v_peak·f)`, `α = (R − c·A)/(v_peak·f²)`,
-/// `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in every format), `ω_max ≤ min(½, √α)`.
+/// `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in every format), `ω_max ≤ min(½, √α)`, and
+/// `α ≤ ω_max` (a smaller `α` where the jerk would reach `ω_max` within a tick).
 pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     let a_ramp = (meta.acceleration_limit - meta.peak_acceleration)
         .max(meta.feed_share * meta.acceleration_limit);
@@ -155,6 +156,9 @@ pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
     };
     let alpha = alpha.clamp(MIN_ALPHA, 0.25);
     let omega = omega.min(0.5).min(libm::sqrt(alpha));
+    // A jerk so high that `ω` could reach `ω_max` within a tick: one step of `ω_max` (the
+    // ramp's rate is a whole multiple of `α`, at least one).
+    let alpha = alpha.min(omega.max(MIN_ALPHA));
     (omega, alpha)
 }
 
@@ -544,21 +548,41 @@ fn check_continuation<N: Number, const A: usize>(
     ) else {
         return Err(Error::CorruptBlob);
     };
+    // The f64 rounding of the Newton sums: relative to their terms' magnitudes (the sums
+    // of the terms' absolute values), which can be far above a sum near zero.
+    let terms = AxisState {
+        position: s.position.abs(),
+        delta1: s.delta1.abs(),
+        delta2: s.delta2.abs(),
+        delta3: s.delta3.abs(),
+        velocity: s.velocity.abs(),
+        velocity_delta1: s.velocity_delta1.abs(),
+        velocity_delta2: s.velocity_delta2.abs(),
+        acceleration: s.acceleration.abs(),
+        acceleration_delta: s.acceleration_delta.abs(),
+    }
+    .shifted(&Newton::at(n));
     let slack = |m: f64| 1e-12 * (1.0 + m);
     let v_bound = r(s.velocity.abs())
         + n * r(s.velocity_delta1.abs())
         + binomial(n, 2) * r(s.velocity_delta2.abs())
         + N::OUT_ERROR;
     let a_bound = r(s.acceleration.abs()) + n * r(s.acceleration_delta.abs()) + N::OUT_ERROR;
-    let near = |got: f64, want: f64, bound: f64| {
-        (got - want).abs() <= 2.0 * bound + slack(got.abs().max(want.abs()))
+    let near = |got: f64, want: f64, bound: f64, terms: f64| {
+        (got - want).abs() <= 2.0 * bound + slack(got.abs().max(want.abs()).max(terms))
     };
     if near(
         at_end.position,
         x.to_f64(),
         b.playback_error + meta.tolerance,
-    ) && near(at_end.velocity, v.to_f64(), v_bound)
-        && near(at_end.acceleration, acc.to_f64(), a_bound)
+        terms.position,
+    ) && near(at_end.velocity, v.to_f64(), v_bound, terms.velocity)
+        && near(
+            at_end.acceleration,
+            acc.to_f64(),
+            a_bound,
+            terms.acceleration,
+        )
     {
         Ok(())
     } else {

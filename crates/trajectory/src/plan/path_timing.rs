@@ -497,7 +497,7 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
     }
 
     /// `u = u(s(t))`, the root of the table's interpolant `s(u) = s(t)` (a safeguarded
-    /// Newton iteration from the table's inverse, accurate where the curve's speed
+    /// secant iteration from the table's inverse, accurate where the curve's speed
     /// vanishes), `du/dt = ṡ/|c'(u)|` (0 where `|c'(u)| = 0`); `t` is clamped to
     /// `[0, duration]`, and the domain ends are returned exactly at the ends. Bounded
     /// iterations only; no panic path.

@@ -418,14 +418,9 @@ fn arc_at<C: ParamCurveDeriv, const N: usize>(
         if param_at_length(curve, table, s).0 >= u || s >= table.length() {
             break;
         }
-        s = next_up(s);
+        s = s.next_up();
     }
     s
-}
-
-/// The next `f64` above a finite, non-negative `x`.
-fn next_up(x: f64) -> f64 {
-    f64::from_bits(x.to_bits() + 1)
 }
 
 /// The cusps in the two halves of a sampling interval: where the tangent of a sample points
