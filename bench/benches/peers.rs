@@ -10,6 +10,8 @@
 //!   restarts when finished), f32, f64 and Q40, per `n`.
 //! - `fill`: batch playback, one `Sampler::fill` of 1024 samples per iteration over the whole
 //!   path (the sampler restarts when finished), f32, f64 and Q40, per `n`; time per sample.
+//! - `fill_positions`: as `fill`, with `Sampler::fill_positions` (positions only, the peers'
+//!   job).
 //! - `flatness_<format>`: one `next()` at chosen ticks of the 1024-point path, on a clone of a
 //!   sampler advanced to just before that tick (`iter_batched_ref`), and the same harness with
 //!   an empty routine (`baseline`) to subtract.
@@ -479,6 +481,40 @@ fn fill(c: &mut Criterion) {
     g.finish();
 }
 
+fn fill_positions_one<N: Kernel>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    n: usize,
+    path: &Path<N, 3, PIECES>,
+) {
+    let mut s = Sampler::new(path);
+    let mut buf = vec![[<N::Out as Scalar>::ZERO; 3]; BATCH];
+    g.bench_function(format!("strak_{}/{n}", N::NAME.to_lowercase()), |b| {
+        b.iter(|| {
+            if s.is_finished() {
+                s = Sampler::new(path);
+            }
+            s.fill_positions(black_box(&mut buf));
+            black_box(&buf);
+        });
+    });
+}
+
+/// Batch playback of positions, the peers' job: `Sampler::fill_positions` of [`BATCH`]
+/// positions per iteration over the whole path (restarting at the end); the time is per
+/// sample.
+fn fill_positions(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fill_positions");
+    configure(&mut g);
+    g.throughput(Throughput::Elements(BATCH as u64));
+    for n in SIZES {
+        let paths = strak_paths(n);
+        fill_positions_one(&mut g, n, &*paths.f32);
+        fill_positions_one(&mut g, n, &*paths.f64);
+        fill_positions_one(&mut g, n, &*paths.q40);
+    }
+    g.finish();
+}
+
 /// The floor of any forward-differencing tick that keeps its state in memory between calls
 /// (as a sampler must: an interrupt handler returns between ticks): the six additions per
 /// axis of `AxisState::step` on the three states of the path's first piece, the state passed
@@ -563,6 +599,7 @@ fn main() {
     evaluation(&mut c);
     playback(&mut c);
     fill(&mut c);
+    fill_positions(&mut c);
     floor(&mut c);
     let paths = strak_paths(FLATNESS_N);
     flatness_one(&mut c, &*paths.f32);

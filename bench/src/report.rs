@@ -256,6 +256,48 @@ impl Results {
     pub fn fill(&self, format: &str, n: usize) -> Option<f64> {
         self.get("fill", &format!("strak_{format}"), &n.to_string())
     }
+
+    /// ns per sample of batch playback of positions (`Sampler::fill_positions`) in `format`.
+    pub fn fill_positions(&self, format: &str, n: usize) -> Option<f64> {
+        self.get("fill_positions", &format!("strak_{format}"), &n.to_string())
+    }
+}
+
+/// The batch rows: `fill` and `fill_positions` per format and `n`, and the positions' speed-up
+/// against the fastest same-curve peer (nothing when neither group was measured).
+fn batch_table(o: &mut String, r: &Results) {
+    if SIZES
+        .iter()
+        .all(|&n| r.fill("f64", n).is_none() && r.fill_positions("f64", n).is_none())
+    {
+        return;
+    }
+    let _ = writeln!(
+        o,
+        "### Batch playback (ns per sample)\n\n\
+         `fill`: whole samples (position, velocity, acceleration), bit for bit `next()`'s; \
+         `positions`: `fill_positions`, bit for bit `next_position()`'s, the peers' job.\n\n\
+         | n | fill f32 | fill f64 | fill Q40 | positions f32 | positions f64 | positions Q40 | \
+         speed-up f32 (positions) | speed-up f64 (positions) |\n\
+         |---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for n in SIZES {
+        let peer =
+            |precision| fastest_peer(r, &Pattern::ALL, precision, n, |p| p.same_curve).map(|p| p.0);
+        let _ = writeln!(
+            o,
+            "| {n} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            ns(r.fill("f32", n)),
+            ns(r.fill("f64", n)),
+            ns(r.fill("q40", n)),
+            ns(r.fill_positions("f32", n)),
+            ns(r.fill_positions("f64", n)),
+            ns(r.fill_positions("q40", n)),
+            ratio(r.fill_positions("f32", n), peer("f32")),
+            ratio(r.fill_positions("f64", n), peer("f64")),
+        );
+    }
+    let _ = writeln!(o);
 }
 
 /// Why the host speed targets are missed: the analysis behind the numbers (disassembly of
@@ -481,6 +523,12 @@ pub fn fill_checks(r: &Results) -> Vec<Check> {
     speed_checks(r, Results::fill)
 }
 
+/// Batch playback of positions (`Sampler::fill_positions`), the peers' own job: as
+/// [`playback_checks`], per sample.
+pub fn fill_positions_checks(r: &Results) -> Vec<Check> {
+    speed_checks(r, Results::fill_positions)
+}
+
 /// `time(r, precision, n)` against the fastest same-curve peer, per precision and `n`.
 fn speed_checks(r: &Results, time: fn(&Results, &str, usize) -> Option<f64>) -> Vec<Check> {
     let mut out = Vec::new();
@@ -674,6 +722,7 @@ pub fn render(
     let eval = eval_checks(r);
     let play = playback_checks(r);
     let fill = fill_checks(r);
+    let fill_positions = fill_positions_checks(r);
     let flat = flatness_checks(r);
     let _ = writeln!(o, "# Benchmarks\n");
     let _ = writeln!(
@@ -697,6 +746,16 @@ pub fn render(
              fastest peer's evaluation of the same curve (f32 and f64, every n) | {} | {} |",
             verdict(&fill),
             worst(&fill, false)
+        );
+    }
+    if !fill_positions.is_empty() {
+        let _ = writeln!(
+            o,
+            "| batch playback of positions (`Sampler::fill_positions`: the peers' job, \
+             positions only) ≥ {PLAYBACK_TARGET}× faster per sample than the fastest peer's \
+             evaluation of the same curve (f32 and f64, every n) | {} | {} |",
+            verdict(&fill_positions),
+            worst(&fill_positions, false)
         );
     }
     let _ = writeln!(
@@ -910,6 +969,7 @@ pub fn render(
         }
     }
     let _ = writeln!(o);
+    batch_table(&mut o, r);
     let _ = writeln!(
         o,
         "### The floor of a tick: the forward-differencing step alone\n\n\
@@ -1006,6 +1066,11 @@ pub fn render(
     for (title, checks, unit) in [
         ("Playback vs the fastest same-curve peer", &play, "×"),
         ("Batch playback vs the fastest same-curve peer", &fill, "×"),
+        (
+            "Batch playback of positions vs the fastest same-curve peer",
+            &fill_positions,
+            "×",
+        ),
         (
             "Random-access evaluation vs the fastest same-job peer",
             &eval,

@@ -18,7 +18,7 @@ use strak_trajectory::{
 /// back to 1 after the end.
 fn peak_acceleration_with_a_feed_change<N: Kernel>(at: u64, feed: f32) -> (f64, f64) {
     let line = Bezier::new([[0.3_f64], [0.13]]).unwrap();
-    let (v, a, j) = (60.86, 48.44456, 170_040.4056);
+    let (v, a, j) = (60.86, 48.44456, 170_040.405_6);
     let share = 0.339;
     let keep = 1.0 - share;
     let planned = Limits::<1>::new(v, a * keep, j * keep).unwrap();

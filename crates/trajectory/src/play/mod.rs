@@ -847,6 +847,55 @@ mod tests {
         batches::<Q40>();
     }
 
+    /// `fill_positions` against as many `next_position` calls, bit for bit, in batches as
+    /// in [`batches`], with the control events between batches and every fifth batch
+    /// followed by one `next()` on both (the lagging chains caught up after a batch).
+    fn position_batches<N: Kernel>() {
+        let path = helix_path::<N>();
+        let mut one = Sampler::new(&path);
+        let mut batched = Sampler::new(&path);
+        let mut buf = std::vec![[<N::Out as Scalar>::ZERO; 3]; 300];
+        let (mut k, mut n) = (0_u64, 0_usize);
+        let end = u64::from(path.ticks()) + 4000;
+        while k < end {
+            for s in [&mut one, &mut batched] {
+                events(k, s);
+            }
+            let len = 1 + (n * 41 + n / 5) % 300;
+            let len = [300, 700, 2300, 2800]
+                .iter()
+                .filter(|&&e| e > k)
+                .map(|&e| usize::try_from(e - k).unwrap())
+                .fold(len, usize::min);
+            batched.fill_positions(&mut buf[..len]);
+            for (i, got) in buf[..len].iter().enumerate() {
+                assert_eq!(
+                    *got,
+                    one.next_position(),
+                    "tick {} (batch {n})",
+                    k + i as u64
+                );
+            }
+            k += len as u64;
+            if n % 5 == 4 && ![300, 700, 2300, 2800].contains(&k) {
+                assert_eq!(batched.next(), one.next(), "tick {k}");
+                k += 1;
+            }
+            assert_eq!(batched.state(), one.state());
+            n += 1;
+        }
+        assert!(one.is_finished() && batched.is_finished());
+        batched.fill_positions(&mut []);
+        assert_eq!(batched.next(), one.next());
+    }
+
+    #[test]
+    fn fill_positions_is_next_position_called_as_often() {
+        position_batches::<f32>();
+        position_batches::<f64>();
+        position_batches::<Q40>();
+    }
+
     fn exact_loads<N: Kernel>() {
         let path = helix_path::<N>();
         assert!(path.pieces().len() > 20);
