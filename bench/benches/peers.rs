@@ -8,8 +8,8 @@
 //!   `strak_power_<format>` the power-basis pieces (`PowerSpline::eval`, Horner).
 //! - `playback`: one `Sampler::next()` per iteration over the whole compiled path (the sampler
 //!   restarts when finished), f32, f64 and Q40, per `n`.
-//! - `fill`: batch playback, one `Sampler::fill` of 1024 samples per iteration over the whole
-//!   path (the sampler restarts when finished), f32, f64 and Q40, per `n`; time per sample.
+//! - `fill`: batch playback, one whole playback of the path per iteration by `Sampler::fill`
+//!   in batches of 1024 samples, f32, f64 and Q40, per `n`; time per sample.
 //! - `fill_positions`: as `fill`, with `Sampler::fill_positions` (positions only, the peers'
 //!   job).
 //! - `flatness_<format>`: one `next()` at chosen ticks of the 1024-point path, on a clone of a
@@ -449,68 +449,68 @@ fn playback(c: &mut Criterion) {
     g.finish();
 }
 
-/// Samples per `Sampler::fill` call in the `fill` group.
+/// Samples per `Sampler::fill` / `Sampler::fill_positions` call in the batch groups.
 const BATCH: usize = 1024;
 
-fn fill_one<N: Kernel>(g: &mut BenchmarkGroup<'_, WallTime>, n: usize, path: &Path<N, 3, PIECES>) {
-    let mut s = Sampler::new(path);
-    let mut buf = vec![Sample::splat(<N::Out as Scalar>::ZERO); BATCH];
+/// One whole playback of `path` per iteration in batches of [`BATCH`] by `fill` (the last
+/// batch holds the samples left, so that no standstill after the end is counted); the
+/// throughput is the path's samples, `ticks + 1`.
+fn batch_one<N: Kernel, T: Copy>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    n: usize,
+    path: &Path<N, 3, PIECES>,
+    zero: T,
+    fill: impl Fn(&mut Sampler<'_, N, 3>, &mut [T]),
+) {
+    let samples = path.ticks() as usize + 1;
+    g.throughput(Throughput::Elements(samples as u64));
+    let mut buf = vec![zero; BATCH];
     g.bench_function(format!("strak_{}/{n}", N::NAME.to_lowercase()), |b| {
         b.iter(|| {
-            if s.is_finished() {
-                s = Sampler::new(path);
+            let mut s = Sampler::new(black_box(path));
+            let mut left = samples;
+            while left > 0 {
+                let k = left.min(BATCH);
+                fill(&mut s, black_box(&mut buf[..k]));
+                left -= k;
             }
-            s.fill(black_box(&mut buf));
             black_box(&buf);
         });
     });
 }
 
-/// Batch playback: `Sampler::fill` of [`BATCH`] samples per iteration over the whole path
-/// (restarting at the end, as `playback` does); the time is per sample.
+/// Batch playback: `Sampler::fill`, whole samples, over the whole path; the time is per
+/// sample.
 fn fill(c: &mut Criterion) {
     let mut g = c.benchmark_group("fill");
     configure(&mut g);
-    g.throughput(Throughput::Elements(BATCH as u64));
     for n in SIZES {
         let paths = strak_paths(n);
-        fill_one(&mut g, n, &*paths.f32);
-        fill_one(&mut g, n, &*paths.f64);
-        fill_one(&mut g, n, &*paths.q40);
+        batch_one(&mut g, n, &*paths.f32, Sample::splat(0.0), |s, b| s.fill(b));
+        batch_one(&mut g, n, &*paths.f64, Sample::splat(0.0), |s, b| s.fill(b));
+        batch_one(
+            &mut g,
+            n,
+            &*paths.q40,
+            Sample::splat(I32F32::ZERO),
+            |s, b| s.fill(b),
+        );
     }
     g.finish();
 }
 
-fn fill_positions_one<N: Kernel>(
-    g: &mut BenchmarkGroup<'_, WallTime>,
-    n: usize,
-    path: &Path<N, 3, PIECES>,
-) {
-    let mut s = Sampler::new(path);
-    let mut buf = vec![[<N::Out as Scalar>::ZERO; 3]; BATCH];
-    g.bench_function(format!("strak_{}/{n}", N::NAME.to_lowercase()), |b| {
-        b.iter(|| {
-            if s.is_finished() {
-                s = Sampler::new(path);
-            }
-            s.fill_positions(black_box(&mut buf));
-            black_box(&buf);
-        });
-    });
-}
-
-/// Batch playback of positions, the peers' job: `Sampler::fill_positions` of [`BATCH`]
-/// positions per iteration over the whole path (restarting at the end); the time is per
-/// sample.
+/// Batch playback of positions, the peers' job: `Sampler::fill_positions` over the whole
+/// path; the time is per sample.
 fn fill_positions(c: &mut Criterion) {
     let mut g = c.benchmark_group("fill_positions");
     configure(&mut g);
-    g.throughput(Throughput::Elements(BATCH as u64));
     for n in SIZES {
         let paths = strak_paths(n);
-        fill_positions_one(&mut g, n, &*paths.f32);
-        fill_positions_one(&mut g, n, &*paths.f64);
-        fill_positions_one(&mut g, n, &*paths.q40);
+        batch_one(&mut g, n, &*paths.f32, [0.0; 3], |s, b| s.fill_positions(b));
+        batch_one(&mut g, n, &*paths.f64, [0.0; 3], |s, b| s.fill_positions(b));
+        batch_one(&mut g, n, &*paths.q40, [I32F32::ZERO; 3], |s, b| {
+            s.fill_positions(b)
+        });
     }
     g.finish();
 }

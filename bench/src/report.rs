@@ -332,17 +332,23 @@ target/release/deps/peers-*`) and from the flatness benches above:
   evaluation has no dependency between samples and overlaps consecutive calls. Meeting 20×
   would need a tick without that chain (e.g. evaluating each tick's polynomial from a tick
   counter, which costs more instructions on the Cortex-M, where the instruction targets are
-  met) or a batch interface that keeps the state in registers over many ticks.
-- **Batch playback (`Sampler::fill`, the `fill` rows).** The batch call keeps the state of a
-  piece in a local copy across its ticks, with the same additions in the same order (the
-  samples are `next()`'s, bit for bit). Instructions per sample under
-  `valgrind --tool=callgrind` (`src/bin/ticks.rs`, n = 1024, 3 axes, whole path 20 times;
-  repeatable, unlike the times on a shared machine): f64 81.5 with `next()` against 40.9
-  with `fill`, f32 76.4 against 35.8, Q40 99.7 against 94.8. At ≈ 3 instructions per cycle
-  on a 2.6 GHz core, 36–41 instructions are ≈ 5 ns per sample, several times the ≈ 1.6 ns
-  that 20× needs: the 18 additions and the 10 stores of each sample are a floor of their own.
-  Why Q40 gains so little (27 `i64` state values against 16 general registers on x86-64 is
-  the suspect) is not yet read from the listing.
+  met) or a batch interface that keeps the state in registers over many ticks (`fill` and
+  `fill_positions`, below).
+- **Batch playback (`Sampler::fill` and `Sampler::fill_positions`, the batch rows).** The
+  batch calls keep the chains of a piece in locals across its ticks, with the same additions
+  in the same order (the samples are `next()`'s and `next_position()`'s, bit for bit).
+  Instructions per sample under `valgrind --tool=callgrind` (`src/bin/ticks.rs`, n = 1024,
+  3 axes, whole path 20 times; repeatable, unlike the times on a shared machine): `next()`
+  f32 75.5, f64 80.5, Q40 100.5; `fill` 35.6, 40.6, 95.8; `fill_positions` 15.1, 15.9,
+  26.9. `fill` writes ten values per sample (the tick, and position, velocity and
+  acceleration of 3 axes) after 18 additions, a floor of its own several times what 20×
+  allows. `fill_positions` does the peers' job, positions only: 9 additions per tick, which
+  the compiler groups by difference order into vector additions (f32: the x–y pair in one
+  `addps`, z in an `addss`), 3 stores, and a piece switch every 18 ticks of this path on
+  average (3 593 pieces in 65 672 ticks). Each tick still waits for the previous tick's
+  additions (one add latency per tick), which bounds it at about 3 cycles. Why Q40 `fill`
+  gains so little over `next()` (27 `i64` state values against 16 general registers on
+  x86-64 is the suspect) is not yet read from the listing.
 - **Flatness across n**: the work of a tick does not depend on n (no search; the same
   additions; one piece load per at most 256 ticks, and the piece density along the path is
   the same for every n). The spread over n measured in one run is therefore timing noise
@@ -822,7 +828,7 @@ pub fn render(
     let _ = writeln!(
         o,
         "- The curve: a 3-D clamped uniform cubic B-spline of n = {} de Boor points on a helix \
-         (radius 50 mm, 16 points per turn, rising 0.5 mm per point), knots 0, 0, 0, 0, 1, …, \
+         (radius 50 mm, 16 points per turn, rising 0.5 mm per turn), knots 0, 0, 0, 0, 1, …, \
          n − 3 (×4); every library gets the same points (the bench checks that strak, \
          enterpolation and bspline agree on every sample).",
         SIZES.map(|n| n.to_string()).join(", ")

@@ -50,8 +50,15 @@ pub const PIECES: usize = 16_384;
 /// Zone capacity of a planned motion, trapezoid or S-curve (the planner's default 1024
 /// sampling intervals never need more; the constant-speed law has one zone).
 pub const ZONES: usize = 1_024;
-/// Samples of the arc-length table.
+/// Samples of the arc-length table of a curve of at most `TABLE / 2` pieces (the QEMU
+/// firmware plans its jobs on the device with the same table, so that its paths are the
+/// host's bit for bit).
 pub const TABLE: usize = 1_024;
+/// Samples of the arc-length table of a curve of more pieces: two per piece of the largest
+/// curve (4 096 points). With [`TABLE`] the compiled 6-axis path of a 4 096-point B-spline
+/// exceeds its jerk limit beyond the compiler's slow-down (a table interval over several
+/// pieces smooths the parameter's speed, and the compiled motion follows the curve's).
+pub const LARGE_TABLE: usize = 8_192;
 /// The share of the velocity limits (path and per axis) a planned motion leaves unused:
 /// the compiled spline follows the planned velocity to about 10⁻³ of it, so a plan at the
 /// full limit would overshoot it.
@@ -158,15 +165,25 @@ pub fn plan_timing<'c, S: Scalar, const D: usize>(
     }
 }
 
-/// The constant-speed law, boxed: one zone (the library returns it by value, and with one
-/// zone it is small).
+/// Whether `curve` takes the [`LARGE_TABLE`].
+fn large<C: ParamCurveDeriv>(curve: &C) -> bool {
+    curve.piece_count() > TABLE / 2
+}
+
+/// The constant-speed law (one zone), built in place into a boxed empty plan.
 fn constant_speed<S: Scalar, const D: usize>(
     curve: &DynCurve<S, D>,
     speed: f64,
 ) -> Result<Box<dyn Timing + '_>, TrajError> {
-    Ok(Box::new(PathTiming::<_, TABLE, 1>::constant_speed(
-        curve, speed,
-    )?))
+    if large(curve) {
+        let mut plan = boxed_plan::<_, LARGE_TABLE, 1>(curve);
+        plan.constant_speed_into(speed)?;
+        Ok(plan)
+    } else {
+        let mut plan = boxed_plan::<_, TABLE, 1>(curve);
+        plan.constant_speed_into(speed)?;
+        Ok(plan)
+    }
 }
 
 /// A trapezoid or S-curve, planned in place into a boxed empty plan. Not inlined, so that the
@@ -177,9 +194,15 @@ fn planned<'c, S: Scalar, const D: usize>(
     limits: &Limits<D>,
     options: &PlanOptions,
 ) -> Result<Box<dyn Timing + 'c>, TrajError> {
-    let mut plan = boxed_plan(curve);
-    plan.plan_into(limits, options)?;
-    Ok(plan)
+    if large(curve) {
+        let mut plan = boxed_plan::<_, LARGE_TABLE, ZONES>(curve);
+        plan.plan_into(limits, options)?;
+        Ok(plan)
+    } else {
+        let mut plan = boxed_plan::<_, TABLE, ZONES>(curve);
+        plan.plan_into(limits, options)?;
+        Ok(plan)
+    }
 }
 
 /// A curve file error as an error on the job's `path.…` field.
@@ -411,10 +434,13 @@ pub fn boxed_path<N: Number, const D: usize>() -> Box<Path<N, D, PIECES>> {
     Box::new(Path::new())
 }
 
-/// An empty plan of [`TABLE`] samples and [`ZONES`] zones along `curve` on the heap, for
-/// [`PathTiming::plan_into`] (about 0.5 MB, zeros): not inlined, as [`boxed_path`].
+/// An empty plan of `T` samples ([`TABLE`] or [`LARGE_TABLE`]) and `Z` zones ([`ZONES`]
+/// for the planned laws) along `curve` on the heap, for [`PathTiming::plan_into`] or
+/// [`PathTiming::constant_speed_into`]: not inlined, as [`boxed_path`].
 #[inline(never)]
-pub fn boxed_plan<C: ParamCurveDeriv>(curve: &C) -> Box<PathTiming<'_, C, TABLE, ZONES>> {
+pub fn boxed_plan<C: ParamCurveDeriv, const T: usize, const Z: usize>(
+    curve: &C,
+) -> Box<PathTiming<'_, C, T, Z>> {
     Box::new(PathTiming::empty(curve))
 }
 

@@ -19,7 +19,7 @@ use strak_trajectory::{
     Along, CompileOptions, Kernel, Limits, PlanOptions, Q40, Sampler, compile_into,
 };
 
-use strak_sim::pipeline::{boxed_path, boxed_plan};
+use strak_sim::pipeline::{TABLE, ZONES, boxed_path, boxed_plan};
 
 /// Runs the binary; `job` `None` runs the bundled example. Returns the output folder.
 fn run_binary(job: Option<&str>, out: &FsPath) -> String {
@@ -144,7 +144,7 @@ where
         .with_rate(rate)
         .with_feed_share(feed_share);
     // boxed and filled in place, as strak-sim does (on the test's default thread stack)
-    let mut timing = boxed_plan(curve);
+    let mut timing = boxed_plan::<_, TABLE, ZONES>(curve);
     timing.plan_into(&plan_limits, &plan).unwrap();
     let a_feed = axis_a.iter().fold(limits[1], |m, a| m.min(*a));
     let options = CompileOptions::new()

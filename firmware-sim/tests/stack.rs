@@ -1,6 +1,6 @@
 //! strak-sim's largest job shape runs on a thread with libtest's default stack (2 MiB): a
 //! 6-axis clamped cubic B-spline of 4 096 points (the builder's largest size class), planned
-//! with the pipeline's plan of [`TABLE`] samples and [`ZONES`] zones and compiled into a path
+//! with the pipeline's plan of [`LARGE_TABLE`] samples and [`ZONES`] zones and compiled into a path
 //! of [`PIECES`] pieces, in `f64` and in fixed point (Q40 playback), through `run_job` (what
 //! `strak-sim run` calls) and `export` (what `strak-sim compile` calls). The plan and the path
 //! are boxed and filled in place (a 6-axis `f64` path of that capacity holds about 7 MB); a
@@ -14,7 +14,7 @@ use std::process::Command;
 use strak_sim::export::export;
 use strak_sim::job::Job;
 use strak_sim::number::NumberFormat;
-use strak_sim::pipeline::{PIECES, TABLE, ZONES};
+use strak_sim::pipeline::{LARGE_TABLE, PIECES, ZONES};
 use strak_sim::run::{RunOptions, exit_code, run_job};
 
 /// libtest's default: the stack of every test thread.
@@ -82,7 +82,7 @@ fn largest_job(number: &str) -> Job {
 /// The shape this file covers is the pipeline's largest.
 #[test]
 fn the_capacities_are_the_pipelines() {
-    assert_eq!((PIECES, TABLE, ZONES), (16_384, 1_024, 1_024));
+    assert_eq!((PIECES, LARGE_TABLE, ZONES), (16_384, 8_192, 1_024));
 }
 
 fn run_on_default_stack(number: &str) {

@@ -354,9 +354,17 @@ impl<S: Scalar, const M: usize> KnotVector<S, M> {
     }
 
     /// The knot index `s` of piece `i` (the `i`-th non-empty span `[u_s, u_{s+1})` of the
-    /// domain); the last piece for `i ≥ piece_count()`.
+    /// domain); the last piece for `i ≥ piece_count()`. O(1) when no interior knot is
+    /// repeated (every span of the domain a piece), a scan of the knots otherwise.
     pub fn piece_span(&self, i: usize) -> usize {
         let g = self.degree;
+        if self.pieces == self.control_point_count() - g {
+            return if i < self.pieces {
+                g + i
+            } else {
+                self.last_span
+            };
+        }
         let mut seen = 0;
         for s in g..self.control_point_count() {
             if self.knot(s) < self.knot(s + 1) {
@@ -573,6 +581,29 @@ mod tests {
         assert_eq!(kv.piece_span(1), 6);
         assert_eq!(kv.piece_span(9), 6);
         assert!(!kv.is_uniform());
+    }
+
+    /// `piece_span` (O(1) without repeated interior knots) against the definition: the
+    /// `i`-th span `[u_s, u_{s+1})` with `u_s < u_{s+1}`, with and without repeated knots.
+    #[test]
+    fn piece_spans_are_the_non_empty_spans() {
+        let knots: [&[f64]; 3] = [
+            &[0., 0., 0., 0., 1., 2.5, 3., 7., 7., 7., 7.],
+            &[0., 0., 0., 1., 2., 2., 3., 4., 4., 4.],
+            &[0., 0., 0., 0., 1., 1., 2., 3., 3., 3., 3.],
+        ];
+        for (g, k) in [3, 2, 3].into_iter().zip(knots) {
+            let kv = Kv::new(g, k).unwrap();
+            let mut spans = (g..kv.control_point_count()).filter(|&s| k[s] < k[s + 1]);
+            let mut count = 0;
+            let mut last = 0;
+            for (i, s) in spans.by_ref().enumerate() {
+                assert_eq!(kv.piece_span(i), s, "degree {g}, piece {i}");
+                (count, last) = (i + 1, s);
+            }
+            assert_eq!(kv.piece_count(), count);
+            assert_eq!(kv.piece_span(count), last);
+        }
     }
 
     #[test]

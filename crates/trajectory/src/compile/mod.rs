@@ -104,9 +104,10 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// own scalar type, converted once into the sample type.
 ///
 /// # Memory
-/// Besides the returned path, the fit uses `P·(13 + 16·A)` bytes of stack (knots, knot
-/// values and slopes in `f64`, the elimination's scratch); the path itself holds
-/// `P·(8 + 9·A·size_of::<N>())` bytes of pieces. Compile on the host or at start-up.
+/// The path holds `P·(8 + 9·A·size_of::<N>())` bytes of pieces and is returned by value:
+/// on a small stack use [`compile_into`], which writes it in place. The fit keeps its
+/// knots in the path's own pieces, so compiling needs no storage beside the path whatever
+/// `P`, only small fixed frames of stack.
 ///
 /// # Errors
 /// * [`Error::InvalidLimit`]: bad [`CompileOptions`];

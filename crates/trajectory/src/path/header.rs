@@ -539,7 +539,10 @@ fn check_continuation<N: Number, const A: usize>(
     let n = f64::from(ticks);
     let r = N::rounding_error;
     let s = state.to_f64();
-    let at_end = s.shifted(&Newton::at(n));
+    let c = Newton::at(n);
+    let position = chain_at([s.position, s.delta1, s.delta2, s.delta3], &c);
+    let velocity = chain_at([s.velocity, s.velocity_delta1, s.velocity_delta2, 0.0], &c);
+    let acceleration = chain_at([s.acceleration, s.acceleration_delta, 0.0, 0.0], &c);
     let b = piece_bounds(state, ticks);
     let (Some(x), Some(v), Some(acc)) = (
         end.position.get(a),
@@ -548,46 +551,31 @@ fn check_continuation<N: Number, const A: usize>(
     ) else {
         return Err(Error::CorruptBlob);
     };
-    // The f64 rounding of the Newton sums: relative to their terms' magnitudes (the sums
-    // of the terms' absolute values), which can be far above a sum near zero.
-    let terms = AxisState {
-        position: s.position.abs(),
-        delta1: s.delta1.abs(),
-        delta2: s.delta2.abs(),
-        delta3: s.delta3.abs(),
-        velocity: s.velocity.abs(),
-        velocity_delta1: s.velocity_delta1.abs(),
-        velocity_delta2: s.velocity_delta2.abs(),
-        acceleration: s.acceleration.abs(),
-        acceleration_delta: s.acceleration_delta.abs(),
-    }
-    .shifted(&Newton::at(n));
     let slack = |m: f64| 1e-12 * (1.0 + m);
     let v_bound = r(s.velocity.abs())
         + n * r(s.velocity_delta1.abs())
         + binomial(n, 2) * r(s.velocity_delta2.abs())
         + N::OUT_ERROR;
     let a_bound = r(s.acceleration.abs()) + n * r(s.acceleration_delta.abs()) + N::OUT_ERROR;
-    let near = |got: f64, want: f64, bound: f64, terms: f64| {
+    let near = |(got, terms): (f64, f64), want: f64, bound: f64| {
         (got - want).abs() <= 2.0 * bound + slack(got.abs().max(want.abs()).max(terms))
     };
-    if near(
-        at_end.position,
-        x.to_f64(),
-        b.playback_error + meta.tolerance,
-        terms.position,
-    ) && near(at_end.velocity, v.to_f64(), v_bound, terms.velocity)
-        && near(
-            at_end.acceleration,
-            acc.to_f64(),
-            a_bound,
-            terms.acceleration,
-        )
+    if near(position, x.to_f64(), b.playback_error + meta.tolerance)
+        && near(velocity, v.to_f64(), v_bound)
+        && near(acceleration, acc.to_f64(), a_bound)
     {
         Ok(())
     } else {
         Err(Error::CorruptBlob)
     }
+}
+
+/// One chain (`x, Δ¹, Δ², Δ³`) at the offset of `c` by Newton's forward formula, and the
+/// same sum of the terms' magnitudes: the f64 rounding of the sum is relative to that,
+/// which can be far above a sum near zero.
+fn chain_at(x: [f64; 4], c: &Newton<f64>) -> (f64, f64) {
+    let sum = |y: [f64; 4]| y[0] + c.c1 * y[1] + c.c2 * y[2] + c.c3 * y[3];
+    (sum(x), sum(x.map(f64::abs)))
 }
 
 #[cfg(test)]

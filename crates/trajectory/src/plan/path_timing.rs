@@ -77,20 +77,11 @@ fn param_on_side<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
     if lower < s { lower } else { s }
 }
 
-/// The arc-length table of `curve` in `f64`. The accuracy is `1e-10` of a length estimate
-/// (the sum of 64 chords, a lower bound of the length), but not below the noise of the
-/// curve's scalar: `32·ε_S·(u_end − u_start)·max(1, max|c'|)` (`ε_S` the scalar's
-/// resolution, `max|c'|` over the 65 chord ends), since each speed value carries a rounding
-/// error of a few `ε_S·max(1, |c'|)`.
-fn arc_table<C: ParamCurveDeriv, const N: usize>(
-    curve: &C,
-) -> Result<ArcLengthTable<f64, N>, Error> {
-    let mut table = ArcLengthTable::EMPTY;
-    arc_table_into(curve, &mut table)?;
-    Ok(table)
-}
-
-/// [`arc_table`] into `table`, in place.
+/// The arc-length table of `curve` in `f64`, written into `table`. The accuracy is `1e-10`
+/// of a length estimate (the sum of 64 chords, a lower bound of the length), but not below
+/// the noise of the curve's scalar: `32·ε_S·(u_end − u_start)·max(1, max|c'|)` (`ε_S` the
+/// scalar's resolution, `max|c'|` over the 65 chord ends), since each speed value carries a
+/// rounding error of a few `ε_S·max(1, |c'|)`.
 fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
     curve: &C,
     table: &mut ArcLengthTable<f64, N>,
@@ -223,15 +214,34 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn constant_speed(curve: &'a C, speed: f64) -> Result<Self, Error> {
-        let table = arc_table(curve)?;
-        let motion = MotionProfile::constant_speed(table.length(), speed)?;
-        Ok(PathTiming {
-            curve,
-            table,
-            motion,
-            rate: PlanOptions::DEFAULT_RATE,
-            feed: None,
-            limits: None,
+        let mut timing = Self::empty(curve);
+        timing.constant_speed_into(speed)?;
+        Ok(timing)
+    }
+
+    /// [`constant_speed`](Self::constant_speed) along this plan's curve, in place (as
+    /// [`plan_into`](Self::plan_into)): the arc-length table is written where this value
+    /// lies. On an error the plan is left [`empty`](Self::empty).
+    ///
+    /// # Errors
+    /// As [`constant_speed`](Self::constant_speed).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{PathTiming, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [3.0, 4.0]])?;
+    /// let mut t = Box::new(PathTiming::<_, 16, 1>::empty(&line)); // on the heap
+    /// t.constant_speed_into(2.0)?;
+    /// assert!((t.duration() - 2.5).abs() < 1e-12);
+    /// assert!(t.constant_speed_into(-1.0).is_err() && t.length() == 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn constant_speed_into(&mut self, speed: f64) -> Result<(), Error> {
+        self.in_place(|t| {
+            arc_table_into(t.curve, &mut t.table)?;
+            t.motion = MotionProfile::constant_speed(t.table.length(), speed)?;
+            (t.rate, t.feed, t.limits) = (PlanOptions::DEFAULT_RATE, None, None);
+            Ok(())
         })
     }
 
@@ -253,21 +263,60 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn trapezoid(curve: &'a C, v_max: f64, a_max: f64) -> Result<Self, Error> {
-        let table = arc_table(curve)?;
-        let motion = MotionProfile::trapezoid(table.length(), v_max, a_max)?;
-        // The speed along the path; the acceleration only tangentially (not in curves).
-        let limits = Some(MotionLimits {
-            tangential_acceleration: a_max,
-            ..MotionLimits::new(v_max, f64::INFINITY, f64::INFINITY)
-        });
-        Ok(PathTiming {
-            curve,
-            table,
-            motion,
-            rate: PlanOptions::DEFAULT_RATE,
-            feed: None,
-            limits,
+        let mut timing = Self::empty(curve);
+        timing.trapezoid_into(v_max, a_max)?;
+        Ok(timing)
+    }
+
+    /// [`trapezoid`](Self::trapezoid) along this plan's curve, in place (as
+    /// [`plan_into`](Self::plan_into)). On an error the plan is left
+    /// [`empty`](Self::empty).
+    ///
+    /// # Errors
+    /// As [`trapezoid`](Self::trapezoid).
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{PathTiming, Timing};
+    /// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?; // length 50
+    /// let mut t = Box::new(PathTiming::<_, 16, 1>::empty(&line));
+    /// t.trapezoid_into(10.0, 20.0)?;
+    /// assert!((t.duration() - (50.0 / 10.0 + 10.0 / 20.0)).abs() < 1e-9);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn trapezoid_into(&mut self, v_max: f64, a_max: f64) -> Result<(), Error> {
+        self.in_place(|t| {
+            arc_table_into(t.curve, &mut t.table)?;
+            t.motion = MotionProfile::trapezoid(t.table.length(), v_max, a_max)?;
+            (t.rate, t.feed) = (PlanOptions::DEFAULT_RATE, None);
+            // The speed along the path; the acceleration only tangentially (not in curves).
+            t.limits = Some(MotionLimits {
+                tangential_acceleration: a_max,
+                ..MotionLimits::new(v_max, f64::INFINITY, f64::INFINITY)
+            });
+            Ok(())
         })
+    }
+
+    /// Runs `build` on this plan (which writes every field but the curve) and leaves the
+    /// plan [`empty`](Self::empty) when `build` fails: the one frame of every in-place
+    /// constructor.
+    fn in_place(
+        &mut self,
+        build: impl FnOnce(&mut Self) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        let result = build(self);
+        if result.is_err() {
+            self.clear();
+        }
+        result
+    }
+
+    /// Everything but the curve as in [`empty`](Self::empty), in place.
+    fn clear(&mut self) {
+        self.table = ArcLengthTable::EMPTY;
+        self.motion = MotionProfile::EMPTY;
+        (self.rate, self.feed, self.limits) = (PlanOptions::DEFAULT_RATE, None, None);
     }
 
     /// The jerk-limited S-curve, rest to rest, under the machine's `limits` (less the default
@@ -402,13 +451,7 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         limits: &Limits<A>,
         options: &PlanOptions,
     ) -> Result<(), Error> {
-        let result = self.plan_in_place(limits, options);
-        if result.is_err() {
-            self.table = ArcLengthTable::EMPTY;
-            self.motion = MotionProfile::EMPTY;
-            (self.rate, self.feed, self.limits) = (PlanOptions::DEFAULT_RATE, None, None);
-        }
-        result
+        self.in_place(|t| t.plan_in_place(limits, options))
     }
 
     /// The body of [`plan_into`](Self::plan_into).

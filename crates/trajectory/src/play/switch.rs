@@ -12,6 +12,7 @@
 
 use super::form::Rounded;
 use super::{Kernel, Sampler, SamplerState};
+use crate::path::Piece;
 use crate::path::view::piece_record_len;
 use crate::path::{AxisState, Sample};
 
@@ -49,6 +50,16 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         self.left = ticks;
         self.chains = ticks;
         tick
+    }
+
+    /// The inline switch into the next piece of a path in RAM (`left == 1`, on the tick
+    /// grid): takes the piece and enters it; returns the number of the tick being played and
+    /// the piece, or `None` when no piece is left to the inline switch.
+    #[inline(always)]
+    pub(super) fn take_piece(&mut self) -> Option<(u64, &'a Piece<N, A>)> {
+        let (p, rest) = self.pieces.split_first()?;
+        self.pieces = rest;
+        Some((self.enter(p.ticks), p))
     }
 
     /// The bookkeeping of a switch into the end sample: the end state as a piece of one
@@ -118,9 +129,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// The piece switch of [`next`](Self::next) (`left == 1`, the chains caught up).
     #[inline(always)]
     pub(super) fn switch_sample(&mut self) -> Sample<N::Out, A> {
-        if let Some((p, rest)) = self.pieces.split_first() {
-            self.pieces = rest;
-            let tick = self.enter(p.ticks);
+        if let Some((tick, p)) = self.take_piece() {
             return N::switch_sample(&mut self.state, &p.axes, tick);
         }
         let Some(tick) = self.past_pieces() else {
@@ -147,9 +156,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// The piece switch of [`next_into`](Self::next_into).
     #[inline(always)]
     pub(super) fn switch_native(&mut self, out: &mut Sample<N::Native, A>) {
-        if let Some((p, rest)) = self.pieces.split_first() {
-            self.pieces = rest;
-            let tick = self.enter(p.ticks);
+        if let Some((tick, p)) = self.take_piece() {
             return N::switch_native(&mut self.state, &p.axes, tick, out);
         }
         let Some(tick) = self.past_pieces() else {
@@ -179,9 +186,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// so the lagging ones need no catching up.
     #[inline(always)]
     pub(super) fn switch_position(&mut self) -> [N::Out; A] {
-        if let Some((p, rest)) = self.pieces.split_first() {
-            self.pieces = rest;
-            self.enter(p.ticks);
+        if let Some((_, p)) = self.take_piece() {
             return N::switch_position(&mut self.state, &p.axes);
         }
         if self.past_pieces().is_none() {
