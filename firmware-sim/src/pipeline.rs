@@ -56,8 +56,7 @@ pub const ZONES: usize = 1_024;
 pub const TABLE: usize = 1_024;
 /// Samples of the arc-length table of a curve of more pieces: two per piece of the largest
 /// curve (4 096 points). With [`TABLE`] the compiled 6-axis path of a 4 096-point B-spline
-/// exceeds its jerk limit beyond the compiler's slow-down (a table interval over several
-/// pieces smooths the parameter's speed, and the compiled motion follows the curve's).
+/// exceeds its jerk limit beyond the compiler's slow-down (`LimitExceeded`).
 pub const LARGE_TABLE: usize = 8_192;
 /// The share of the velocity limits (path and per axis) a planned motion leaves unused:
 /// the compiled spline follows the planned velocity to about 10⁻³ of it, so a plan at the
@@ -176,33 +175,36 @@ fn constant_speed<S: Scalar, const D: usize>(
     speed: f64,
 ) -> Result<Box<dyn Timing + '_>, TrajError> {
     if large(curve) {
-        let mut plan = boxed_plan::<_, LARGE_TABLE, 1>(curve);
-        plan.constant_speed_into(speed)?;
-        Ok(plan)
+        boxed_law::<_, LARGE_TABLE, 1>(curve, |p| p.constant_speed_into(speed))
     } else {
-        let mut plan = boxed_plan::<_, TABLE, 1>(curve);
-        plan.constant_speed_into(speed)?;
-        Ok(plan)
+        boxed_law::<_, TABLE, 1>(curve, |p| p.constant_speed_into(speed))
     }
 }
 
-/// A trapezoid or S-curve, planned in place into a boxed empty plan. Not inlined, so that the
-/// empty plan this frame may hold while it is moved to the heap is not part of the caller's.
-#[inline(never)]
+/// A trapezoid or S-curve, planned in place into a boxed empty plan.
 fn planned<'c, S: Scalar, const D: usize>(
     curve: &'c DynCurve<S, D>,
     limits: &Limits<D>,
     options: &PlanOptions,
 ) -> Result<Box<dyn Timing + 'c>, TrajError> {
     if large(curve) {
-        let mut plan = boxed_plan::<_, LARGE_TABLE, ZONES>(curve);
-        plan.plan_into(limits, options)?;
-        Ok(plan)
+        boxed_law::<_, LARGE_TABLE, ZONES>(curve, |p| p.plan_into(limits, options))
     } else {
-        let mut plan = boxed_plan::<_, TABLE, ZONES>(curve);
-        plan.plan_into(limits, options)?;
-        Ok(plan)
+        boxed_law::<_, TABLE, ZONES>(curve, |p| p.plan_into(limits, options))
     }
+}
+
+/// A boxed empty plan of `T` samples and `Z` zones, filled in place by `build`. Not
+/// inlined, so that the empty plan this frame may hold while it is moved to the heap is not
+/// part of the caller's.
+#[inline(never)]
+fn boxed_law<'c, C: ParamCurveDeriv, const T: usize, const Z: usize>(
+    curve: &'c C,
+    build: impl FnOnce(&mut PathTiming<'c, C, T, Z>) -> Result<(), TrajError>,
+) -> Result<Box<dyn Timing + 'c>, TrajError> {
+    let mut plan = boxed_plan::<_, T, Z>(curve);
+    build(&mut plan)?;
+    Ok(plan)
 }
 
 /// A curve file error as an error on the job's `path.…` field.

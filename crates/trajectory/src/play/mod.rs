@@ -731,6 +731,20 @@ mod tests {
 
     /// The control events of the entry-point comparisons: a feed override, a hold, a
     /// resume, back to full feed (then piece switches at full feed and the end).
+    /// The ticks at which [`events`] acts.
+    const EVENT_TICKS: [u64; 4] = [300, 700, 2300, 2800];
+
+    /// The length of batch `n` starting at tick `k`: `1 + (n·m + n/d) mod 300` (so that
+    /// batches start and end inside pieces, at piece switches and at the end), cut at the
+    /// next of the [`EVENT_TICKS`], so that a batch never crosses an event.
+    fn batch_len(k: u64, n: usize, m: usize, d: usize) -> usize {
+        EVENT_TICKS
+            .iter()
+            .filter(|&&e| e > k)
+            .map(|&e| usize::try_from(e - k).unwrap())
+            .fold(1 + (n * m + n / d) % 300, usize::min)
+    }
+
     fn events<N: Kernel>(k: u64, s: &mut Sampler<'_, N, 3>) {
         match k {
             300 => s.set_feed(0.6),
@@ -813,13 +827,7 @@ mod tests {
             for s in [&mut one, &mut batched] {
                 events(k, s);
             }
-            let len = 1 + (n * 37 + n / 3) % 300;
-            // the events fall between batches: a batch never crosses one
-            let len = [300, 700, 2300, 2800]
-                .iter()
-                .filter(|&&e| e > k)
-                .map(|&e| usize::try_from(e - k).unwrap())
-                .fold(len, usize::min);
+            let len = batch_len(k, n, 37, 3);
             batched.fill(&mut buf[..len]);
             for (i, got) in buf[..len].iter().enumerate() {
                 assert_eq!(
@@ -861,12 +869,7 @@ mod tests {
             for s in [&mut one, &mut batched] {
                 events(k, s);
             }
-            let len = 1 + (n * 41 + n / 5) % 300;
-            let len = [300, 700, 2300, 2800]
-                .iter()
-                .filter(|&&e| e > k)
-                .map(|&e| usize::try_from(e - k).unwrap())
-                .fold(len, usize::min);
+            let len = batch_len(k, n, 41, 5);
             batched.fill_positions(&mut buf[..len]);
             for (i, got) in buf[..len].iter().enumerate() {
                 assert_eq!(
@@ -877,7 +880,7 @@ mod tests {
                 );
             }
             k += len as u64;
-            if n % 5 == 4 && ![300, 700, 2300, 2800].contains(&k) {
+            if n % 5 == 4 && !EVENT_TICKS.contains(&k) {
                 assert_eq!(batched.next(), one.next(), "tick {k}");
                 k += 1;
             }
