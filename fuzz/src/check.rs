@@ -3,7 +3,7 @@
 //! samples by finite differences.
 
 use strak_curves::Scalar;
-use strak_trajectory::{Kernel, Number, Path, Sample, Sampler};
+use strak_trajectory::{END_AGREEMENT_SLACK, Kernel, Number, Path, Sample, Sampler};
 
 use crate::{Violation, violation};
 
@@ -155,23 +155,30 @@ fn check_end<N: Kernel, const A: usize, const P: usize>(
 
 /// The position of the last piece at its last tick, in `f64` from the stored states
 /// (Newton's forward-difference formula: `p(n) = p + n·Δ¹ + C(n,2)·Δ² + C(n,3)·Δ³`).
+/// With each axis's position comes the sum of the terms' magnitudes, which bounds the f64
+/// rounding of the sum.
 pub fn last_piece_end<N: Number, const A: usize, const P: usize>(
     path: &Path<N, A, P>,
-) -> Option<[f64; A]> {
+) -> Option<[(f64, f64); A]> {
     let piece = path.pieces().last()?;
     let n = f64::from(piece.ticks());
     let (c2, c3) = (n * (n - 1.0) / 2.0, n * (n - 1.0) * (n - 2.0) / 6.0);
     Some(piece.axes().map(|s| {
-        s.position.to_f64()
-            + n * s.delta1.to_f64()
-            + c2 * s.delta2.to_f64()
-            + c3 * s.delta3.to_f64()
+        let terms = [
+            s.position.to_f64(),
+            n * s.delta1.to_f64(),
+            c2 * s.delta2.to_f64(),
+            c3 * s.delta3.to_f64(),
+        ];
+        (terms.iter().sum(), terms.iter().map(|t| t.abs()).sum())
     }))
 }
 
 /// The end position agrees with the last piece: `|p(n) − x_end| ≤ tolerance + 2·bound` plus
-/// four units of the sample format's resolution at the end's magnitude (a compiled path's
-/// last piece ends on the curve's end within its playback bound).
+/// four units of the sample format's resolution at the end's magnitude and the documented
+/// slack for the f64 rounding of the fit and of the sum `p(n)`
+/// ([`END_AGREEMENT_SLACK`] times `1 +` its terms' magnitudes): a compiled path's last piece
+/// ends on the curve's end within its tolerance and playback bound.
 ///
 /// # Errors
 /// The axis and the gap when they disagree.
@@ -181,11 +188,12 @@ pub fn check_end_agrees<N: Number, const A: usize, const P: usize>(
     let Some(end) = last_piece_end(path) else {
         return Err(violation!("a loaded path without pieces"));
     };
-    for (i, (p, x)) in end.iter().zip(path.end_position()).enumerate() {
+    for (i, ((p, terms), x)) in end.iter().zip(path.end_position()).enumerate() {
         let x = x.to_f64();
         let allowed = path.tolerance()
             + 2.0 * path.playback_bound()
-            + 4.0 * resolution::<N>(x.abs().max(p.abs()));
+            + 4.0 * resolution::<N>(x.abs().max(p.abs()))
+            + END_AGREEMENT_SLACK * (1.0 + terms.max(x.abs()));
         let gap = (p - x).abs();
         if !(gap <= allowed) {
             return Err(violation!(

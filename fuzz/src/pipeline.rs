@@ -17,8 +17,9 @@
 //!   `c(u(t))` at its tick (the time law stretched onto whole ticks);
 //! * for the planned laws the limits hold in the samples ([`check::check_limits`] with
 //!   [`Allowance`]): at feed 1 the planned limits; with feed events only when the plan
-//!   reserved the feed share (`(1 − share)` of the acceleration and jerk limits, the compile
-//!   given the machine's limits), and then the machine's.
+//!   reserved the feed share (`(1 − share)` of the acceleration and jerk limits), and then
+//!   the machine's: the case's limits, or the compile's where those are higher (the feed
+//!   ramp may use them, per axis too: [`CompileOptions`] knows only the path's limits).
 
 use strak_curves::{
     BSpline, Bezier, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization, Point,
@@ -155,7 +156,12 @@ fn plan_options(b: &mut Bytes<'_>) -> PlanOptions {
     o
 }
 
-fn compile_options(b: &mut Bytes<'_>, size: f64, limits: (f64, f64, f64)) -> CompileOptions {
+fn compile_options(
+    b: &mut Bytes<'_>,
+    size: f64,
+    limits: (f64, f64, f64),
+    ramp_acceleration: f64,
+) -> CompileOptions {
     let mut o = CompileOptions::new();
     // Mostly the tolerances of machining (10⁻⁹ to 10⁻³ of the size), now and then coarse.
     let coarse = if b.one_in(16) { 2 } else { 0 };
@@ -171,7 +177,8 @@ fn compile_options(b: &mut Bytes<'_>, size: f64, limits: (f64, f64, f64)) -> Com
         o = o.with_feed_share(if b.one_in(8) { b.raw() } else { b.unit() });
     }
     match b.choice(3) {
-        0 => o.with_limits(limits.1, limits.2),
+        // The machine's limits as `PathTiming::compile_options` gives them.
+        0 => o.with_limits(ramp_acceleration, limits.2),
         1 => o.with_limits(b.positive(-3, 6), b.positive(-3, 9)),
         _ => o,
     }
@@ -227,7 +234,11 @@ fn decode<const A: usize>(b: &mut Bytes<'_>) -> Case<A> {
     let axis_velocity = axis(b, limits.0);
     let axis_acceleration = axis(b, limits.1);
     let plan = plan_options(b);
-    let compile = compile_options(b, size, limits);
+    let ramp = axis_acceleration
+        .iter()
+        .flatten()
+        .fold(limits.1, |m, &x| if x > 0.0 { m.min(x) } else { m });
+    let compile = compile_options(b, size, limits, ramp);
     let rate = match b.choice(6) {
         0 => 1_000.0,
         1 => 10_000.0,
@@ -380,7 +391,18 @@ fn pipeline<N: Kernel, const A: usize>(
         .iter()
         .map(|(at, e)| ((at * ticks) as u64, *e))
         .collect();
-    // With feed events the limits are promised only when the plan reserved the feed share.
+    // With feed events the limits are promised only when the plan reserved the feed share,
+    // and then the machine's: the feed ramp may use the compile's limits where they are
+    // higher than the case's (per axis too: the compile knows only the path's limits).
+    if !events.is_empty()
+        && let Some((a, j)) = case.compile.limits()
+    {
+        bounds.acceleration = bounds.acceleration.max(a);
+        bounds.jerk = bounds.jerk.map(|b| b.max(j));
+        for b in &mut bounds.axis_acceleration {
+            *b = b.max(a);
+        }
+    }
     let bounds = (limited && (events.is_empty() || case.reserve)).then_some(&bounds);
     check_compiled(curve, &*timing, &path, &events, bounds, rest_to_rest)
 }

@@ -1,5 +1,6 @@
-//! `cargo xtask fuzz [--time SECONDS] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]`: the
-//! coverage-guided fuzz targets of `fuzz/` (cargo-fuzz, libFuzzer), each for a given time.
+//! `cargo xtask fuzz [--time SECONDS] [--runs N] [--keep-going] [--ignore FRAGMENT] [--minimize]
+//! [TARGET]`: the coverage-guided fuzz targets of `fuzz/` (cargo-fuzz, libFuzzer), each for a
+//! given time or number of executions.
 //!
 //! 1. Installs cargo-fuzz (`cargo install cargo-fuzz --locked`) when `cargo fuzz` does not
 //!    run; fails loudly when it cannot.
@@ -10,7 +11,8 @@
 //!    the host; coverage instrumentation only, for speed).
 //! 4. Writes the seeds ([`strak_fuzz::seeds`]) into the working corpus `fuzz/work/<target>/`
 //!    (not checked in), then runs each target on it and on the checked-in corpus
-//!    `fuzz/corpus/<target>/` for `--time` seconds (default 60) in one process
+//!    `fuzz/corpus/<target>/` for `--time` seconds (default 60; with `--runs N` and no
+//!    `--time`, until it has run `N` inputs, libFuzzer's `-runs`) in one process
 //!    (`-fork=1 -ignore_crashes=1` with `--keep-going`, which goes on after a failure), and
 //!    prints the executions and the result; failing inputs go to `fuzz/artifacts/<target>/`.
 //!    `--ignore FRAGMENT` (repeatable) masks the violations whose message contains it
@@ -37,8 +39,10 @@ const TIMEOUT_S: u32 = 30;
 /// The options of `cargo xtask fuzz`.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct FuzzOptions {
-    /// Seconds per target.
+    /// Seconds per target (0: no limit).
     pub(crate) seconds: u64,
+    /// Executions per target (libFuzzer's `-runs`), if limited.
+    pub(crate) runs: Option<u64>,
     /// Go on after a failure (fork mode).
     pub(crate) keep_going: bool,
     /// Merge the corpora instead of fuzzing.
@@ -51,18 +55,24 @@ pub(crate) struct FuzzOptions {
 
 /// Parses the arguments after `fuzz`.
 pub(crate) fn parse(args: &[String]) -> Result<FuzzOptions, String> {
-    let mut o = FuzzOptions {
-        seconds: 60,
-        ..FuzzOptions::default()
-    };
+    let mut o = FuzzOptions::default();
+    let mut seconds = None;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
             "--time" => {
                 let v = it.next().ok_or("--time needs a number of seconds")?;
-                o.seconds = v
-                    .parse()
-                    .map_err(|_| format!("--time {v}: not a number of seconds"))?;
+                seconds = Some(
+                    v.parse()
+                        .map_err(|_| format!("--time {v}: not a number of seconds"))?,
+                );
+            }
+            "--runs" => {
+                let v = it.next().ok_or("--runs needs a number of executions")?;
+                o.runs = Some(
+                    v.parse()
+                        .map_err(|_| format!("--runs {v}: not a number of executions"))?,
+                );
             }
             "--keep-going" => o.keep_going = true,
             "--ignore" => o.ignore.push(
@@ -75,6 +85,7 @@ pub(crate) fn parse(args: &[String]) -> Result<FuzzOptions, String> {
             other => return Err(format!("unknown option `{other}` of fuzz")),
         }
     }
+    o.seconds = seconds.unwrap_or(if o.runs.is_some() { 0 } else { 60 });
     if let Some(t) = &o.target
         && !strak_fuzz::TARGETS.iter().any(|x| x.name == t)
     {
@@ -268,6 +279,9 @@ fn libfuzzer_args(o: &FuzzOptions, artifacts: &Path) -> Vec<String> {
         "-print_final_stats=1".to_owned(),
         format!("-artifact_prefix={}/", artifacts.display()),
     ];
+    if let Some(n) = o.runs {
+        args.push(format!("-runs={n}"));
+    }
     if o.keep_going {
         args.extend(
             [
@@ -294,11 +308,12 @@ fn run_target(
     fs::create_dir_all(&artifacts)
         .map_err(|e| format!("cannot create {}: {e}", artifacts.display()))?;
     let log = fuzz_dir.join("work").join(format!("{t}.log"));
-    println!(
-        "\n==> fuzz {t} for {} s (log: {})",
-        o.seconds,
-        log.display()
-    );
+    let limit = match (o.runs, o.seconds) {
+        (Some(n), 0) => format!("{n} executions"),
+        (Some(n), s) => format!("{n} executions or {s} s"),
+        (None, s) => format!("{s} s"),
+    };
+    println!("\n==> fuzz {t} for {limit} (log: {})", log.display());
     if !o.ignore.is_empty() {
         println!("    ignoring failures containing: {}", o.ignore.join(" | "));
     }
@@ -427,4 +442,26 @@ fn minimize(tc: &Toolchain, fuzz_dir: &Path, t: &str) -> Result<RunResult, Strin
         corpus: count_files(&corpus),
         ..RunResult::default()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(a: &[&str]) -> Vec<String> {
+        a.iter().map(|s| (*s).to_owned()).collect()
+    }
+
+    #[test]
+    fn runs_and_time() {
+        let o = parse(&args(&["blob"])).unwrap();
+        assert_eq!((o.seconds, o.runs), (60, None));
+        let o = parse(&args(&["--runs", "10000000", "blob"])).unwrap();
+        assert_eq!((o.seconds, o.runs), (0, Some(10_000_000)));
+        let o = parse(&args(&["--runs", "5", "--time", "9"])).unwrap();
+        assert_eq!((o.seconds, o.runs), (9, Some(5)));
+        assert!(libfuzzer_args(&o, Path::new("a")).contains(&"-runs=5".to_owned()));
+        assert!(parse(&args(&["--runs", "many"])).is_err());
+        assert!(parse(&args(&["--runs"])).is_err());
+    }
 }

@@ -5,9 +5,10 @@
 //! cargo xtask test     formatting, clippy -D warnings, host tests + doctests, rustdoc,
 //!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf,
 //!                      then `qemu`
-//! cargo xtask fuzz [--time SECONDS] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]
+//! cargo xtask fuzz [--time SECONDS] [--runs N] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]
 //!                      the coverage-guided fuzz targets of fuzz/ (cargo-fuzz, libFuzzer), each
-//!                      for SECONDS (default 60); executions and result per target
+//!                      for SECONDS (default 60) or N executions; executions and result
+//!                      per target
 //! cargo xtask qemu [--bless]
 //!                      the example firmware under QEMU (Cortex-M4F and Cortex-M3), its samples
 //!                      compared bit for bit with the host's; firmware sizes checked against
@@ -84,14 +85,16 @@ fn print_help() {
     println!("         icount-budgets.txt");
     println!("  bench  criterion benchmarks of strak against its peers (bench/), then");
     println!("         BENCHMARKS.md from their results and the QEMU counts in target/qemu");
-    println!("  fuzz [--time SECONDS] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]");
+    println!(
+        "  fuzz [--time SECONDS] [--runs N] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]"
+    );
     println!("         the fuzz targets of fuzz/ (blob, curves, pipeline, job), each for");
-    println!("         SECONDS (default 60), with libFuzzer through cargo-fuzz (installed when");
-    println!("         missing; nightly, or stable with RUSTC_BOOTSTRAP=1); prints executions");
-    println!("         and failures. --keep-going goes on after a failure; --ignore masks the");
-    println!("         failures whose message contains FRAGMENT (known ones); --minimize merges");
-    println!("         the working corpus into fuzz/corpus/. The checked-in corpora are");
-    println!("         replayed by `cargo test` (tests/tests/fuzz_replay.rs)");
+    println!("         SECONDS (default 60) or N executions, with libFuzzer through cargo-fuzz");
+    println!("         (installed when missing; nightly, or stable with RUSTC_BOOTSTRAP=1);");
+    println!("         prints executions and failures. --keep-going goes on after a failure;");
+    println!("         --ignore masks the failures whose message contains FRAGMENT (known ones);");
+    println!("         --minimize merges the working corpus into fuzz/corpus/. The checked-in");
+    println!("         corpora are replayed by `cargo test` (tests/tests/fuzz_replay.rs)");
 }
 
 /// `cargo xtask bench`: the host benchmarks (one criterion run, peers included) and the

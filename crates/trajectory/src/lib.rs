@@ -16,8 +16,8 @@ pub use compile::{CompileOptions, Tolerance, compile, compile_into};
 pub use error::{BlobFormat, Error, Quantity, Units};
 pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use path::{
-    AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, Path, PathBlob, PathHeader, PathView, Piece,
-    Sample, crc32,
+    AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, END_AGREEMENT_SLACK, Path, PathBlob,
+    PathHeader, PathView, Piece, Sample, crc32,
 };
 pub use plan::*;
 pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};

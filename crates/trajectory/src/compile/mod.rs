@@ -234,7 +234,8 @@ where
             None => (1.0, None),
         };
         let Some(quantity) = quantity else {
-            path.header.meta = path_meta(peaks, rate_hz, law.duration(), tolerance, options);
+            let duration = law.duration();
+            path.header.meta = path_meta(peaks, tangential, rate_hz, duration, tolerance, options);
             end_into::<N, _, _, A, _>(curve, &law, &fit, &mut path.header.end)?;
             write_states(fit, period)?;
             path.seal()?;
@@ -450,9 +451,13 @@ fn write_states<N: Number, const A: usize, const P: usize>(
 }
 
 /// The path's description: its peaks, and the limits of feed changes (given, or derived
-/// from the peaks; see [`CompileOptions`]).
+/// from the peaks; see [`CompileOptions`]). For a law that limits
+/// only the `tangential` acceleration (its centripetal part is not limited, so it says
+/// nothing of the machine's limit), the acceleration limit is derived from the tangential
+/// peak: a feed ramp adds only tangential acceleration.
 fn path_meta(
     peaks: Peaks,
+    tangential: bool,
     rate_hz: f64,
     duration: f64,
     tolerance: f64,
@@ -460,9 +465,14 @@ fn path_meta(
 ) -> PathMeta {
     let share = options.feed_share();
     let (v_peak, a_peak, j_peak) = (peaks.velocity_bound, peaks.acceleration, peaks.jerk);
+    let a_used = if tangential {
+        peaks.tangential.min(a_peak)
+    } else {
+        a_peak
+    };
     let (acceleration_limit, jerk_limit) = options.limits().unwrap_or_else(|| {
-        let a = if a_peak > 0.0 {
-            a_peak / (1.0 - share)
+        let a = if a_used > 0.0 {
+            a_used / (1.0 - share)
         } else if v_peak > 0.0 {
             v_peak / 0.1
         } else {
@@ -877,6 +887,28 @@ mod tests {
         )
         .unwrap();
         assert_eq!((with.acceleration_limit(), with.jerk_limit()), (1e4, 1e6));
+    }
+
+    #[test]
+    fn a_tangential_law_derives_the_feed_limit_from_its_tangential_peak() {
+        // v²/r = 40 on a circle of radius 2.5 at v = 10: the centripetal part, which the
+        // trapezoid law does not limit, is four times its tangential limit
+        let circle = strak_curves::Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 2.5).unwrap();
+        let timing = crate::PathTiming::<_, 256, 4>::trapezoid(&circle, 10.0, 10.0).unwrap();
+        let path: Box<Path<f64, 2, 1024>> = compile_boxed(
+            &timing,
+            1_000.0,
+            &CompileOptions::new().with_tolerance(1e-6),
+        )
+        .unwrap();
+        assert!(
+            path.peak_acceleration() > 35.0,
+            "{}",
+            path.peak_acceleration()
+        );
+        // the plan is assumed to have used 3/4 of the machine's tangential limit
+        let limit = path.acceleration_limit();
+        assert!(limit > 12.5 && limit <= 10.0 / 0.75 * 1.001, "{limit}");
     }
 
     /// Forwards a time law with or without its breaks and its limits.

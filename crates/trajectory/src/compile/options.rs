@@ -35,9 +35,14 @@ pub enum Tolerance {
 ///   jerk) and `a_peak`, `v_peak` are the compiled path's own peaks. If the plan used at
 ///   most `(1 − share)·a_max`, the acceleration `φ²·a + φ̇·v` stays within `a_max` during
 ///   feed changes. Without limits, the compiler assumes the plan used exactly
-///   `(1 − share)` of them: `a_max = a_peak/(1 − share)`, `j_max = j_peak/(1 − share)`
-///   (for a path without acceleration or jerk: `a_max = v_peak / 0.1 s`,
-///   `j_max = a_max / 0.1 s`).
+///   `(1 − share)` of them: `a_max = a_peak/(1 − share)`, `j_max = j_peak/(1 − share)`,
+///   where for a law that limits only the tangential acceleration (such as
+///   [`PathTiming::trapezoid`](crate::PathTiming::trapezoid)) `a_peak` is the tangential
+///   peak (for a path without acceleration or jerk: `a_max = v_peak / 0.1 s`,
+///   `j_max = a_max / 0.1 s`). The ramp bounds the path's acceleration, not each axis's:
+///   with per-axis acceleration limits `aᵢ`, give `min(a, aᵢ)` as the machine's acceleration
+///   (as [`PathTiming::compile_options`](crate::PathTiming::compile_options) does), so that
+///   no axis gets more than its own share.
 ///
 /// ```
 /// use strak_trajectory::{CompileOptions, Limits, Tolerance};

@@ -69,8 +69,20 @@ impl Peaks {
         let speed2 = |i: f64| sq(&|&[_, b, c, d]| b + i * (2.0 * c + 3.0 * d * i));
         let tt = period * period;
         let acc = |i: f64| libm::sqrt(sq(&|&[_, _, c, d]| (2.0 * c + 6.0 * d * i) / tt));
+        // `g` of the coefficients divided by their largest magnitude: the same roots, and
+        // no overflow in `g` or its discriminant for paths of any size.
+        let scale = coeffs
+            .iter()
+            .flat_map(|&[_, b, c, d]| [b, c, d])
+            .fold(0.0_f64, |m, x| m.max(libm::fabs(x)));
+        let unit = if scale > 0.0 && scale.is_finite() {
+            scale
+        } else {
+            1.0
+        };
         let mut g = [0.0_f64; 4];
         for &[_, b, c, d] in coeffs {
+            let (b, c, d) = (b / unit, c / unit, d / unit);
             g[0] += 2.0 * b * c;
             g[1] += 6.0 * b * d + 4.0 * c * c;
             g[2] += 18.0 * c * d;
@@ -304,6 +316,16 @@ mod tests {
                 p.velocity
             );
         }
+        // from rest to an interior peak, in units of 10¹³⁷: unscaled, the discriminant of g'
+        // overflows, and g(0) = 0 brackets no root on [0, n]
+        let huge = [[0.0, 0.0, 0.01e137, -1e133]];
+        let p = Peaks::of_piece(&huge, 60.0, period);
+        let want = 0.01 * 0.01 / (3.0 * 1e-4) / period * 1e137;
+        assert!(
+            (p.velocity - want).abs() < 1e-9 * want,
+            "{} {want}",
+            p.velocity
+        );
         // the bump: b + 2ci + 3di² peaks at i = −c/(3d) = 33.3
         let bump = [[0.0, 0.1, 0.01, -1e-4]];
         let want = (0.1 + 0.01 * 0.01 / (3.0 * 1e-4)) / period;

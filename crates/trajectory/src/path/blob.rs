@@ -867,4 +867,29 @@ mod tests {
         // the untouched blob passes
         assert!(PathBlob::<Q40, 3>::from_bytes(&good).is_ok());
     }
+
+    #[test]
+    fn the_end_continues_the_last_piece_within_one_tolerance() {
+        let path = sample_path::<f64>();
+        let mut good = vec![0_u8; path.blob_len()];
+        path.to_bytes(&mut good).unwrap();
+        let piece = path.pieces().last().unwrap();
+        let s = &piece.axes()[0];
+        let n = f64::from(piece.ticks());
+        let (c2, c3) = (n * (n - 1.0) / 2.0, n * (n - 1.0) * (n - 2.0) / 6.0);
+        let piece_end = s.position + n * s.delta1 + c2 * s.delta2 + c3 * s.delta3;
+        let tolerance = path.tolerance();
+        // the end's x, `k` tolerances from where the last piece ends
+        let moved = |k: f64| {
+            let mut b = good.clone();
+            let x = piece_end + k * tolerance;
+            b[HEADER..HEADER + 8].copy_from_slice(&x.to_le_bytes());
+            reseal(&mut b);
+            Path::<f64, 3, 64>::from_bytes(&b).map(|_| ())
+        };
+        assert_eq!(moved(0.9), Ok(()));
+        assert_eq!(moved(-0.9), Ok(()));
+        assert_eq!(moved(1.1), Err(Error::CorruptBlob));
+        assert_eq!(moved(-1.5), Err(Error::CorruptBlob));
+    }
 }

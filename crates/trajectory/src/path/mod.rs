@@ -11,7 +11,7 @@ mod state;
 pub(crate) mod view;
 
 pub use blob::{AlignedBlob, BLOB_MAGIC, BLOB_VERSION, PathBlob, crc32};
-pub use header::PathHeader;
+pub use header::{END_AGREEMENT_SLACK, PathHeader};
 pub(crate) use header::{FeedRampLimits, PathEnd, PathMeta, RATE_RANGE};
 pub use owned::Path;
 pub use sample::Sample;
