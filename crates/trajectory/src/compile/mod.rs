@@ -451,10 +451,10 @@ fn write_states<N: Number, const A: usize, const P: usize>(
 }
 
 /// The path's description: its peaks, and the limits of feed changes (given, or derived
-/// from the peaks; see [`CompileOptions`]). For a law that limits
-/// only the `tangential` acceleration (its centripetal part is not limited, so it says
-/// nothing of the machine's limit), the acceleration limit is derived from the tangential
-/// peak: a feed ramp adds only tangential acceleration.
+/// from the peaks; see [`CompileOptions`]). For a law that limits only the `tangential`
+/// acceleration (its centripetal part is not limited, so it says nothing of the machine's
+/// limit), the acceleration limit is derived from the tangential peak: a feed ramp adds
+/// only tangential acceleration.
 fn path_meta(
     peaks: Peaks,
     tangential: bool,

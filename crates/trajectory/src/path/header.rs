@@ -528,9 +528,9 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
 /// The relative slack with which a path's end must continue its last piece, beyond the
 /// tolerance and the rounding bounds of the stored states: the f64 rounding of the fit's
 /// coefficients (a linear solve) and of the Newton sums that evaluate the piece at its end,
-/// relative to the sums' terms (and, for the velocity, to the path's peak speed). Such rounding has been seen up to about 50 ε; this allows
-/// about 4 500 ε. A loaded blob whose end differs from its last piece's end by more is
-/// [`Error::CorruptBlob`].
+/// relative to the sums' terms (and, for the velocity, to the path's peak speed). Such
+/// rounding has been seen up to about 50 ε; this allows about 4 500 ε. A loaded blob whose
+/// end differs from its last piece's end by more is [`Error::CorruptBlob`].
 ///
 /// ```
 /// assert!(strak_trajectory::END_AGREEMENT_SLACK > 1_000.0 * f64::EPSILON);
