@@ -374,7 +374,11 @@ pub fn check_limits<const A: usize>(
             norm(dv.into_iter())
         };
         m.measure(
-            "acceleration |a|",
+            if bounds.tangential {
+                "tangential acceleration d|v|/dt"
+            } else {
+                "acceleration |a|"
+            },
             k,
             acc,
             bounds.acceleration,
