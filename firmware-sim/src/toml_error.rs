@@ -151,8 +151,10 @@ pub fn locate(text: &str, e: &toml::de::Error, tagged: &[Tagged]) -> Located {
         };
     }
     if let Some(field) = quoted(&msg, "unknown field `") {
+        // The empty key (`"" = 1`) named as TOML spells it.
+        let key = if field.is_empty() { "\"\"" } else { &field };
         return Located {
-            field: join(&table, &field),
+            field: join(&table, key),
             message: with_line(msg),
         };
     }
@@ -185,5 +187,20 @@ mod tests {
         assert_eq!((key, table_at(text, end)), (None, "t".to_owned()));
         assert_eq!(join("", "x"), "x");
         assert_eq!(join("t", "x"), "t.x");
+    }
+
+    #[test]
+    fn an_unknown_empty_key_is_named() {
+        #[derive(Debug, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)]
+        struct T {
+            a: Option<i32>,
+        }
+        for text in ["\"\" = 1\n", "'' = 1\n"] {
+            let e = toml::from_str::<T>(text).unwrap_err();
+            let at = locate(text, &e, &[]);
+            assert_eq!(at.field, "\"\"", "{}", at.message);
+        }
     }
 }
