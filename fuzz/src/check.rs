@@ -308,8 +308,14 @@ impl Excess {
     }
 }
 
-fn norm(v: impl Iterator<Item = f64>) -> f64 {
-    v.map(|x| x * x).sum::<f64>().sqrt()
+/// The Euclidean norm, scaled by the largest magnitude so that the squares cannot overflow
+/// (a jerk near 10¹⁵⁶ would square to infinity).
+fn norm(v: impl Iterator<Item = f64> + Clone) -> f64 {
+    let m = v.clone().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * v.map(|x| (x / m) * (x / m)).sum::<f64>().sqrt()
 }
 
 /// Collects the excesses of the quantities at one tick pair.
