@@ -16,15 +16,7 @@ use strak_fuzz::{TARGETS, Target};
 /// Inputs under `fuzz/artifacts-kept/<target>/` that fail today: target, file name, and a
 /// fragment of the failure message. Each is a bug in the library, reported with the
 /// input; remove the entry when it is fixed.
-const KNOWN_FAILURES: &[(&str, &str, &str)] = &[(
-    // A trapezoid along the arc length (tangential acceleration only) on a polyline with
-    // corners, 9 ticks at 237 Hz, held at tick 0: the compiled path keeps the tangential
-    // acceleration's means over whole ticks, but a feed below 1 samples shorter stretches
-    // of it, where the corners' speed dips are steeper (+36 %).
-    "pipeline",
-    "feed-hold-trapezoid-corners-f32",
-    "tangential acceleration d|v|/dt",
-)];
+const KNOWN_FAILURES: &[(&str, &str, &str)] = &[];
 
 fn fuzz_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz")

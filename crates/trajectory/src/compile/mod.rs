@@ -6,6 +6,7 @@ mod options;
 mod peaks;
 mod planned;
 mod spline_fit;
+mod tangential;
 #[cfg(test)]
 pub(crate) mod testing;
 
@@ -85,7 +86,8 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 ///    between ticks or its phases last a few ticks). The peaks of every piece (the speed
 ///    exactly, from the roots of `d|ẋ|²/dt`; per axis the velocity at the ends and the
 ///    vertex; the accelerations at the piece ends; the constant jerk; for a law that bounds
-///    the tangential acceleration, its mean over every tick) are compared with the limits,
+///    the tangential acceleration, a bound of what the samples show at any feed and phase,
+///    from the speed's extremes on cells of 1/16 tick) are compared with the limits,
 ///    the per-axis ones included, and if one is exceeded by the factor `r` (a
 ///    velocity `r`, an acceleration `r²`, the jerk `r³`) the whole motion is slowed down by `r`
 ///    and a small margin (more ticks, steps 1–4 again), up to
@@ -355,20 +357,24 @@ fn relative_tolerance<const A: usize, K: Knots<A>>(r: f64, fit: &SplineFit<A, K>
 }
 
 /// The peaks of the fitted spline's pieces (with the tangential acceleration when
-/// `tangential`).
+/// `tangential`: its bound at any feed, [`tangential::Tangential`]).
 fn fit_peaks<const A: usize, K: Knots<A>>(
     fit: &SplineFit<A, K>,
     period: f64,
     tangential: bool,
 ) -> Peaks {
-    (0..fit.pieces()).fold(Peaks::default(), |m, j| {
+    let mut sampled = tangential::Tangential::new();
+    let mut peaks = (0..fit.pieces()).fold(Peaks::default(), |m, j| {
         let (coeffs, n) = fit.piece(j);
-        let mut piece = Peaks::of_piece(&coeffs, f64::from(n), period);
         if tangential {
-            piece.tangential = peaks::tangential_peak(&coeffs, n, period);
+            sampled.piece(&coeffs, n);
         }
-        m.max(piece)
-    })
+        m.max(Peaks::of_piece(&coeffs, f64::from(n), period))
+    });
+    if tangential {
+        peaks.tangential = sampled.peak(period);
+    }
+    peaks
 }
 
 /// The forward-difference start state of one axis of a piece `a + b i + c i² + d i³`.

@@ -25,8 +25,9 @@ pub(super) struct Peaks {
     /// An upper bound of the speed from three samples per piece (see
     /// [`Peaks::of_piece`]), which the feed ramps are derived from.
     pub(super) velocity_bound: f64,
-    /// The largest mean of the tangential acceleration `d|ẋ|/dt` over one tick (computed
-    /// only when asked for: [`tangential_peak`]; 0 otherwise).
+    /// A bound of the tangential acceleration `d|ẋ|/dt` as the samples show it at any feed
+    /// (computed only when asked for: [`Tangential`](super::tangential::Tangential); 0
+    /// otherwise).
     pub(super) tangential: f64,
     pub(super) axis_velocity: [f64; MAX_DIM],
     pub(super) axis_acceleration: [f64; MAX_DIM],
@@ -69,27 +70,11 @@ impl Peaks {
         let speed2 = |i: f64| sq(&|&[_, b, c, d]| b + i * (2.0 * c + 3.0 * d * i));
         let tt = period * period;
         let acc = |i: f64| libm::sqrt(sq(&|&[_, _, c, d]| (2.0 * c + 6.0 * d * i) / tt));
-        // `g` of the coefficients divided by their largest magnitude: the same roots, and
-        // no overflow in `g` or its discriminant for paths of any size.
-        let scale = coeffs
-            .iter()
-            .flat_map(|&[_, b, c, d]| [b, c, d])
-            .fold(0.0_f64, |m, x| m.max(libm::fabs(x)));
-        let unit = if scale > 0.0 && scale.is_finite() {
-            scale
-        } else {
-            1.0
-        };
-        let mut g = [0.0_f64; 4];
-        for &[_, b, c, d] in coeffs {
-            let (b, c, d) = (b / unit, c / unit, d / unit);
-            g[0] += 2.0 * b * c;
-            g[1] += 6.0 * b * d + 4.0 * c * c;
-            g[2] += 18.0 * c * d;
-            g[3] += 18.0 * d * d;
-        }
         let mut best = speed2(0.0).max(speed2(n));
-        for_each_root(g, n, &mut |i| best = best.max(speed2(i)));
+        let (turns, count) = speed_turns(coeffs, n);
+        for &i in turns.get(..count).unwrap_or(&[]) {
+            best = best.max(speed2(i));
+        }
         let (axis_velocity, axis_acceleration) = axis_peaks(coeffs, n, period);
         Peaks {
             velocity: libm::sqrt(best) / period,
@@ -142,30 +127,37 @@ impl Peaks {
     }
 }
 
-/// The largest mean tangential acceleration over one tick of a piece of `n` ticks,
-/// `|(|ẋ(i + 1)| − |ẋ(i)|)/T|` for `i = 0 … n − 1`: the mean of `d|ẋ|/dt` over the tick,
-/// exactly, which is what the differences of the sampled velocities' norms measure. (The
-/// continuous maximum of `ẋ·ẍ/|ẋ|` over a piece is that of a rational function; the means
-/// over the ticks are what playback shows.)
-pub(super) fn tangential_peak<const A: usize>(coeffs: &[[f64; 4]; A], n: u32, period: f64) -> f64 {
-    let speed = |i: f64| {
-        let sq: f64 = coeffs
-            .iter()
-            .map(|&[_, b, c, d]| {
-                let v = b + i * (2.0 * c + 3.0 * d * i);
-                v * v
-            })
-            .sum();
-        libm::sqrt(sq) / period
+/// The roots in `(0, n)`, ascending, of `g = d|ẋ|²/di` of a piece (the `g` of
+/// [`Peaks::of_piece`]) where it changes sign: the speed's turning points inside the piece,
+/// at most three.
+pub(super) fn speed_turns<const A: usize>(coeffs: &[[f64; 4]; A], n: f64) -> ([f64; 3], usize) {
+    // `g` of the coefficients divided by their largest magnitude: the same roots, and no
+    // overflow in `g` or its discriminant for paths of any size.
+    let scale = coeffs
+        .iter()
+        .flat_map(|&[_, b, c, d]| [b, c, d])
+        .fold(0.0_f64, |m, x| m.max(libm::fabs(x)));
+    let unit = if scale > 0.0 && scale.is_finite() {
+        scale
+    } else {
+        1.0
     };
-    let mut prev = speed(0.0);
-    let mut peak = 0.0_f64;
-    for i in 1..=n {
-        let next = speed(f64::from(i));
-        peak = peak.max(libm::fabs(next - prev) / period);
-        prev = next;
+    let mut g = [0.0_f64; 4];
+    for &[_, b, c, d] in coeffs {
+        let (b, c, d) = (b / unit, c / unit, d / unit);
+        g[0] += 2.0 * b * c;
+        g[1] += 6.0 * b * d + 4.0 * c * c;
+        g[2] += 18.0 * c * d;
+        g[3] += 18.0 * d * d;
     }
-    peak
+    let (mut turns, mut count) = ([0.0; 3], 0);
+    for_each_root(g, n, &mut |i| {
+        if let Some(slot) = turns.get_mut(count) {
+            *slot = i;
+            count += 1;
+        }
+    });
+    (turns, count)
 }
 
 /// The per-axis velocity and acceleration peaks of [`Peaks::of_piece`].
