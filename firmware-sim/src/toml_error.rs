@@ -39,6 +39,26 @@ pub fn join(table: &str, key: &str) -> String {
     }
 }
 
+/// A key as TOML spells it: bare (`rate_hz`) when it may be, else a quoted string (`""`,
+/// `" "`, `"a.b"`), with `"`, `\` and control characters escaped.
+fn toml_key(key: &str) -> String {
+    let bare = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
+    if !key.is_empty() && key.chars().all(bare) {
+        return key.to_owned();
+    }
+    let mut quoted = String::from("\"");
+    for c in key.chars() {
+        match c {
+            '"' => quoted.push_str("\\\""),
+            '\\' => quoted.push_str("\\\\"),
+            c if c.is_control() => quoted.push_str(&format!("\\u{:04X}", u32::from(c))),
+            c => quoted.push(c),
+        }
+    }
+    quoted.push('"');
+    quoted
+}
+
 fn first_line(e: &toml::de::Error) -> String {
     e.message()
         .trim()
@@ -151,10 +171,8 @@ pub fn locate(text: &str, e: &toml::de::Error, tagged: &[Tagged]) -> Located {
         };
     }
     if let Some(field) = quoted(&msg, "unknown field `") {
-        // The empty key (`"" = 1`) named as TOML spells it.
-        let key = if field.is_empty() { "\"\"" } else { &field };
         return Located {
-            field: join(&table, key),
+            field: join(&table, &toml_key(&field)),
             message: with_line(msg),
         };
     }
@@ -190,17 +208,25 @@ mod tests {
     }
 
     #[test]
-    fn an_unknown_empty_key_is_named() {
+    fn an_unknown_key_is_named_as_toml_spells_it() {
         #[derive(Debug, serde::Deserialize)]
         #[serde(deny_unknown_fields)]
         #[allow(dead_code)]
         struct T {
             a: Option<i32>,
         }
-        for text in ["\"\" = 1\n", "'' = 1\n"] {
+        let cases = [
+            ("\"\" = 1\n", "\"\""),
+            ("'' = 1\n", "\"\""),
+            ("\" \" = \"\"\n", "\" \""),
+            ("\"a.b\" = 1\n", "\"a.b\""),
+            ("\"q\\\"\\\\\\t\" = 1\n", "\"q\\\"\\\\\\u0009\""),
+            ("b-c_1 = 1\n", "b-c_1"),
+        ];
+        for (text, name) in cases {
             let e = toml::from_str::<T>(text).unwrap_err();
             let at = locate(text, &e, &[]);
-            assert_eq!(at.field, "\"\"", "{}", at.message);
+            assert_eq!(at.field, name, "{text}: {}", at.message);
         }
     }
 }
