@@ -31,9 +31,12 @@ const GL_W: [f64; 4] = [
 /// The deepest bisection of an interval (parameter widths down to `2⁻³²` of a piece).
 const MAX_DEPTH: u32 = 32;
 
-/// The most interval splits of one adaptive integral (each split evaluates two 8-point
-/// rules); beyond it the accuracy counts as unreachable.
-const MAX_SPLITS: usize = 1 << 16;
+/// The most interval splits of one piece's adaptive integral (each split evaluates two
+/// 8-point rules); beyond it the accuracy counts as unreachable. A smooth speed needs a few
+/// splits per part, a cusp about two per bisection level; only speeds that no rule resolves
+/// (oscillations finer than the nodes, or the rounding noise of fixed-point derivatives)
+/// run into it.
+const MAX_SPLITS: usize = 1 << 12;
 
 /// Iteration limit of the safeguarded Newton method in [`param_at_length`]; bisection alone
 /// reaches the resolution of `f64` in fewer than 64 steps.
@@ -220,8 +223,8 @@ fn piece_bounds<C: ParamCurve>(
 ///
 /// The accuracy is checked against [`length_resolution`](crate::length_resolution) first
 /// (`2·piece_count + 2` evaluations). Per piece the quadrature bisects at most 32 levels deep
-/// and splits at most 2¹⁶ intervals, so it evaluates the speed at most
-/// `16·(16 + 2·(2·2¹⁶ + 16))` times; a piece that needs more is
+/// and splits at most 2¹² intervals, so it evaluates the speed at most
+/// `16·(16 + 2·(2·2¹² + 16))` times; a piece that needs more is
 /// [`Error::IterationLimit`].
 ///
 /// Everything is computed in `f64` from the curve's derivatives ([`Scalar::to_f64`]) and
@@ -234,7 +237,8 @@ fn piece_bounds<C: ParamCurve>(
 /// [`Error::InvalidArgument`] when `accuracy` is not finite and positive;
 /// [`Error::ToleranceBelowResolution`] when it is below
 /// [`length_resolution`](crate::length_resolution); [`Error::IterationLimit`] when a piece
-/// needs more than 32 bisection levels or 2¹⁶ splits (pathological speeds);
+/// needs more than 32 bisection levels or 2¹² splits (pathological speeds, or derivatives
+/// whose rounding noise exceeds the accuracy: fixed-point Lagrange curves, for example);
 /// [`Error::NonFinite`] when a derivative is not finite.
 ///
 /// ```
@@ -1141,8 +1145,8 @@ mod tests {
     #[test]
     fn unresolvable_speed_stops_at_the_split_budget() {
         // (t, sin(ωt)/ω) with ω = 10⁷ on [0, 1]: the speed √(1 + cos²(ωt)) oscillates 1.6·10⁶
-        // times; no rule resolves it within 2¹⁶ splits. The error comes after at most
-        // 16 + 2·(2·2¹⁶ + 16) Gauss rules of 16 speed evaluations, counted here (no timing),
+        // times; no rule resolves it within 2¹² splits. The error comes after at most
+        // 16 + 2·(2·2¹² + 16) Gauss rules of 16 speed evaluations, counted here (no timing),
         // plus the 3 points of the resolution check.
         let calls = core::cell::Cell::new(0_usize);
         let w = 1.0e7;
