@@ -608,8 +608,10 @@ where
     ScalarOf<C>: FuzzScalar,
 {
     let share = 0.001 + 0.998 * t;
-    let tolerance = resolution(counted) * share;
-    let accuracy = length_resolution(counted) * share;
+    // Below it: a subnormal resolution times the share may round back onto it.
+    let below = |r: f64| if r * share < r { r * share } else { 0.5 * r };
+    let tolerance = below(resolution(counted));
+    let accuracy = below(length_resolution(counted));
     let flat = bounded(
         counted,
         what,

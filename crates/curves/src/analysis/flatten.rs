@@ -355,6 +355,14 @@ fn segments<C: ParamCurveDeriv>(
             return if halve { Ok(None) } else { Err(too_many) };
         }
         lo = n;
+        // The chord errors shrink as 1/n²: `n·√(e/tol)` is the count they ask for; more
+        // than a run is a halving now rather than after growing passes.
+        #[allow(clippy::cast_precision_loss)]
+        let asked = n as f64 * libm::sqrt(e / tolerance);
+        #[allow(clippy::cast_precision_loss)]
+        if halve && asked > RUN as f64 {
+            return Ok(None);
+        }
         #[allow(clippy::cast_precision_loss)]
         let grow = libm::ceil(n as f64 * libm::sqrt(e / tolerance).clamp(1.25, 4.0));
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
