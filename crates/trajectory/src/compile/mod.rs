@@ -357,24 +357,33 @@ fn relative_tolerance<const A: usize, K: Knots<A>>(r: f64, fit: &SplineFit<A, K>
 }
 
 /// The peaks of the fitted spline's pieces (with the tangential acceleration when
-/// `tangential`: its bound at any feed, [`tangential::Tangential`]).
+/// `tangential`: its bound at any feed, [`tangential_peak`]).
 fn fit_peaks<const A: usize, K: Knots<A>>(
     fit: &SplineFit<A, K>,
     period: f64,
     tangential: bool,
 ) -> Peaks {
-    let mut sampled = tangential::Tangential::new();
     let mut peaks = (0..fit.pieces()).fold(Peaks::default(), |m, j| {
         let (coeffs, n) = fit.piece(j);
-        if tangential {
-            sampled.piece(&coeffs, n);
-        }
         m.max(Peaks::of_piece(&coeffs, f64::from(n), period))
     });
     if tangential {
-        peaks.tangential = sampled.peak(period);
+        peaks.tangential = tangential_peak(fit, period);
     }
     peaks
+}
+
+/// The bound of the tangential acceleration over the fitted pieces
+/// ([`tangential::Tangential`]); in a frame of its own, so that compiling a law without a
+/// tangential limit does not carry its cells on the stack.
+#[inline(never)]
+fn tangential_peak<const A: usize, K: Knots<A>>(fit: &SplineFit<A, K>, period: f64) -> f64 {
+    let mut bound = tangential::Tangential::new();
+    for j in 0..fit.pieces() {
+        let (coeffs, n) = fit.piece(j);
+        bound.piece(&coeffs, n);
+    }
+    bound.peak(period)
 }
 
 /// The forward-difference start state of one axis of a piece `a + b i + c i² + d i³`.
