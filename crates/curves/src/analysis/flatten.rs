@@ -357,14 +357,13 @@ fn segments<C: ParamCurveDeriv>(
         lo = n;
         // The chord errors shrink as 1/n²: `n·√(e/tol)` is the count they ask for; more
         // than a run is a halving now rather than after growing passes.
+        let ratio = libm::sqrt(e / tolerance);
         #[allow(clippy::cast_precision_loss)]
-        let asked = n as f64 * libm::sqrt(e / tolerance);
-        #[allow(clippy::cast_precision_loss)]
-        if halve && asked > RUN as f64 {
+        if halve && n as f64 * ratio > RUN as f64 {
             return Ok(None);
         }
         #[allow(clippy::cast_precision_loss)]
-        let grow = libm::ceil(n as f64 * libm::sqrt(e / tolerance).clamp(1.25, 4.0));
+        let grow = libm::ceil(n as f64 * ratio.clamp(1.25, 4.0));
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let next = grow.min(usize::MAX as f64) as usize;
         n = next.clamp(n + 1, cap);
