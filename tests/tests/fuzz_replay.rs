@@ -16,14 +16,7 @@ use strak_fuzz::{TARGETS, Target};
 /// Inputs under `fuzz/artifacts-kept/<target>/` that fail today: target, file name, and a
 /// fragment of the failure message. Each is a bug in the library, reported with the
 /// input; remove the entry when it is fixed.
-const KNOWN_FAILURES: &[(&str, &str, &str)] = &[(
-    // The bundled pick-and-place job at 2 456 Hz in f32, planned with 256 samples, held and
-    // resumed straight to feed 1: 1 668 ticks after the resume the jerk reaches 1.0225·10⁵
-    // against 10⁵ (+2.25 %, allowance 377). The same job passes in f64 and at 1 kHz.
-    "job",
-    "feed-resume-jerk-f32",
-    "jerk |j|",
-)];
+const KNOWN_FAILURES: &[(&str, &str, &str)] = &[];
 
 fn fuzz_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz")

@@ -14,9 +14,12 @@
 //! division; `K(K+1) ≤ 2⁴¹`, `α·K(K+1) ≤ 2·ω_max²/α + … ≤ 3`, no overflow). Because the
 //! distance is exact, `K − 1` is always admissible when `K` was: the ramp never overshoots a
 //! target that stays put, and `|Δω| ≤ α` every tick. Within `snap = max(α, ε)` of the target
-//! at a rate of at most `snap`, `φ` snaps onto the target (`ε` is the format's spacing at 1,
-//! the resolution of a float `φ` near 1; in `f32` slow ramps are quantized by it).
-//! Constant work: 4 multiplications by an integer per tick.
+//! at a rate of at most `snap`, `φ` lands on the target in one step (`ε` is the format's
+//! spacing at 1, the resolution of a float `φ` near 1; in `f32` slow ramps are quantized by
+//! it). That step's rate `ω` is the distance it moves, not a multiple of `α`, and the tick
+//! after it `ω` is 0: the rate reported with the samples (`φ̇` in their acceleration) falls
+//! to 0 by at most `snap` per tick, as it rose. Constant work: 4 multiplications by an
+//! integer per tick.
 
 use crate::num::Number;
 use crate::path::FeedRampLimits;
@@ -28,7 +31,7 @@ pub(crate) struct FeedRamp<N> {
     pub(crate) phi: N,
     /// Its rate in multiples of `α`.
     pub(crate) k: i64,
-    /// Its rate `ω = k·α` (change per tick).
+    /// Its rate `ω = k·α` (change per tick), or the landing step's distance while `k = 0`.
     pub(crate) omega: N,
     /// Where it is going (in `[0, 1]`).
     pub(crate) target: N,
@@ -48,7 +51,7 @@ impl<N: Number> FeedRamp<N> {
     /// `true` when `φ` rests on its target.
     #[inline]
     pub(crate) fn is_idle(&self) -> bool {
-        self.phi == self.target && self.k == 0
+        self.phi == self.target && self.k == 0 && self.omega == N::ZERO
     }
 
     /// One tick of the ramp.
@@ -57,15 +60,18 @@ impl<N: Number> FeedRamp<N> {
         if self.is_idle() {
             return;
         }
+        if self.k == 0 && self.omega != N::ZERO {
+            // The tick after a landing step: the rate falls from that step's distance to 0.
+            self.omega = N::ZERO;
+            return;
+        }
         let alpha = limits.alpha;
         let e = self.target - self.phi;
         // Work in the direction of the target: distance ≥ 0, rate toward it (< 0: away).
         let toward = e > N::ZERO || (e == N::ZERO && self.k < 0);
         let (dist, kv) = if toward { (e, self.k) } else { (-e, -self.k) };
         if dist <= limits.snap && alpha.mul_int(kv.abs()) <= limits.snap {
-            self.phi = self.target;
-            self.k = 0;
-            self.omega = N::ZERO;
+            self.land(self.target);
             return;
         }
         let kc = if kv < 0 {
@@ -89,12 +95,19 @@ impl<N: Number> FeedRamp<N> {
         let next = self.phi + self.omega;
         // φ stays in [0, 1] (only a float's rounding could overshoot the end of the range).
         if next > N::ONE || next < N::ZERO {
-            self.phi = if next > N::ONE { N::ONE } else { N::ZERO };
-            self.k = 0;
-            self.omega = N::ZERO;
+            self.land(if next > N::ONE { N::ONE } else { N::ZERO });
         } else {
             self.phi = next;
         }
+    }
+
+    /// The step that ends a ramp on `phi`: its rate is the distance it moves (at most
+    /// `snap`), so the rate reported with the next sample (`φ̇` in its acceleration) falls
+    /// to 0 over two ticks, by at most `snap` each, and the ramp is idle one tick later.
+    fn land(&mut self, phi: N) {
+        self.omega = phi - self.phi;
+        self.phi = phi;
+        self.k = 0;
     }
 }
 
@@ -127,11 +140,20 @@ mod tests {
         let target = ramp.target.to_f64();
         let from_below = ramp.phi.to_f64() < target;
         let from_rest = ramp.k == 0;
+        let mut prev_phi = ramp.phi.to_f64();
         while !ramp.is_idle() {
             ramp.step(&limits);
             let w = ramp.omega.to_f64();
             let phi = ramp.phi.to_f64();
             assert!((0.0..=1.0).contains(&phi));
+            // The rate is the step taken (up to the rounding of φ + ω): the sampler reports
+            // it as φ̇, so the reported acceleration agrees with the positions.
+            assert!(
+                (phi - prev_phi - w).abs() <= N::EPSILON.to_f64(),
+                "step {} with ω = {w} at tick {ticks}",
+                phi - prev_phi
+            );
+            prev_phi = phi;
             if from_rest {
                 // no overshoot
                 assert!(
