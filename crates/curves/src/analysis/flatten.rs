@@ -26,7 +26,8 @@ const RUN: usize = 64;
 /// The most intervals (uniform runs and halved ones) of the whole curve.
 const MAX_INTERVALS: usize = 1 << 16;
 
-/// The deepest halving of a piece (the `f64` parameter spacing is reached before).
+/// The most pending intervals of one piece: an interval is halved at most `MAX_DEPTH − 1`
+/// times (to `2⁻⁷⁹` of its piece; near 0 an `f64` parameter could be halved ~1 000 times).
 const MAX_DEPTH: usize = 80;
 
 /// Flattens `curve` into a polyline whose distance to the curve is at most `tolerance`,
@@ -90,7 +91,9 @@ const MAX_DEPTH: usize = 80;
 /// (`2·piece_count + 2` evaluations). Each interval takes two derivatives for its estimate
 /// and, when it is not halved at once, growing and bisecting take at most `12·64` chord
 /// certificates (each 7 derivatives and one point); an interval is halved only while its
-/// halves have distinct parameter values in the scalar. At most 2¹⁶ intervals are taken
+/// halves have distinct parameter values in the scalar, and at most 79 times (to `2⁻⁷⁹` of
+/// its piece; an interval that short that still needs more than 64 segments is an
+/// error, as the halving stops there). At most 2¹⁶ intervals are taken
 /// in all (the halved ones included), and the counts of all pieces together never exceed
 /// 2²⁰ segments: a curve that would need more is an error, found within that work whatever
 /// the curve: at most `2¹⁶·(2 + 12·64·8)` evaluations in all, and one per vertex written.
@@ -105,8 +108,9 @@ const MAX_DEPTH: usize = 80;
 ///   needed (then `out` holds the first `out.len()` of them). Also when the pieces together
 ///   would need more than 2²⁰ segments (a tolerance far below the curve's size); then
 ///   `capacity` is 2²⁰ and `required` a lower estimate.
-/// - [`Error::IterationLimit`]: more than 2¹⁶ intervals (a tolerance far below the curve's
-///   size, found before the segment count).
+/// - [`Error::IterationLimit`]: more than 2¹⁶ intervals (`limit` 2¹⁶), or an interval
+///   halved 79 times that still needs more than 64 segments (`limit` 80): a tolerance far
+///   below the curve's size, found before the segment count.
 /// - [`Error::NonFinite`]: a derivative of the curve is not finite.
 ///
 /// ```
@@ -220,7 +224,7 @@ fn run<C: ParamCurveDeriv>(
                 });
             }
             let middle = param(0.5 * (left.to_f64() + right.to_f64()), left, right);
-            let halve = greater(middle, left) && greater(right, middle) && intervals.has_room();
+            let halve = greater(middle, left) && greater(right, middle);
             match segments(curve, left, right, tolerance, budget, halve)? {
                 Some(n) => {
                     segments_so_far += n;
@@ -229,7 +233,10 @@ fn run<C: ParamCurveDeriv>(
                     }
                     left = right;
                 }
-                None => intervals.halve(middle),
+                None if intervals.has_room() => intervals.halve(middle),
+                None => {
+                    return Err(Error::IterationLimit { limit: MAX_DEPTH });
+                }
             }
         }
         visited = intervals.visited;
@@ -265,7 +272,7 @@ fn segment_cap<S: Scalar>(a: S, b: S, budget: usize, needed: impl Fn() -> usize)
         let cap = (steps as usize).max(1);
         (cap, Error::ToleranceBelowResolution { scalar: S::NAME })
     } else {
-        let required = MAX_SEGMENTS - budget + needed();
+        let required = (MAX_SEGMENTS - budget).saturating_add(needed());
         let e = Error::CapacityExceeded {
             capacity: MAX_SEGMENTS,
             required,
@@ -783,6 +790,34 @@ mod tests {
         );
         let n = flatten_count(&q, 1.5 / 65536.0).unwrap();
         assert!(n > 100, "{n}");
+    }
+
+    #[test]
+    fn the_halving_depth_is_bounded() {
+        // A "curve" whose second derivative claims 10⁶⁰ on [0, 1]: h²/8·10⁶⁰ ≤ 10⁻³ needs
+        // h ≤ 2.8·10⁻³², far below the 2⁻⁷⁹ ≈ 1.7·10⁻²⁴ of 79 halvings. The halving goes
+        // down one side, two evaluations per interval, and stops at its depth with an error
+        // (not with a uniform run of 2²⁰ segments at the deepest interval).
+        let steep = FnCurve {
+            f: |t: f64, k: usize| match k {
+                0 => [t, 0.0],
+                1 => [1.0, 0.0],
+                2 => [0.0, 1e60],
+                _ => [0.0, 0.0],
+            },
+            a: 0.0,
+            b: 1.0,
+        };
+        let counted = Counted::new(&steep);
+        assert_eq!(
+            flatten_count(&counted, 1e-3),
+            Err(Error::IterationLimit { limit: MAX_DEPTH })
+        );
+        assert!(
+            counted.calls() <= 4 + 2 * MAX_DEPTH as u64,
+            "{}",
+            counted.calls()
+        );
     }
 
     #[test]
