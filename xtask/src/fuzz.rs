@@ -1,6 +1,6 @@
-//! `cargo xtask fuzz [--time SECONDS] [--runs N] [--keep-going] [--ignore FRAGMENT] [--minimize]
-//! [TARGET]`: the coverage-guided fuzz targets of `fuzz/` (cargo-fuzz, libFuzzer), each for a
-//! given time or number of executions.
+//! `cargo xtask fuzz [--time SECONDS] [--runs N] [--fork JOBS] [--no-trace-compares]
+//! [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]`: the coverage-guided fuzz targets
+//! of `fuzz/` (cargo-fuzz, libFuzzer), each for a given time or number of executions.
 //!
 //! 1. Installs cargo-fuzz (`cargo install cargo-fuzz --locked`) when `cargo fuzz` does not
 //!    run; fails loudly when it cannot.
@@ -8,12 +8,19 @@
 //!    `RUSTC_BOOTSTRAP=1` (cargo-fuzz passes `-Z` flags to rustc).
 //! 3. Builds the targets with debug assertions and overflow checks (`-a`: a fixed-point or
 //!    integer overflow is a panic) and without a sanitizer (the crates have no `unsafe` on
-//!    the host; coverage instrumentation only, for speed).
+//!    the host; coverage instrumentation only, for speed). `--no-trace-compares` leaves out
+//!    the tracing of integer comparisons (cargo-fuzz's flag of that name; a build of its own
+//!    in `fuzz/target/no-trace-compares/`): it guides mutations towards the constants that
+//!    integer comparisons test, but the float-heavy targets (`pipeline`, `curves`) test
+//!    floats, which it does not trace, and spend half their time in it.
 //! 4. Writes the seeds ([`strak_fuzz::seeds`]) into the working corpus `fuzz/work/<target>/`
 //!    (not checked in), then runs each target on it and on the checked-in corpus
 //!    `fuzz/corpus/<target>/` for `--time` seconds (default 60; with `--runs N` and no
 //!    `--time`, until it has run `N` inputs, libFuzzer's `-runs`) in one process
-//!    (`-fork=1 -ignore_crashes=1` with `--keep-going`, which goes on after a failure), and
+//!    (`-fork=1 -ignore_crashes=1` with `--keep-going`, which goes on after a failure;
+//!    `--fork JOBS` runs that many libFuzzer processes at a time under one parent, libFuzzer's
+//!    fork mode, which merges their findings into the one corpus and counts all their
+//!    executions), and
 //!    prints the executions and the result; failing inputs go to `fuzz/artifacts/<target>/`.
 //!    `--ignore FRAGMENT` (repeatable) masks the violations whose message contains it
 //!    ([`strak_fuzz::IGNORE_VAR`]): a known failure, so that the run finds others.
@@ -45,6 +52,10 @@ pub(crate) struct FuzzOptions {
     pub(crate) runs: Option<u64>,
     /// Go on after a failure (fork mode).
     pub(crate) keep_going: bool,
+    /// libFuzzer processes at a time (fork mode), if more than one.
+    pub(crate) fork: Option<u32>,
+    /// Build without cargo-fuzz's tracing of integer comparisons.
+    pub(crate) no_trace_compares: bool,
     /// Merge the corpora instead of fuzzing.
     pub(crate) minimize: bool,
     /// Only this target.
@@ -75,6 +86,16 @@ pub(crate) fn parse(args: &[String]) -> Result<FuzzOptions, String> {
                 );
             }
             "--keep-going" => o.keep_going = true,
+            "--fork" => {
+                let v = it.next().ok_or("--fork needs a number of processes")?;
+                o.fork = Some(
+                    v.parse()
+                        .ok()
+                        .filter(|n| *n >= 1)
+                        .ok_or_else(|| format!("--fork {v}: not a number of processes"))?,
+                );
+            }
+            "--no-trace-compares" => o.no_trace_compares = true,
             "--ignore" => o.ignore.push(
                 it.next()
                     .ok_or("--ignore needs a fragment of a failure message")?
@@ -171,8 +192,21 @@ fn ensure_cargo_fuzz(tc: &Toolchain) -> Result<(), String> {
     }
 }
 
-/// The cargo-fuzz flags of every build and run: debug assertions, no sanitizer.
-const BUILD_FLAGS: [&str; 4] = ["--debug-assertions", "--sanitizer", "none", "--fuzz-dir"];
+/// The cargo-fuzz flags of every build and run of `o`: debug assertions, no sanitizer, and
+/// without the tracing of comparisons when asked (in a target folder of its own, so that
+/// the two builds do not replace each other).
+fn build_flags(o: &FuzzOptions, fuzz_dir: &Path) -> Vec<String> {
+    let mut flags: Vec<String> = ["--debug-assertions", "--sanitizer", "none"]
+        .map(str::to_owned)
+        .into();
+    if o.no_trace_compares {
+        let dir = fuzz_dir.join("target").join("no-trace-compares");
+        flags.extend(["--no-trace-compares".to_owned(), "--target-dir".to_owned()]);
+        flags.push(dir.display().to_string());
+    }
+    flags.extend(["--fuzz-dir".to_owned(), fuzz_dir.display().to_string()]);
+    flags
+}
 
 /// Runs `cargo xtask fuzz`.
 pub(crate) fn fuzz(o: &FuzzOptions) -> Result<(), String> {
@@ -186,8 +220,7 @@ pub(crate) fn fuzz(o: &FuzzOptions) -> Result<(), String> {
         .cargo()
         .current_dir(&root)
         .args(["fuzz", "build"])
-        .args(BUILD_FLAGS)
-        .arg(&fuzz_dir)
+        .args(build_flags(o, &fuzz_dir))
         .status()
         .map_err(|e| format!("could not start cargo fuzz: {e}"))?;
     if !status.success() {
@@ -201,7 +234,7 @@ pub(crate) fn fuzz(o: &FuzzOptions) -> Result<(), String> {
     let mut results = Vec::new();
     for t in &targets {
         let r = if o.minimize {
-            minimize(&tc, &fuzz_dir, t)?
+            minimize(&tc, &fuzz_dir, t, o)?
         } else {
             run_target(&tc, &fuzz_dir, t, o)?
         };
@@ -282,15 +315,12 @@ fn libfuzzer_args(o: &FuzzOptions, artifacts: &Path) -> Vec<String> {
     if let Some(n) = o.runs {
         args.push(format!("-runs={n}"));
     }
+    if o.fork.is_some() || o.keep_going {
+        args.push(format!("-fork={}", o.fork.unwrap_or(1)));
+    }
     if o.keep_going {
         args.extend(
-            [
-                "-fork=1",
-                "-ignore_crashes=1",
-                "-ignore_timeouts=1",
-                "-ignore_ooms=1",
-            ]
-            .map(str::to_owned),
+            ["-ignore_crashes=1", "-ignore_timeouts=1", "-ignore_ooms=1"].map(str::to_owned),
         );
     }
     args
@@ -325,8 +355,7 @@ fn run_target(
         .cargo()
         .current_dir(fuzz_dir.parent().unwrap_or(fuzz_dir))
         .args(["fuzz", "run"])
-        .args(BUILD_FLAGS)
-        .arg(fuzz_dir)
+        .args(build_flags(o, fuzz_dir))
         .arg(t)
         .arg(&work)
         .arg(fuzz_dir.join("corpus").join(t))
@@ -404,7 +433,12 @@ fn parse_log(text: &str) -> RunResult {
 
 /// Merges `fuzz/work/<t>` and `fuzz/corpus/<t>` into a minimal corpus with the same
 /// coverage, written into `fuzz/corpus/<t>`.
-fn minimize(tc: &Toolchain, fuzz_dir: &Path, t: &str) -> Result<RunResult, String> {
+fn minimize(
+    tc: &Toolchain,
+    fuzz_dir: &Path,
+    t: &str,
+    o: &FuzzOptions,
+) -> Result<RunResult, String> {
     let work = fuzz_dir.join("work").join(t);
     let corpus = fuzz_dir.join("corpus").join(t);
     let merged = fuzz_dir.join("work").join(format!("{t}-merged"));
@@ -417,8 +451,7 @@ fn minimize(tc: &Toolchain, fuzz_dir: &Path, t: &str) -> Result<RunResult, Strin
         .cargo()
         .current_dir(fuzz_dir.parent().unwrap_or(fuzz_dir))
         .args(["fuzz", "run"])
-        .args(BUILD_FLAGS)
-        .arg(fuzz_dir)
+        .args(build_flags(o, fuzz_dir))
         .arg(t)
         .args([&merged, &corpus, &work])
         .arg("--")
@@ -463,5 +496,32 @@ mod tests {
         assert!(libfuzzer_args(&o, Path::new("a")).contains(&"-runs=5".to_owned()));
         assert!(parse(&args(&["--runs", "many"])).is_err());
         assert!(parse(&args(&["--runs"])).is_err());
+    }
+
+    #[test]
+    fn fork_and_trace_compares() {
+        let o = parse(&args(&["--fork", "2", "--no-trace-compares", "pipeline"])).unwrap();
+        assert_eq!((o.fork, o.no_trace_compares), (Some(2), true));
+        let a = libfuzzer_args(&o, Path::new("a"));
+        assert!(a.contains(&"-fork=2".to_owned()), "{a:?}");
+        assert!(!a.iter().any(|x| x.starts_with("-ignore_crashes")), "{a:?}");
+        let flags = build_flags(&o, Path::new("fuzz"));
+        assert!(
+            flags.contains(&"--no-trace-compares".to_owned()),
+            "{flags:?}"
+        );
+        assert!(
+            flags.contains(&"fuzz/target/no-trace-compares".to_owned()),
+            "{flags:?}"
+        );
+        assert_eq!(flags.last().map(String::as_str), Some("fuzz"));
+        let plain = parse(&args(&["--keep-going"])).unwrap();
+        let a = libfuzzer_args(&plain, Path::new("a"));
+        assert!(a.contains(&"-fork=1".to_owned()) && a.contains(&"-ignore_crashes=1".to_owned()));
+        assert!(
+            !build_flags(&plain, Path::new("fuzz")).contains(&"--no-trace-compares".to_owned())
+        );
+        assert!(parse(&args(&["--fork", "0"])).is_err());
+        assert!(parse(&args(&["--fork"])).is_err());
     }
 }

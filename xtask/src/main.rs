@@ -5,7 +5,8 @@
 //! cargo xtask test     formatting, clippy -D warnings, host tests + doctests, rustdoc,
 //!                      no_std cross builds for thumbv6m-none-eabi and thumbv7em-none-eabihf,
 //!                      then `qemu`
-//! cargo xtask fuzz [--time SECONDS] [--runs N] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]
+//! cargo xtask fuzz [--time SECONDS] [--runs N] [--fork JOBS] [--no-trace-compares]
+//!                  [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]
 //!                      the coverage-guided fuzz targets of fuzz/ (cargo-fuzz, libFuzzer), each
 //!                      for SECONDS (default 60) or N executions; executions and result
 //!                      per target
@@ -85,13 +86,15 @@ fn print_help() {
     println!("         icount-budgets.txt");
     println!("  bench  criterion benchmarks of strak against its peers (bench/), then");
     println!("         BENCHMARKS.md from their results and the QEMU counts in target/qemu");
-    println!(
-        "  fuzz [--time SECONDS] [--runs N] [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]"
-    );
+    println!("  fuzz [--time SECONDS] [--runs N] [--fork JOBS] [--no-trace-compares]");
+    println!("       [--keep-going] [--ignore FRAGMENT] [--minimize] [TARGET]");
     println!("         the fuzz targets of fuzz/ (blob, curves, pipeline, job), each for");
     println!("         SECONDS (default 60) or N executions, with libFuzzer through cargo-fuzz");
     println!("         (installed when missing; nightly, or stable with RUSTC_BOOTSTRAP=1);");
-    println!("         prints executions and failures. --keep-going goes on after a failure;");
+    println!("         prints executions and failures. --fork runs JOBS libFuzzer processes");
+    println!("         as one run (fork mode); --no-trace-compares builds without the tracing");
+    println!("         of integer comparisons (twice as fast for pipeline and curves);");
+    println!("         --keep-going goes on after a failure;");
     println!("         --ignore masks the failures whose message contains FRAGMENT (known ones);");
     println!("         --minimize merges the working corpus into fuzz/corpus/. The checked-in");
     println!("         corpora are replayed by `cargo test` (tests/tests/fuzz_replay.rs)");
