@@ -223,6 +223,13 @@ where
     check_inputs::<A, M::Curve, M::Law>(timing, rate_hz, options)?;
     let period = 1.0 / rate_hz;
     let limits = timing.limits();
+    // The tightest acceleration the law promises for one of the path's axes (∞: none).
+    let axis_acceleration = limits.map_or(f64::INFINITY, |l| {
+        l.axis_acceleration
+            .iter()
+            .take(A)
+            .fold(f64::INFINITY, |m, &a| m.min(a))
+    });
     let mut fit = SplineFit::<A, _>::empty(PieceKnots(&mut path.pieces));
     let (mut stretch, mut min_ticks) = (1.0_f64, 0_u32);
     let (mut exceeded, mut margin) = (Quantity::Velocity, SLOWDOWN_MARGIN);
@@ -237,7 +244,12 @@ where
         };
         let Some(quantity) = quantity else {
             let duration = law.duration();
-            path.header.meta = path_meta(peaks, tangential, rate_hz, duration, tolerance, options);
+            let described = LawPeaks {
+                peaks,
+                tangential,
+                axis_acceleration,
+            };
+            path.header.meta = path_meta(&described, rate_hz, duration, tolerance, options);
             end_into::<N, _, _, A, _>(curve, &law, &fit, &mut path.header.end)?;
             write_states(fit, period)?;
             path.seal()?;
@@ -465,22 +477,32 @@ fn write_states<N: Number, const A: usize, const P: usize>(
     })
 }
 
+/// What the compiled path's feed limits are derived from: its peaks, whether its law
+/// limits only the tangential acceleration, and the tightest acceleration the law promises
+/// for an axis (`∞`: none).
+struct LawPeaks {
+    peaks: Peaks,
+    tangential: bool,
+    axis_acceleration: f64,
+}
+
 /// The path's description: its peaks, and the limits of feed changes (given, or derived
 /// from the peaks; see [`CompileOptions`]). For a law that limits only the `tangential`
 /// acceleration (its centripetal part is not limited, so it says nothing of the machine's
 /// limit), the acceleration limit is derived from the tangential peak: a feed ramp adds
-/// only tangential acceleration.
+/// only tangential acceleration. A derived limit is at most the tightest axis's
+/// `aᵢ/(1 − share)`: the ramp adds `φ̇·ẋᵢ` to each axis, which is at most `φ̇·|ẋ|`.
 fn path_meta(
-    peaks: Peaks,
-    tangential: bool,
+    law: &LawPeaks,
     rate_hz: f64,
     duration: f64,
     tolerance: f64,
     options: &CompileOptions,
 ) -> PathMeta {
     let share = options.feed_share();
+    let peaks = &law.peaks;
     let (v_peak, a_peak, j_peak) = (peaks.velocity_bound, peaks.acceleration, peaks.jerk);
-    let a_used = if tangential {
+    let a_used = if law.tangential {
         peaks.tangential.min(a_peak)
     } else {
         a_peak
@@ -493,6 +515,7 @@ fn path_meta(
         } else {
             1.0
         };
+        let a = a.min(law.axis_acceleration / (1.0 - share));
         let j = if j_peak > 0.0 {
             j_peak / (1.0 - share)
         } else {

@@ -39,10 +39,12 @@ pub enum Tolerance {
 ///   where for a law that limits only the tangential acceleration (such as
 ///   [`PathTiming::trapezoid`](crate::PathTiming::trapezoid)) `a_peak` is the tangential
 ///   peak (for a path without acceleration or jerk: `a_max = v_peak / 0.1 s`,
-///   `j_max = a_max / 0.1 s`). The ramp bounds the path's acceleration, not each axis's:
-///   with per-axis acceleration limits `aᵢ`, give `min(a, aᵢ)` as the machine's acceleration
-///   (as [`PathTiming::compile_options`](crate::PathTiming::compile_options) does), so that
-///   no axis gets more than its own share.
+///   `j_max = a_max / 0.1 s`), and `a_max` is at most `aᵢ/(1 − share)` for the
+///   acceleration `aᵢ` the law promises for each axis ([`Timing::limits`](crate::Timing::limits)).
+///   The ramp bounds the path's acceleration, not each axis's (it adds `φ̇·ẋᵢ ≤ φ̇·|ẋ|` to
+///   axis `i`): with per-axis acceleration limits `aᵢ`, give `min(a, aᵢ)` as the machine's
+///   acceleration (as [`PathTiming::compile_options`](crate::PathTiming::compile_options)
+///   does), so that no axis gets more than its own share.
 ///
 /// ```
 /// use strak_trajectory::{CompileOptions, Limits, Tolerance};
