@@ -6,7 +6,7 @@
 use std::cell::Cell;
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseResult, TestRunner};
+use proptest::test_runner::{Config, RngSeed, TestCaseResult, TestRunner};
 use strak_curves::{Bezier, CubicSpline, I32F32, Nurbs, Parameterization, Scalar, SplineBoundary};
 use strak_tests::compile_within_bound;
 use strak_trajectory::{
@@ -1003,6 +1003,9 @@ impl Timing for Wild {
     }
 }
 
+/// The seed of every property test of this file.
+const SEED: u64 = 1;
+
 thread_local! {
     /// Compile attempts and successes (any format) of a property test, to show that it is
     /// not vacuous.
@@ -1103,10 +1106,15 @@ fn options() -> impl Strategy<Value = CompileOptions> {
         })
 }
 
+/// Runs a property test on a fixed seed and asserts that at least a tenth of its compile
+/// attempts succeeded. The seed is fixed because the share that succeeds varies widely from
+/// seed to seed (8 % to 18 % in three random runs of the spline test): a random seed would
+/// make that check fail at random. The coverage-guided fuzzers (`fuzz/`) explore further.
 fn run_property(cases: u32, test: impl Fn(&mut TestRunner) -> Result<(), String> + Send + 'static) {
     let mut runner = TestRunner::new(Config {
         cases,
         failure_persistence: None,
+        rng_seed: RngSeed::Fixed(SEED),
         ..Config::default()
     });
     if let Err(e) = test(&mut runner) {
