@@ -493,7 +493,13 @@ where
     }
     let path: Box<Path<f64, A, PIECES>> =
         compile_boxed(&Along::new(curve, timing), RATE, &options).expect("compile");
-    assert_eq!(path.acceleration_limit(), m.full.acceleration());
+    // a feed ramp's acceleration: the smallest of the path and axis limits
+    let ramp = m
+        .full
+        .axis_acceleration()
+        .into_iter()
+        .fold(m.full.acceleration(), f64::min);
+    assert_eq!(path.acceleration_limit(), ramp);
     assert_eq!(path.jerk_limit(), m.full.jerk());
     let dv = velocity_allowance(&path);
     let min_axis = m

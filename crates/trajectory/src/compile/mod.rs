@@ -224,12 +224,7 @@ where
     let period = 1.0 / rate_hz;
     let limits = timing.limits();
     // The tightest acceleration the law promises for one of the path's axes (∞: none).
-    let axis_acceleration = limits.map_or(f64::INFINITY, |l| {
-        l.axis_acceleration
-            .iter()
-            .take(A)
-            .fold(f64::INFINITY, |m, &a| m.min(a))
-    });
+    let axis_acceleration = limits.map_or(f64::INFINITY, |l| l.tightest_axis_acceleration(A));
     let mut fit = SplineFit::<A, _>::empty(PieceKnots(&mut path.pieces));
     let (mut stretch, mut min_ticks) = (1.0_f64, 0_u32);
     let (mut exceeded, mut margin) = (Quantity::Velocity, SLOWDOWN_MARGIN);

@@ -42,9 +42,10 @@ pub enum Tolerance {
 ///   `j_max = a_max / 0.1 s`), and `a_max` is at most `aᵢ/(1 − share)` for the
 ///   acceleration `aᵢ` the law promises for each axis ([`Timing::limits`](crate::Timing::limits)).
 ///   The ramp bounds the path's acceleration, not each axis's (it adds `φ̇·ẋᵢ ≤ φ̇·|ẋ|` to
-///   axis `i`): with per-axis acceleration limits `aᵢ`, give `min(a, aᵢ)` as the machine's
-///   acceleration (as [`PathTiming::compile_options`](crate::PathTiming::compile_options)
-///   does), so that no axis gets more than its own share.
+///   axis `i`): with per-axis acceleration limits `aᵢ`, the machine's acceleration must be
+///   `min(a, aᵢ)`, as [`with_path_limits`](Self::with_path_limits) and
+///   [`PathTiming::compile_options`](crate::PathTiming::compile_options) give it, so that
+///   no axis gets more than its own share.
 ///
 /// ```
 /// use strak_trajectory::{CompileOptions, Limits, Tolerance};
@@ -120,9 +121,21 @@ impl CompileOptions {
         self
     }
 
-    /// The path acceleration and jerk limits of a [`Limits`].
+    /// The limits of a feed ramp on a machine with `limits`: the smallest of its path and
+    /// per-axis acceleration limits, `min(a, aᵢ)`, and its jerk. A ramp changes the speed
+    /// along the tangent, so it adds `φ̇·ẋᵢ ≤ φ̇·|ẋ|` to axis `i`: with the path's `a` alone,
+    /// an axis with a tighter `aᵢ` would exceed it during a feed change.
+    ///
+    /// ```
+    /// use strak_trajectory::{CompileOptions, Limits};
+    /// let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0)?
+    ///     .with_axis_acceleration([1_500.0, 1_500.0, 1_000.0])?;
+    /// let o = CompileOptions::new().with_path_limits(&limits);
+    /// assert_eq!(o.limits(), Some((1_000.0, 50_000.0)));
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
     pub fn with_path_limits<const A: usize>(self, limits: &Limits<A>) -> Self {
-        self.with_limits(limits.acceleration(), limits.jerk())
+        self.with_limits(limits.ramp_acceleration(), limits.jerk())
     }
 
     /// The share of the limits reserved for feed changes (in `(0, 1)`; checked by `compile`).

@@ -63,6 +63,22 @@ impl MotionLimits {
             axis_acceleration: [f64::INFINITY; MAX_DIM],
         }
     }
+
+    /// The tightest acceleration limit of the first `axes` axes (`f64::INFINITY`: none).
+    ///
+    /// ```
+    /// use strak_trajectory::MotionLimits;
+    /// let mut l = MotionLimits::new(1.0, 2.0, 3.0);
+    /// l.axis_acceleration[1] = 0.5;
+    /// assert_eq!(l.tightest_axis_acceleration(1), f64::INFINITY);
+    /// assert_eq!(l.tightest_axis_acceleration(2), 0.5);
+    /// ```
+    pub fn tightest_axis_acceleration(&self, axes: usize) -> f64 {
+        self.axis_acceleration
+            .iter()
+            .take(axes)
+            .fold(f64::INFINITY, |m, &a| m.min(a))
+    }
 }
 
 /// A time law mapped onto a curve: the curve parameter `u(t)` and its rate `du/dt` over
