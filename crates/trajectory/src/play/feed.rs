@@ -14,7 +14,8 @@
 //! division; `K(K+1) ≤ 2⁴¹`, `α·K(K+1) ≤ 2·ω_max²/α + … ≤ 3`, no overflow). Because the
 //! distance is exact, `K − 1` is always admissible when `K` was: the ramp never overshoots a
 //! target that stays put, and `|Δω| ≤ α` every tick. Within `snap = max(α, ε)` of the target
-//! at a rate of at most `snap`, `φ` lands on the target in one step (`ε` is the format's
+//! at a rate toward it of at most `snap` (not away from it: turning around first keeps
+//! `|Δω| ≤ snap`), `φ` lands on the target in one step (`ε` is the format's
 //! spacing at 1, the resolution of a float `φ` near 1; in `f32` slow ramps are quantized by
 //! it). That step's rate `ω` is the distance it moves, not a multiple of `α`, and the tick
 //! after it `ω` is 0: the rate reported with the samples (`φ̇` in their acceleration) falls
@@ -70,7 +71,7 @@ impl<N: Number> FeedRamp<N> {
         // Work in the direction of the target: distance ≥ 0, rate toward it (< 0: away).
         let toward = e > N::ZERO || (e == N::ZERO && self.k < 0);
         let (dist, kv) = if toward { (e, self.k) } else { (-e, -self.k) };
-        if dist <= limits.snap && alpha.mul_int(kv.abs()) <= limits.snap {
+        if kv >= 0 && dist <= limits.snap && alpha.mul_int(kv) <= limits.snap {
             self.land(self.target);
             return;
         }
@@ -219,6 +220,26 @@ mod tests {
         let ticks = run(&mut r, 0.01, 1e-4);
         assert_eq!(r.phi, Q40::ONE);
         assert!(ticks > 100);
+    }
+
+    /// A target set just behind `φ` while it moves away: the ramp turns around before it
+    /// lands, so the rate never jumps from `+α` to minus the distance (`|Δω|` up to `2α`).
+    fn target_just_behind<N: Number>() {
+        let mut r = FeedRamp::<N>::full();
+        r.phi = N::from_f64(0.25).unwrap();
+        r.target = N::ONE;
+        r.step(&limits::<N>(0.5, 0.125));
+        assert_eq!((r.phi.to_f64(), r.k), (0.375, 1));
+        r.target = N::from_f64(0.3125).unwrap();
+        run(&mut r, 0.5, 0.125);
+        assert_eq!(r.phi.to_f64(), 0.3125);
+    }
+
+    #[test]
+    fn a_target_just_behind_turns_around_before_landing() {
+        target_just_behind::<f32>();
+        target_just_behind::<f64>();
+        target_just_behind::<Q40>();
     }
 
     #[test]
