@@ -23,7 +23,8 @@
 //!   continuous time; a difference quotient is the mean over one tick (never above the
 //!   largest value). The feed factor changes once per tick, so the sampled velocity
 //!   `φ·p'(τ)/T` steps with `φ`; the quotient sees `φ̇` a tick early or late, within the
-//!   ramp's jerk: `j·T` ([`ramp_slack`]).
+//!   ramp's jerk: `j·T` ([`ramp_slack`]); per axis the same over the tightest axis limit.
+//! * Jerk: [`JERK_SLACK`], the rounding of the reported accelerations.
 //! * Same path: `tolerance + 2·playback_bound + 16·ε·max|x|` — the compile tolerance, the
 //!   forward-differencing error (doubled: after an override the loads are shifted by a
 //!   fraction of a tick, which rounds each state once more), and the rounding of Newton's

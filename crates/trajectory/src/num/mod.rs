@@ -226,7 +226,9 @@ pub trait Number:
     }
 
     /// A bound on the error of rounding a value of magnitude at most `magnitude` into this
-    /// format (storage, products): `½ε·magnitude` for floats, `2⁻⁴¹` for `Q40`.
+    /// format (storage, products): `½ε·magnitude` plus the smallest subnormal for floats
+    /// (below the normal range the spacing no longer shrinks with the value: a value under
+    /// half the smallest subnormal rounds to 0), `2⁻⁴¹` for `Q40`.
     fn rounding_error(magnitude: f64) -> f64;
 
     /// A bound on the rounding error of one addition whose result has magnitude at most
@@ -307,7 +309,7 @@ impl Number for f32 {
         v
     }
     fn rounding_error(magnitude: f64) -> f64 {
-        0.5 * f64::from(f32::EPSILON) * magnitude.abs()
+        0.5 * f64::from(f32::EPSILON) * magnitude.abs() + f64::from(f32::from_bits(1))
     }
     fn addition_error(magnitude: f64) -> f64 {
         Self::rounding_error(magnitude)
@@ -365,7 +367,7 @@ impl Number for f64 {
         v
     }
     fn rounding_error(magnitude: f64) -> f64 {
-        0.5 * f64::EPSILON * magnitude.abs()
+        0.5 * f64::EPSILON * magnitude.abs() + f64::from_bits(1)
     }
     fn addition_error(magnitude: f64) -> f64 {
         Self::rounding_error(magnitude)
@@ -517,8 +519,20 @@ mod tests {
         assert_eq!(<f32 as Number>::from_f64(1.0e39), None);
         assert_eq!(<f32 as Number>::from_f64(0.1), Some(0.1_f32));
         assert_eq!(<f64 as Number>::from_f64(-2.5), Some(-2.5));
-        assert_eq!(f32::rounding_error(2.0), f64::from(f32::EPSILON));
-        assert_eq!(<f64 as Number>::addition_error(1.0), f64::EPSILON / 2.0);
+        assert_eq!(
+            f32::rounding_error(2.0),
+            f64::from(f32::EPSILON) + f64::from(f32::from_bits(1))
+        );
+        assert_eq!(
+            <f64 as Number>::addition_error(1.0),
+            f64::EPSILON / 2.0 + f64::from_bits(1)
+        );
+        // below the normal range the error is absolute: 5.7e-49 rounds to 0 in f32
+        let tiny = 5.665_177_660_311_074e-49;
+        #[allow(clippy::cast_possible_truncation)]
+        let rounded = f64::from(tiny as f32);
+        assert!((rounded - tiny).abs() <= f32::rounding_error(tiny));
+        assert!((rounded - tiny).abs() > 0.5 * f64::from(f32::EPSILON) * tiny);
         assert_eq!(Q40::addition_error(1.0e6), 0.0);
     }
 
