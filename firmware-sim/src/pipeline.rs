@@ -11,9 +11,9 @@
 //!    and with the **feed share** `s` (`[compile] feed_share`, default ¼) reserved by the
 //!    planner ([`PlanOptions::with_feed_share`]: it plans with `(1 − s)·a`, `(1 − s)·j`,
 //!    `(1 − s)·aᵢ`); the velocity limits (path and per axis) are reduced by
-//!    [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler is given
-//!    `min(a, aᵢ)` and `j` as the limits of feed changes, so a feed ramp adds at most
-//!    `s·min(a, aᵢ)` (or what the plan left free) to the acceleration.
+//!    [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler is given `a`,
+//!    `j` and `aᵢ` as the limits of feed changes and checks that the plan left `s` of each
+//!    free, so a feed ramp adds to the path and to each axis only what the plan left free.
 //! 3. **Compile** ([`compile_into`]) into a [`Path`] of at most [`PIECES`] pieces, in the
 //!    playback format (`f64`, `f32`, [`Q40`]).
 //!
@@ -33,7 +33,7 @@
 
 use std::time::{Duration, Instant};
 
-use strak_curves::{ParamCurveDeriv, Scalar};
+use strak_curves::{MAX_DIM, ParamCurveDeriv, Scalar};
 use strak_trajectory::{
     Along, CompileOptions, Error as TrajError, Limits, Number, ParameterTiming, Path, PathTiming,
     PlanOptions, ProfileShape, Q40, Timing, compile_into,
@@ -92,17 +92,21 @@ pub fn planning_limits<const D: usize>(job: &Job) -> Result<Limits<D>, JobError>
         .map_err(bad("limits.axis_acceleration"))
 }
 
-/// The compiler settings of the job: `[compile]`, and the feed-change limits `min(a, aᵢ)`, `j`.
+/// The compiler settings of the job: `[compile]`, and the machine's limits for feed
+/// changes (`a`, `j`, `aᵢ`).
 pub fn compile_options(job: &Job) -> CompileOptions {
     let l = &job.limits;
-    let a_feed = l
-        .axis_acceleration
-        .iter()
-        .flatten()
-        .fold(l.acceleration, |m, a| m.min(*a));
+    let mut axis_acceleration = [f64::INFINITY; MAX_DIM];
+    for (o, a) in axis_acceleration
+        .iter_mut()
+        .zip(l.axis_acceleration.iter().flatten())
+    {
+        *o = *a;
+    }
     let mut o = CompileOptions::new()
         .with_feed_share(job.feed_share())
-        .with_limits(a_feed, l.jerk);
+        .with_limits(l.acceleration, l.jerk)
+        .with_axis_acceleration(axis_acceleration);
     if let Some(t) = job.compile.tolerance {
         o = o.with_tolerance(t);
     }
@@ -502,6 +506,11 @@ kind = "s-curve"
         assert_eq!(l.axis_acceleration(), [800.0, f64::INFINITY]);
         let plan = plan_options(&job);
         assert_eq!((plan.feed_share(), plan.rate()), (0.25, job.rate_hz));
-        assert_eq!(compile_options(&job).limits(), Some((800.0, 10000.0)));
+        let compile = compile_options(&job);
+        assert_eq!(compile.limits(), Some((1000.0, 10000.0)));
+        assert_eq!(
+            compile.axis_acceleration()[..3],
+            [800.0, f64::INFINITY, f64::INFINITY]
+        );
     }
 }

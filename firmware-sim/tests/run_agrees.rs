@@ -146,10 +146,10 @@ where
     // boxed and filled in place, as strak-sim does (on the test's default thread stack)
     let mut timing = boxed_plan::<_, TABLE, ZONES>(curve);
     timing.plan_into(&plan_limits, &plan).unwrap();
-    let a_feed = axis_a.iter().fold(limits[1], |m, a| m.min(*a));
     let options = CompileOptions::new()
         .with_feed_share(feed_share)
-        .with_limits(a_feed, limits[2]);
+        .with_limits(limits[1], limits[2])
+        .with_axis_acceleration(axis_a);
     let mut path = boxed_path::<N, A>();
     compile_into(&Along::new(curve, &*timing), rate, &options, &mut path).unwrap();
     let mut sampler = Sampler::new(&*path);

@@ -16,10 +16,11 @@
 //! * at feed 1 every sample is within the path's tolerance and playback bound of the exact
 //!   `c(u(t))` at its tick (the time law stretched onto whole ticks);
 //! * for the planned laws the limits hold in the samples ([`check::check_limits`] with
-//!   [`Allowance`]): at feed 1 the planned limits; with feed events only when the plan
-//!   reserved the feed share (`(1 − share)` of the acceleration and jerk limits), and then
-//!   the machine's: the case's limits, or the compile's where those are higher (the feed
-//!   ramp may use them, per axis too: [`CompileOptions`] knows only the path's limits).
+//!   [`Allowance`]): at feed 1 the planned limits; with feed events the machine's: the
+//!   case's limits, or the compile's where those are higher (the feed ramp may use them;
+//!   per axis the compile's path limit for an axis it gives no limit of its own). A compile
+//!   whose plan left less than its feed share free fails
+//!   ([`Error::FeedReserveExceeded`]), whether or not the plan reserved the share.
 
 use strak_curves::{
     BSpline, Bezier, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization, Point,
@@ -156,11 +157,11 @@ fn plan_options(b: &mut Bytes<'_>) -> PlanOptions {
     o
 }
 
-fn compile_options(
+fn compile_options<const A: usize>(
     b: &mut Bytes<'_>,
     size: f64,
     limits: (f64, f64, f64),
-    ramp_acceleration: f64,
+    axis_acceleration: Option<[f64; A]>,
 ) -> CompileOptions {
     let mut o = CompileOptions::new();
     // Mostly the tolerances of machining (10⁻⁹ to 10⁻³ of the size), now and then coarse.
@@ -177,8 +178,10 @@ fn compile_options(
         o = o.with_feed_share(if b.one_in(8) { b.raw() } else { b.unit() });
     }
     match b.choice(3) {
-        // The machine's limits as `PathTiming::compile_options` gives them.
-        0 => o.with_limits(ramp_acceleration, limits.2),
+        // The machine's limits, as `CompileOptions::with_path_limits` gives them.
+        0 => o
+            .with_limits(limits.1, limits.2)
+            .with_axis_acceleration(axis_acceleration.unwrap_or([f64::INFINITY; A])),
         1 => o.with_limits(b.positive(-3, 6), b.positive(-3, 9)),
         _ => o,
     }
@@ -234,11 +237,7 @@ fn decode<const A: usize>(b: &mut Bytes<'_>) -> Case<A> {
     let axis_velocity = axis(b, limits.0);
     let axis_acceleration = axis(b, limits.1);
     let plan = plan_options(b);
-    let ramp = axis_acceleration
-        .iter()
-        .flatten()
-        .fold(limits.1, |m, &x| if x > 0.0 { m.min(x) } else { m });
-    let compile = compile_options(b, size, limits, ramp);
+    let compile = compile_options(b, size, limits, axis_acceleration);
     let rate = match b.choice(6) {
         0 => 1_000.0,
         1 => 10_000.0,
@@ -391,19 +390,20 @@ fn pipeline<N: Kernel, const A: usize>(
         .iter()
         .map(|(at, e)| ((at * ticks) as u64, *e))
         .collect();
-    // With feed events the limits are promised only when the plan reserved the feed share,
-    // and then the machine's: the feed ramp may use the compile's limits where they are
-    // higher than the case's (per axis too: the compile knows only the path's limits).
+    // With feed events the machine's limits hold: the case's, or the compile's where those
+    // are higher (the feed ramp may use them; per axis the compile's path limit where it
+    // gives none for the axis).
     if !events.is_empty()
         && let Some((a, j)) = case.compile.limits()
     {
         bounds.acceleration = bounds.acceleration.max(a);
         bounds.jerk = bounds.jerk.map(|b| b.max(j));
-        for b in &mut bounds.axis_acceleration {
-            *b = b.max(a);
+        let given = case.compile.axis_acceleration();
+        for (b, g) in bounds.axis_acceleration.iter_mut().zip(given) {
+            *b = b.max(if g.is_finite() { g } else { a });
         }
     }
-    let bounds = (limited && (events.is_empty() || case.reserve)).then_some(&bounds);
+    let bounds = limited.then_some(&bounds);
     check_compiled(curve, &*timing, &path, &events, bounds, rest_to_rest)
 }
 

@@ -348,3 +348,22 @@ where
     }
     out
 }
+
+/// A time law that forwards another's duration, parameter and breaks, but neither the
+/// limits it promises nor its feed reserve: the compiler then keeps its duration (it slows
+/// a law with limits down where the fitted pieces would exceed them) and takes the feed
+/// share of the given limits without checking the plan.
+#[derive(Debug)]
+pub struct Unpromised<'a, T>(pub &'a T);
+
+impl<T: strak_trajectory::Timing> strak_trajectory::Timing for Unpromised<'_, T> {
+    fn duration(&self) -> f64 {
+        self.0.duration()
+    }
+    fn param(&self, t: f64) -> (f64, f64) {
+        self.0.param(t)
+    }
+    fn breaks(&self, out: &mut dyn FnMut(f64)) {
+        self.0.breaks(out);
+    }
+}

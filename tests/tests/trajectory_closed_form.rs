@@ -28,7 +28,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::Bezier;
-use strak_tests::compile_boxed;
+use strak_tests::{Unpromised, compile_boxed};
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Timing,
@@ -108,28 +108,12 @@ fn length(p: [f64; 3], q: [f64; 3]) -> f64 {
     (0..3).map(|i| (q[i] - p[i]).powi(2)).sum::<f64>().sqrt()
 }
 
-/// A time law without the limits it promises: the compiler then keeps its duration (it
-/// slows a law with limits down where the fitted pieces would exceed them).
-struct Unlimited<'a, T>(&'a T);
-
-impl<T: Timing> Timing for Unlimited<'_, T> {
-    fn duration(&self) -> f64 {
-        self.0.duration()
-    }
-    fn param(&self, t: f64) -> (f64, f64) {
-        self.0.param(t)
-    }
-    fn breaks(&self, out: &mut dyn FnMut(f64)) {
-        self.0.breaks(out);
-    }
-}
-
 /// Checks a compiled path's tick count against the plan's duration at `rate`.
 fn check_ticks<T: Timing>(curve: &Bezier<[f64; 3], 4>, timing: &T, rate: f64) -> f64 {
     // long pieces: only the tick count matters here (65 s at 100 kHz)
     let options = CompileOptions::new().with_max_piece_ticks(1 << 20);
     let path: Box<Path<f64, 3, 4096>> =
-        compile_boxed(&Along::new(curve, &Unlimited(timing)), rate, &options).expect("compile");
+        compile_boxed(&Along::new(curve, &Unpromised(timing)), rate, &options).expect("compile");
     let d = timing.duration();
     let compiled = f64::from(path.ticks()) / rate;
     assert_eq!(path.plan_duration(), d);

@@ -13,8 +13,8 @@ use strak_curves::{
     BSpline, BezierChain, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization,
     SplineBoundary,
 };
-use strak_tests::{check_playback, compile_boxed};
-use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler, Timing};
+use strak_tests::{Unpromised, check_playback, compile_boxed};
+use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler};
 
 /// Control rate (Hz).
 const RATE: f64 = 10_000.0;
@@ -35,32 +35,18 @@ fn limits() -> Limits<3> {
     Limits::<3>::new(120.0, 1_500.0, 40_000.0).expect("limits")
 }
 
-/// The plan without the limits it promises. The S-curve's jerk bound assumes a
-/// curvature-continuous path; at the C¹ joins of the Hermite spline, the Bézier chain and
-/// the quadratic NURBS the acceleration steps by `v²·Δκ`, which a tight fit resolves into
-/// many times the jerk limit, and `compile` would report `Error::LimitExceeded` (the limits
-/// are checked in `trajectory_limits_matrix.rs`). Positions are checked here.
-struct PositionsOnly<'a, T>(&'a T);
-
-impl<T: Timing> Timing for PositionsOnly<'_, T> {
-    fn duration(&self) -> f64 {
-        self.0.duration()
-    }
-    fn param(&self, t: f64) -> (f64, f64) {
-        self.0.param(t)
-    }
-    fn breaks(&self, out: &mut dyn FnMut(f64)) {
-        self.0.breaks(out);
-    }
-}
-
 /// Plans, compiles in `f64` and `f32`, plays both and checks them.
 fn plan_compile_play<C>(name: &str, curve: &C)
 where
     C: ParamCurveDeriv<Point = [f64; 3]>,
 {
     let scurve = PathTiming::<_, 256, 128>::scurve(curve, &limits()).expect("plan");
-    let plan = PositionsOnly(&scurve);
+    // The plan without the limits it promises. The S-curve's jerk bound assumes a
+    // curvature-continuous path; at the C¹ joins of the Hermite spline, the Bézier chain and
+    // the quadratic NURBS the acceleration steps by `v²·Δκ`, which a tight fit resolves into
+    // many times the jerk limit, and `compile` would report `Error::LimitExceeded` (the limits
+    // are checked in `trajectory_limits_matrix.rs`). Positions are checked here.
+    let plan = Unpromised(&scurve);
     let options = CompileOptions::new().with_tolerance(1e-6);
     let p64: Box<Path<f64, 3, PIECES>> =
         compile_boxed(&Along::new(curve, &plan), RATE, &options).expect("compile f64");

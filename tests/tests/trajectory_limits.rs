@@ -493,14 +493,11 @@ where
     }
     let path: Box<Path<f64, A, PIECES>> =
         compile_boxed(&Along::new(curve, timing), RATE, &options).expect("compile");
-    // a feed ramp's acceleration: the smallest of the path and axis limits
-    let ramp = m
-        .full
-        .axis_acceleration()
-        .into_iter()
-        .fold(m.full.acceleration(), f64::min);
-    assert_eq!(path.acceleration_limit(), ramp);
-    assert_eq!(path.jerk_limit(), m.full.jerk());
+    // what a feed ramp may add: positive, and at most the machine's limits
+    let ramp = path.acceleration_limit() - path.peak_acceleration();
+    let ramp_jerk = path.jerk_limit() - path.peak_jerk();
+    assert!(ramp > 0.0 && ramp <= m.full.acceleration(), "{ramp}");
+    assert!(ramp_jerk > 0.0 && ramp_jerk <= m.full.jerk(), "{ramp_jerk}");
     let dv = velocity_allowance(&path);
     let min_axis = m
         .planned

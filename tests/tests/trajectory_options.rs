@@ -33,9 +33,10 @@
 //!   for it (the test would catch it).
 
 use strak_curves::{BSpline, Bezier, ParamCurveDeriv, Scalar};
-use strak_tests::{compile_boxed, compile_plan_boxed};
+use strak_tests::{Unpromised, compile_boxed, compile_plan_boxed};
 use strak_trajectory::{
-    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Sampler, Timing,
+    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Quantity, Sampler,
+    Timing,
 };
 
 /// Relative `f64` rounding of the difference quotients.
@@ -383,18 +384,35 @@ fn feed_override_hold_and_resume_keep_the_limits() {
     reserve_keeps_the_limits::<strak_trajectory::Q40>();
 }
 
-/// The measurement catches a plan that does not leave the compiled path's feed share free:
-/// planned with a share of 0.1 % but compiled for the default ¼, a hold breaks the limits.
+/// A plan that leaves 0.1 % free cannot be compiled for the default share of ¼ (the plan's
+/// own compile takes its share); and the measurement catches such a path where the law
+/// hides its plan: a hold breaks the limits.
 #[test]
-fn a_plan_without_the_reserve_is_caught() {
+fn a_plan_without_the_reserve_is_rejected_and_caught() {
     let m3 = Limits::<3>::new(200.0, 2_000.0, 50_000.0).expect("limits");
     let line = Bezier::new([[0.0, 0.0, 0.0], [100.0, 50.0, 20.0]]).expect("line");
     let o = PlanOptions::new().with_feed_share(1e-3);
     let plan: Plan<'_, _> = PathTiming::plan(&line, &m3, &o).expect("plan");
     let options = CompileOptions::new().with_path_limits(&m3);
+    let r: Result<Box<Path<f64, 3, PIECES>>, _> = compile_boxed(&plan, plan.rate(), &options);
+    assert_eq!(
+        r.err(),
+        Some(Error::FeedReserveExceeded {
+            quantity: Quantity::Acceleration
+        })
+    );
+    let own: Box<Path<f64, 3, PIECES>> =
+        compile_plan_boxed(&plan, &CompileOptions::new()).expect("compile");
+    assert_eq!(own.feed_share(), 1e-3);
+    let r = feed_changes("line planned at the full limits", &own, &m3);
+    assert!(
+        r.acceleration <= 1.0 + ROUNDING && r.jerk <= 1.0 + ROUNDING,
+        "{r:?}"
+    );
+    let hidden = Unpromised(&plan);
     let path: Box<Path<f64, 3, PIECES>> =
-        compile_boxed(&plan, plan.rate(), &options).expect("compile");
-    let r = feed_changes("line planned at the full limits", &path, &m3);
+        compile_boxed(&Along::new(&line, &hidden), plan.rate(), &options).expect("compile");
+    let r = feed_changes("line planned at the full limits, hidden", &path, &m3);
     assert!(r.acceleration > 1.01 || r.jerk > 1.01, "{r:?}");
 }
 

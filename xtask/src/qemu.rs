@@ -405,6 +405,11 @@ fn compile_src(r: &DeviceRecipe) -> String {
     if let Some((a, j)) = c.limits() {
         compile += &format!(".with_limits({}, {})", f64_src(a), f64_src(j));
     }
+    let axes = c.axis_acceleration();
+    if axes.iter().any(|a| a.is_finite()) {
+        let list: Vec<String> = axes.iter().map(|&a| f64_src(a)).collect();
+        compile += &format!(".with_axis_acceleration([{}])", list.join(", "));
+    }
     compile += &format!(".with_feed_share({})", f64_src(c.feed_share()));
     compile
 }

@@ -79,6 +79,14 @@ pub enum Error {
         /// The quantity whose limit the compiled motion exceeds.
         quantity: Quantity,
     },
+    /// The motion uses more of a limit given for feed changes than `1 − share`
+    /// ([`CompileOptions`](crate::CompileOptions)): the plan did not leave the feed share
+    /// free, so a feed override, hold or resume could take it beyond the limit. Plan with
+    /// the same feed share (or a larger one) and limits, or compile with a smaller share.
+    FeedReserveExceeded {
+        /// The quantity whose limit the motion leaves too little of.
+        quantity: Quantity,
+    },
     /// The error that playback in the path's number format may add
     /// ([`PathHeader::playback_bound`](crate::PathHeader::playback_bound): rounding of the
     /// stored states, propagated over a piece) exceeds the position tolerance the path was
@@ -239,6 +247,11 @@ impl fmt::Display for Error {
             Error::LimitExceeded { quantity } => write!(
                 f,
                 "the compiled path would exceed the time law's {quantity} limit even slowed down"
+            ),
+            Error::FeedReserveExceeded { quantity } => write!(
+                f,
+                "the motion uses more than 1 − feed share of the {quantity} limit: the plan left \
+                 too little for feed changes (plan with the compile's feed share and limits)"
             ),
             Error::PlaybackBoundExceeded { bound, tolerance } => write!(
                 f,

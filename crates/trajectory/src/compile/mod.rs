@@ -17,10 +17,10 @@ use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 use crate::error::{Error, Quantity, Units};
 use crate::num::Number;
 use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta, RATE_RANGE};
-use crate::plan::{Timing, Trajectory};
+use crate::plan::{FeedReserve, MotionLimits, Timing, Trajectory};
 use knots::{Knots, PieceKnots};
 use law::TickLaw;
-use peaks::Peaks;
+use peaks::{LIMIT_SLACK, Peaks};
 use spline_fit::SplineFit;
 
 /// The largest share of the law's jerk limit that the rounding of the positions (in the
@@ -112,7 +112,8 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// `P`, only small fixed frames of stack.
 ///
 /// # Errors
-/// * [`Error::InvalidLimit`]: bad [`CompileOptions`];
+/// * [`Error::InvalidLimit`]: bad [`CompileOptions`] (or a bad
+///   [`FeedReserve`](crate::FeedReserve) of the law, used without limits in the options);
 /// * [`Error::InvalidRate`]: `rate_hz` outside 100 Hz ..= 100 kHz (or NaN);
 /// * [`Error::AxisMismatch`]: `A` differs from the curve's point dimension;
 /// * [`Error::EmptyPath`]: the time law's duration is zero, negative or NaN;
@@ -122,6 +123,8 @@ const SLOWDOWN_MARGIN: f64 = 1e-3;
 /// * [`Error::OutOfRange`]: a value does not fit the number format (fixed-point range);
 /// * [`Error::LimitExceeded`]: the compiled pieces exceed a limit of the time law by more
 ///   than [`CompileOptions::max_slowdown`] allows;
+/// * [`Error::FeedReserveExceeded`]: the motion uses more than `1 − share` of a limit
+///   given for feed changes that its law promises (see [`CompileOptions`]);
 /// * [`Error::PlaybackBoundExceeded`]: the error playback in `N` may add
 ///   ([`playback_bound`](crate::PathHeader::playback_bound)) exceeds the tolerance (`f32`
 ///   far from the origin);
@@ -223,8 +226,6 @@ where
     check_inputs::<A, M::Curve, M::Law>(timing, rate_hz, options)?;
     let period = 1.0 / rate_hz;
     let limits = timing.limits();
-    // The tightest acceleration the law promises for one of the path's axes (∞: none).
-    let axis_acceleration = limits.map_or(f64::INFINITY, |l| l.tightest_axis_acceleration(A));
     let mut fit = SplineFit::<A, _>::empty(PieceKnots(&mut path.pieces));
     let (mut stretch, mut min_ticks) = (1.0_f64, 0_u32);
     let (mut exceeded, mut margin) = (Quantity::Velocity, SLOWDOWN_MARGIN);
@@ -241,10 +242,12 @@ where
             let duration = law.duration();
             let described = LawPeaks {
                 peaks,
-                tangential,
-                axis_acceleration,
+                promised: limits.as_ref(),
+                axes: A,
             };
-            path.header.meta = path_meta(&described, rate_hz, duration, tolerance, options);
+            let reserve = || timing.feed_reserve();
+            path.header.meta =
+                path_meta(&described, &reserve, rate_hz, duration, tolerance, options)?;
             end_into::<N, _, _, A, _>(curve, &law, &fit, &mut path.header.end)?;
             write_states(fit, period)?;
             path.seal()?;
@@ -472,63 +475,154 @@ fn write_states<N: Number, const A: usize, const P: usize>(
     })
 }
 
-/// What the compiled path's feed limits are derived from: its peaks, whether its law
-/// limits only the tangential acceleration, and the tightest acceleration the law promises
-/// for an axis (`∞`: none).
-struct LawPeaks {
+/// What the compiled path's feed limits are derived from: its peaks, the limits its law
+/// promises, and its number of axes.
+struct LawPeaks<'a> {
     peaks: Peaks,
-    tangential: bool,
-    axis_acceleration: f64,
+    promised: Option<&'a MotionLimits>,
+    axes: usize,
 }
 
-/// The path's description: its peaks, and the limits of feed changes (given, or derived
-/// from the peaks; see [`CompileOptions`]). For a law that limits only the `tangential`
-/// acceleration (its centripetal part is not limited, so it says nothing of the machine's
-/// limit), the acceleration limit is derived from the tangential peak: a feed ramp adds
-/// only tangential acceleration. A derived limit is at most the tightest axis's
-/// `aᵢ/(1 − share)`: the ramp adds `φ̇·ẋᵢ` to each axis, which is at most `φ̇·|ẋ|`.
+impl LawPeaks<'_> {
+    /// Whether the law limits only the tangential acceleration (its centripetal part is
+    /// not limited, so it says nothing of the machine's limit).
+    fn tangential(&self) -> bool {
+        self.promised
+            .is_some_and(|l| l.tangential_acceleration.is_finite())
+    }
+
+    /// The acceleration a feed ramp adds to: the tangential peak for a law that limits only
+    /// that (a ramp adds only tangential acceleration), else the peak of `|ẍ|`.
+    fn acceleration_used(&self) -> f64 {
+        if self.tangential() {
+            self.peaks.tangential.min(self.peaks.acceleration)
+        } else {
+            self.peaks.acceleration
+        }
+    }
+}
+
+/// The path's description: its peaks, and the limits of feed changes (the peaks plus what
+/// a ramp may add, [`ramp_budget`], from the given limits or those derived from the peaks;
+/// see [`CompileOptions`]).
+///
+/// Without limits in `options`, the limits and share of the law's reserve are used.
+/// Not inlined: its frame (the completed options) lives only after the fit, not through it.
+///
+/// # Errors
+/// [`Error::FeedReserveExceeded`] when the motion uses more than `1 − share` of a given
+/// limit its law promises; [`Error::InvalidLimit`] for a reserve that is not valid
+/// compile options.
+#[inline(never)]
 fn path_meta(
-    law: &LawPeaks,
+    law: &LawPeaks<'_>,
+    reserve: &dyn Fn() -> Option<FeedReserve>,
     rate_hz: f64,
     duration: f64,
     tolerance: f64,
     options: &CompileOptions,
-) -> PathMeta {
+) -> Result<PathMeta, Error> {
+    let options = &options.completed_by(reserve());
+    // A law's own reserve is checked like the options.
+    options.validate()?;
     let share = options.feed_share();
     let peaks = &law.peaks;
-    let (v_peak, a_peak, j_peak) = (peaks.velocity_bound, peaks.acceleration, peaks.jerk);
-    let a_used = if law.tangential {
-        peaks.tangential.min(a_peak)
-    } else {
-        a_peak
+    let (a_free, j_free) = match options.limits() {
+        Some((a, j)) => ramp_budget(law, options, a, j)?,
+        None => derived_budget(law, share),
     };
-    let (acceleration_limit, jerk_limit) = options.limits().unwrap_or_else(|| {
-        let a = if a_used > 0.0 {
-            a_used / (1.0 - share)
-        } else if v_peak > 0.0 {
-            v_peak / 0.1
-        } else {
-            1.0
-        };
-        let a = a.min(law.axis_acceleration / (1.0 - share));
-        let j = if j_peak > 0.0 {
-            j_peak / (1.0 - share)
-        } else {
-            a / 0.1
-        };
-        (a, j)
-    });
-    PathMeta {
+    let acceleration_limit = peaks.acceleration + a_free;
+    let jerk_limit = peaks.jerk + j_free;
+    // The ramps take `max(limit − peak, share·limit)`: a share no larger than what is free
+    // leaves them `limit − peak`.
+    let feed_share = share
+        .min(a_free / acceleration_limit)
+        .min(j_free / jerk_limit);
+    Ok(PathMeta {
         rate: rate_hz,
         plan_duration: duration,
         tolerance,
-        peak_velocity: v_peak,
-        peak_acceleration: a_peak,
-        peak_jerk: j_peak,
+        peak_velocity: peaks.velocity_bound,
+        peak_acceleration: peaks.acceleration,
+        peak_jerk: peaks.jerk,
         acceleration_limit,
         jerk_limit,
-        feed_share: share,
+        feed_share,
+    })
+}
+
+/// What a feed ramp may add to the acceleration and to the jerk under the given path
+/// limits `a`, `j` and the options' per-axis accelerations `aᵢ`: `a − a_peak`, and
+/// `(aᵢ − aᵢ,peak)·v_peak/vᵢ,peak` for each axis (a ramp that adds `A` to `|ẍ|` adds
+/// `A·|ẋᵢ|/v_peak` to axis `i`), and `j − j_peak`; each at least `share` of its limit.
+///
+/// # Errors
+/// [`Error::FeedReserveExceeded`] when a peak exceeds `1 − share` of a limit the law
+/// promises: the floor `share·limit` would then take the motion beyond it.
+fn ramp_budget(
+    law: &LawPeaks<'_>,
+    options: &CompileOptions,
+    a: f64,
+    j: f64,
+) -> Result<(f64, f64), Error> {
+    let share = options.feed_share();
+    // Twice the peaks' slack: the law's promise is itself a rounded `(1 − share)·limit`.
+    let keep = (1.0 - share) * (1.0 + 2.0 * LIMIT_SLACK);
+    let none = MotionLimits::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let promised = law.promised.unwrap_or(&none);
+    let free = |quantity, peak: f64, limit: f64, promises: bool| {
+        if promises && peak > keep * limit {
+            Err(Error::FeedReserveExceeded { quantity })
+        } else {
+            Ok((limit - peak).max(share * limit))
+        }
+    };
+    let peaks = &law.peaks;
+    let (quantity, promises_a) = if law.tangential() {
+        (Quantity::TangentialAcceleration, true)
+    } else {
+        (Quantity::Acceleration, promised.acceleration.is_finite())
+    };
+    let mut a_free = free(quantity, law.acceleration_used(), a, promises_a)?;
+    let axes = options.axis_acceleration().into_iter().enumerate();
+    for (axis, limit) in axes.take(law.axes).filter(|(_, l)| l.is_finite()) {
+        let (v, peak) = (peaks.axis_velocity[axis], peaks.axis_acceleration[axis]);
+        let promises = promised.axis_acceleration[axis].is_finite();
+        let quantity = Quantity::AxisAcceleration { axis };
+        let axis_free = free(quantity, peak, limit, promises)?;
+        if v > 0.0 {
+            a_free = a_free.min(axis_free * peaks.velocity_bound / v);
+        }
     }
+    let j_free = free(Quantity::Jerk, peaks.jerk, j, promised.jerk.is_finite())?;
+    Ok((a_free, j_free))
+}
+
+/// What a feed ramp may add when no limits are given: `share` of the limits the plan is
+/// assumed to have used `1 − share` of (see [`CompileOptions`]).
+fn derived_budget(law: &LawPeaks<'_>, share: f64) -> (f64, f64) {
+    let peaks = &law.peaks;
+    let (v_peak, a_used, j_peak) = (peaks.velocity_bound, law.acceleration_used(), peaks.jerk);
+    let a = if a_used > 0.0 {
+        a_used / (1.0 - share)
+    } else if v_peak > 0.0 {
+        v_peak / 0.1
+    } else {
+        1.0
+    };
+    let axis_acceleration = law
+        .promised
+        .map_or(f64::INFINITY, |l| l.tightest_axis_acceleration(law.axes));
+    let a = a.min(axis_acceleration / (1.0 - share));
+    let j = if j_peak > 0.0 {
+        j_peak / (1.0 - share)
+    } else {
+        a / 0.1
+    };
+    (
+        (a - peaks.acceleration).max(share * a),
+        (j - j_peak).max(share * j),
+    )
 }
 
 /// The state rounded into `N` ([`Error::OutOfRange`] if a value does not fit).
@@ -939,9 +1033,10 @@ mod tests {
             "{}",
             path.peak_acceleration()
         );
-        // the plan is assumed to have used 3/4 of the machine's tangential limit
-        let limit = path.acceleration_limit();
-        assert!(limit > 12.5 && limit <= 10.0 / 0.75 * 1.001, "{limit}");
+        // the plan is assumed to have used 3/4 of the machine's tangential limit: a ramp
+        // may add the remaining quarter, 10/3, to the tangential acceleration
+        let ramp = path.acceleration_limit() - path.peak_acceleration();
+        assert!(ramp > 2.5 && ramp <= 10.0 / 3.0 * 1.001, "{ramp}");
     }
 
     /// Forwards a time law with or without its breaks and its limits.

@@ -1,7 +1,9 @@
 //! The settings of [`compile`](crate::compile): tolerance, piece length, limits of feed changes.
 
+use strak_curves::MAX_DIM;
+
 use crate::error::Error;
-use crate::plan::Limits;
+use crate::plan::{FeedReserve, Limits};
 
 /// How far the compiled positions may be from the exact `x(t) = c(u(t))` at every tick.
 ///
@@ -28,24 +30,30 @@ pub enum Tolerance {
 /// * the largest slow-down (default 1.25): the factor by which [`compile`](crate::compile)
 ///   may stretch a time law's duration so that the compiled pieces keep the limits the law
 ///   promises ([`Timing::limits`](crate::Timing::limits)); 1 allows none;
-/// * the acceleration and jerk limits of the machine (norms along the path, as in
-///   [`Limits`]) and the share of them reserved for feed changes (default ¼): feed override,
-///   hold and resume ramp the feed factor `φ` with `|φ̇|·v_peak ≤ a_ramp` and
-///   `|φ̈|·v_peak ≤ j_ramp`, where `a_ramp = max(a_max − a_peak, share·a_max)` (likewise for
-///   jerk) and `a_peak`, `v_peak` are the compiled path's own peaks. If the plan used at
-///   most `(1 − share)·a_max`, the acceleration `φ²·a + φ̇·v` stays within `a_max` during
-///   feed changes. Without limits, the compiler assumes the plan used exactly
-///   `(1 − share)` of them: `a_max = a_peak/(1 − share)`, `j_max = j_peak/(1 − share)`,
-///   where for a law that limits only the tangential acceleration (such as
+/// * the machine's limits for feed changes (path acceleration and jerk, per-axis
+///   accelerations, as in [`Limits`]) and the share of them the plan must have left free
+///   (default ¼). Feed override, hold and resume ramp the feed factor `φ`, which adds
+///   `φ̇·|ẋ|` to the acceleration (`φ̇·|ẋᵢ|` to axis `i`) and `3·φ̇·a_peak + φ̈·v_peak` to
+///   the jerk (see [`Sampler::set_feed`](crate::Sampler::set_feed)); the ramps take what the
+///   compiled motion leaves free, `a_ramp = min(a − a_peak, minᵢ (aᵢ − aᵢ,peak)·v_peak/vᵢ,peak)`
+///   and `j_ramp = j − j_peak` (`peak`: the compiled pieces' own peaks), so that the
+///   samples stay within the limits during feed changes. For a law that promises limits
+///   ([`Timing::limits`](crate::Timing::limits)), `compile` checks that its peaks use at
+///   most `1 − share` of each given limit it promises (path or tangential acceleration,
+///   jerk, axis accelerations), and fails with
+///   [`Error::FeedReserveExceeded`](crate::Error::FeedReserveExceeded) otherwise: a plan
+///   that left less than the share free cannot exceed a limit through a feed change. For a
+///   law that promises none (a parameter rate, a constant speed: its own motion is not
+///   limited), each free part is at least `share` of its limit.
+/// * Without limits, a planned law's reserve ([`Timing::feed_reserve`](crate::Timing::feed_reserve):
+///   the machine's limits and the plan's share, which replaces this one) is used. For a
+///   law without a reserve the compiler assumes the plan used exactly `(1 − share)` of the
+///   limits: `a_max = a_peak/(1 − share)`, `j_max = j_peak/(1 − share)`, where for a law that
+///   limits only the tangential acceleration (such as
 ///   [`PathTiming::trapezoid`](crate::PathTiming::trapezoid)) `a_peak` is the tangential
 ///   peak (for a path without acceleration or jerk: `a_max = v_peak / 0.1 s`,
 ///   `j_max = a_max / 0.1 s`), and `a_max` is at most `aᵢ/(1 − share)` for the
-///   acceleration `aᵢ` the law promises for each axis ([`Timing::limits`](crate::Timing::limits)).
-///   The ramp bounds the path's acceleration, not each axis's (it adds `φ̇·ẋᵢ ≤ φ̇·|ẋ|` to
-///   axis `i`): with per-axis acceleration limits `aᵢ`, the machine's acceleration must be
-///   `min(a, aᵢ)`, as [`with_path_limits`](Self::with_path_limits) and
-///   [`PathTiming::compile_options`](crate::PathTiming::compile_options) give it, so that
-///   no axis gets more than its own share.
+///   acceleration `aᵢ` the law promises for each axis.
 ///
 /// ```
 /// use strak_trajectory::{CompileOptions, Limits, Tolerance};
@@ -56,6 +64,7 @@ pub enum Tolerance {
 ///     .with_path_limits(&limits);
 /// assert_eq!(o.max_piece_ticks(), 128);
 /// assert_eq!(o.limits(), Some((2_000.0, 50_000.0)));
+/// assert!(o.axis_acceleration().iter().all(|a| a.is_infinite()));
 /// assert_eq!(CompileOptions::default().tolerance(), Tolerance::Relative(1e-4));
 /// # Ok::<(), strak_trajectory::Error>(())
 /// ```
@@ -65,6 +74,7 @@ pub struct CompileOptions {
     tolerance: Tolerance,
     max_piece_ticks: u32,
     limits: Option<(f64, f64)>,
+    axis_acceleration: [f64; MAX_DIM],
     feed_share: f64,
     max_slowdown: f64,
 }
@@ -91,6 +101,7 @@ impl CompileOptions {
             tolerance: Tolerance::Relative(Self::DEFAULT_RELATIVE_TOLERANCE),
             max_piece_ticks: Self::DEFAULT_MAX_PIECE_TICKS,
             limits: None,
+            axis_acceleration: [f64::INFINITY; MAX_DIM],
             feed_share: Self::DEFAULT_FEED_SHARE,
             max_slowdown: Self::DEFAULT_MAX_SLOWDOWN,
         }
@@ -121,21 +132,74 @@ impl CompileOptions {
         self
     }
 
-    /// The limits of a feed ramp on a machine with `limits`: the smallest of its path and
-    /// per-axis acceleration limits, `min(a, aᵢ)`, and its jerk. A ramp changes the speed
-    /// along the tangent, so it adds `φ̇·ẋᵢ ≤ φ̇·|ẋ|` to axis `i`: with the path's `a` alone,
-    /// an axis with a tighter `aᵢ` would exceed it during a feed change.
+    /// The per-axis acceleration limits (units/s²; > 0, `f64::INFINITY` for an axis without
+    /// a limit of its own; checked by `compile`) for feed changes: a ramp adds `φ̇·|ẋᵢ|` to
+    /// axis `i`. Entries beyond [`MAX_DIM`] are ignored.
+    ///
+    /// ```
+    /// use strak_trajectory::CompileOptions;
+    /// let o = CompileOptions::new().with_axis_acceleration([1_500.0, 1_500.0, 300.0]);
+    /// assert_eq!(o.axis_acceleration()[2], 300.0);
+    /// assert!(o.axis_acceleration()[3].is_infinite());
+    /// ```
+    pub const fn with_axis_acceleration<const A: usize>(mut self, limits: [f64; A]) -> Self {
+        // A `while` loop: this builder also runs in `const` and `static` initializers.
+        let mut i = 0;
+        while i < A && i < MAX_DIM {
+            self.axis_acceleration[i] = limits[i];
+            i += 1;
+        }
+        self
+    }
+
+    /// The limits of a machine with `limits` for feed changes: its path acceleration and
+    /// jerk ([`with_limits`](Self::with_limits)) and its per-axis accelerations
+    /// ([`with_axis_acceleration`](Self::with_axis_acceleration)).
     ///
     /// ```
     /// use strak_trajectory::{CompileOptions, Limits};
     /// let limits = Limits::<3>::new(200.0, 2_000.0, 50_000.0)?
     ///     .with_axis_acceleration([1_500.0, 1_500.0, 1_000.0])?;
     /// let o = CompileOptions::new().with_path_limits(&limits);
-    /// assert_eq!(o.limits(), Some((1_000.0, 50_000.0)));
+    /// assert_eq!(o.limits(), Some((2_000.0, 50_000.0)));
+    /// assert_eq!(o.axis_acceleration()[..3], [1_500.0, 1_500.0, 1_000.0]);
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn with_path_limits<const A: usize>(self, limits: &Limits<A>) -> Self {
-        self.with_limits(limits.ramp_acceleration(), limits.jerk())
+        self.with_limits(limits.acceleration(), limits.jerk())
+            .with_axis_acceleration(limits.axis_acceleration())
+    }
+
+    /// The limits and share of a plan's [`FeedReserve`]: what [`compile`](crate::compile())
+    /// uses for a planned law when the options give no limits.
+    ///
+    /// ```
+    /// use strak_curves::MAX_DIM;
+    /// use strak_trajectory::{CompileOptions, FeedReserve};
+    /// let reserve = FeedReserve {
+    ///     acceleration: 2_000.0,
+    ///     jerk: 50_000.0,
+    ///     axis_acceleration: [f64::INFINITY; MAX_DIM],
+    ///     share: 0.1,
+    /// };
+    /// let o = CompileOptions::new().with_feed_reserve(&reserve);
+    /// assert_eq!((o.limits(), o.feed_share()), (Some((2_000.0, 50_000.0)), 0.1));
+    /// ```
+    pub fn with_feed_reserve(self, reserve: &FeedReserve) -> Self {
+        let mut o = self
+            .with_limits(reserve.acceleration, reserve.jerk)
+            .with_feed_share(reserve.share);
+        o.axis_acceleration = reserve.axis_acceleration;
+        o
+    }
+
+    /// These options, with `reserve` when they give no limits (see
+    /// [`with_feed_reserve`](Self::with_feed_reserve)).
+    pub(crate) fn completed_by(&self, reserve: Option<FeedReserve>) -> Self {
+        match (self.limits, reserve) {
+            (None, Some(r)) => self.with_feed_reserve(&r),
+            _ => *self,
+        }
     }
 
     /// The share of the limits reserved for feed changes (in `(0, 1)`; checked by `compile`).
@@ -172,9 +236,14 @@ impl CompileOptions {
         self.max_piece_ticks
     }
 
-    /// The acceleration and jerk limits, if given.
+    /// The path acceleration and jerk limits, if given.
     pub const fn limits(&self) -> Option<(f64, f64)> {
         self.limits
+    }
+
+    /// The per-axis acceleration limits (`f64::INFINITY`: none).
+    pub const fn axis_acceleration(&self) -> [f64; MAX_DIM] {
+        self.axis_acceleration
     }
 
     /// The share of the limits reserved for feed changes.
@@ -186,8 +255,8 @@ impl CompileOptions {
     ///
     /// # Errors
     /// [`Error::InvalidLimit`] for a tolerance, limit or share that is not finite and
-    /// positive (share: in `(0, 1)`), a maximal piece length of 0, or a largest slow-down
-    /// that is not finite and at least 1.
+    /// positive (share: in `(0, 1)`; an axis acceleration may be `f64::INFINITY`), a maximal
+    /// piece length of 0, or a largest slow-down that is not finite and at least 1.
     pub(crate) fn validate(&self) -> Result<(), Error> {
         let positive = |x: f64| x.is_finite() && x > 0.0;
         let tol = match self.tolerance {
@@ -197,8 +266,11 @@ impl CompileOptions {
             None => true,
             Some((a, j)) => positive(a) && positive(j),
         };
+        // NaN fails `> 0`; +∞ means "no limit of its own".
+        let axes_ok = self.axis_acceleration.iter().all(|a| *a > 0.0);
         if positive(tol)
             && limits_ok
+            && axes_ok
             && self.max_piece_ticks >= 1
             && positive(self.feed_share)
             && self.feed_share < 1.0
@@ -225,6 +297,8 @@ mod tests {
             CompileOptions::new().with_max_piece_ticks(0),
             CompileOptions::new().with_limits(-1.0, 1.0),
             CompileOptions::new().with_limits(1.0, f64::INFINITY),
+            CompileOptions::new().with_axis_acceleration([1.0, 0.0]),
+            CompileOptions::new().with_axis_acceleration([f64::NAN]),
             CompileOptions::new().with_feed_share(1.0),
             CompileOptions::new().with_feed_share(0.0),
             CompileOptions::new().with_max_slowdown(0.99),

@@ -12,7 +12,7 @@ const BISECTION_STEPS: usize = 64;
 
 /// Relative slack of the comparison with a limit: the `f64` rounding of the polynomial
 /// coefficients and of the peaks themselves.
-const LIMIT_SLACK: f64 = 1e-12;
+pub(super) const LIMIT_SLACK: f64 = 1e-12;
 
 /// The largest speed `|ẋ|`, acceleration `|ẍ|` and jerk `|x⃛|` (Euclidean norms over the
 /// axes) of a motion, in units/s, units/s², units/s³, and per axis the largest `|ẋᵢ|` and

@@ -7,14 +7,16 @@ use super::{CompileOptions, compile, compile_into};
 use crate::error::Error;
 use crate::num::Number;
 use crate::path::Path;
-use crate::plan::PathTiming;
+use crate::plan::{PathTiming, Timing};
 
 impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z> {
-    /// `options` completed with what the plan reserved for feed changes: for a motion from
-    /// [`plan`](PathTiming::plan) or [`scurve`](Self::scurve), the machine's limits of a feed ramp
-    /// (`min(a, aᵢ)` and `j` of its [`Limits`](crate::Limits)) and the feed share of its [`PlanOptions`](crate::PlanOptions), so
-    /// that feed override, hold and resume ramp within the share the plan left free (see
-    /// [`CompileOptions`]). The laws without [`Limits`](crate::Limits) return `options` unchanged.
+    /// `options` completed with what the plan reserved for feed changes when they give no
+    /// limits: for a motion from [`plan`](PathTiming::plan) or [`scurve`](Self::scurve), the
+    /// machine's [`Limits`](crate::Limits) (path acceleration and jerk, per-axis
+    /// accelerations) and the feed share of its [`PlanOptions`](crate::PlanOptions), so that
+    /// feed override, hold and resume ramp within the share the plan left free (see
+    /// [`CompileOptions`]). What [`compile`](crate::compile()) uses for this plan; options
+    /// with limits, and the laws without [`Limits`](crate::Limits), are returned unchanged.
     ///
     /// ```
     /// use strak_curves::Bezier;
@@ -24,17 +26,13 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z>
     ///     .with_axis_acceleration([800.0, f64::INFINITY])?;
     /// let timing = PathTiming::<_, 16, 4>::scurve(&line, &limits)?;
     /// let o = timing.compile_options(&CompileOptions::new().with_tolerance(1e-3));
-    /// assert_eq!(o.limits(), Some((800.0, 20_000.0)));
+    /// assert_eq!(o.limits(), Some((1_000.0, 20_000.0)));
+    /// assert_eq!(o.axis_acceleration()[..2], [800.0, f64::INFINITY]);
     /// assert_eq!(o.feed_share(), 0.25);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn compile_options(&self, options: &CompileOptions) -> CompileOptions {
-        match self.feed_reserve() {
-            Some(f) => options
-                .with_limits(f.acceleration, f.jerk)
-                .with_feed_share(f.share),
-            None => *options,
-        }
+        options.completed_by(self.feed_reserve())
     }
 
     /// Compiles the motion into a path at the plan's [`rate`](Self::rate), with `options`
@@ -61,7 +59,7 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z>
         &self,
         options: &CompileOptions,
     ) -> Result<Path<Num, A, P>, Error> {
-        compile(self, self.rate(), &self.compile_options(options))
+        compile(self, self.rate(), options)
     }
 
     /// [`compile`](Self::compile) into caller-provided storage, in place: see
@@ -86,6 +84,6 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'_, C, N, Z>
         options: &CompileOptions,
         path: &mut Path<Num, A, P>,
     ) -> Result<(), Error> {
-        compile_into(self, self.rate(), &self.compile_options(options), path)
+        compile_into(self, self.rate(), options, path)
     }
 }

@@ -339,18 +339,22 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
         self.meta.peak_jerk
     }
 
-    /// The acceleration limit feed changes respect (given, or derived; see
-    /// [`CompileOptions`](crate::CompileOptions)).
+    /// The acceleration limit feed changes respect: [`peak_acceleration`](Self::peak_acceleration)
+    /// plus what a feed ramp may add (from the limits given or derived, each axis's free
+    /// part included; see [`CompileOptions`](crate::CompileOptions)).
     pub fn acceleration_limit(&self) -> f64 {
         self.meta.acceleration_limit
     }
 
-    /// The jerk limit of feed changes.
+    /// The jerk limit of feed changes: [`peak_jerk`](Self::peak_jerk) plus what a feed
+    /// ramp may add.
     pub fn jerk_limit(&self) -> f64 {
         self.meta.jerk_limit
     }
 
-    /// The share of the limits reserved for feed changes.
+    /// The share of the limits reserved for feed changes (at most what the ramps may add,
+    /// relative to [`acceleration_limit`](Self::acceleration_limit) and
+    /// [`jerk_limit`](Self::jerk_limit)).
     pub fn feed_share(&self) -> f64 {
         self.meta.feed_share
     }

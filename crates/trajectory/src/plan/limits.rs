@@ -115,14 +115,6 @@ impl<const A: usize> Limits<A> {
             axis_acceleration: self.axis_acceleration.map(|a| a * keep),
         }
     }
-
-    /// The acceleration limit of a feed ramp: the smallest of the path and the per-axis
-    /// limits (a ramp changes the speed along the tangent, `|ẍᵢ| ≤ |ẍ|`).
-    pub(crate) fn ramp_acceleration(&self) -> f64 {
-        self.axis_acceleration
-            .iter()
-            .fold(self.acceleration, |m, a| m.min(*a))
-    }
 }
 
 #[cfg(test)]
@@ -162,10 +154,5 @@ mod tests {
         );
         assert_eq!(r.axis_velocity(), [5.0, f64::INFINITY]);
         assert_eq!(r.axis_acceleration(), [60.0, f64::INFINITY]);
-        assert_eq!(l.ramp_acceleration(), 80.0);
-        assert_eq!(
-            Limits::<2>::new(1.0, 3.0, 1.0).unwrap().ramp_acceleration(),
-            3.0
-        );
     }
 }

@@ -70,5 +70,5 @@ pub use motion::{MotionProfile, MotionState, Phase, ProfileZone};
 pub use options::{PlanOptions, ProfileShape};
 pub use parameter::ParameterTiming;
 pub use path_timing::PathTiming;
-pub use timing::{MotionLimits, Timing};
+pub use timing::{FeedReserve, MotionLimits, Timing};
 pub use trajectory::{Along, Trajectory};

@@ -1,13 +1,13 @@
 //! A motion along the arc length mapped onto a curve: `u(t) = u(s(t))`, `du/dt = ṡ/|c'(u)|`.
 
-use strak_curves::{ArcLengthTable, ParamCurve, ParamCurveDeriv, Point, Scalar, ScalarOf};
+use strak_curves::{ArcLengthTable, MAX_DIM, ParamCurve, ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use super::arc_inverse::param_at_length;
 use super::limits::Limits;
 use super::motion::{MotionProfile, Phase};
 use super::options::{PlanOptions, ProfileShape};
 use super::planner::plan_motion_into;
-use super::timing::{MotionLimits, Timing};
+use super::timing::{FeedReserve, MotionLimits, Timing};
 use super::trajectory::Trajectory;
 use super::{greater, norm64, to_param};
 use crate::error::Error;
@@ -163,17 +163,6 @@ pub struct PathTiming<'a, C, const N: usize, const Z: usize> {
     feed: Option<FeedReserve>,
     /// What the law promises ([`Timing::limits`]).
     limits: Option<MotionLimits>,
-}
-
-/// What a plan reserved for feed changes: the limits of a feed ramp and the share.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct FeedReserve {
-    /// The limit of a feed ramp's acceleration.
-    pub(crate) acceleration: f64,
-    /// The limit of a feed ramp's jerk.
-    pub(crate) jerk: f64,
-    /// The share of the limits the plan left free.
-    pub(crate) share: f64,
 }
 
 /// Cloning shares the curve reference (the curve need not be `Clone`).
@@ -494,9 +483,14 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         }
         self.limits = Some(promised);
         self.rate = options.rate();
+        let mut axis_acceleration = [f64::INFINITY; MAX_DIM];
+        for (r, a) in axis_acceleration.iter_mut().zip(limits.axis_acceleration()) {
+            *r = a;
+        }
         self.feed = Some(FeedReserve {
-            acceleration: limits.ramp_acceleration(),
+            acceleration: limits.acceleration(),
             jerk: limits.jerk(),
+            axis_acceleration,
             share: options.feed_share(),
         });
         Ok(())
@@ -506,11 +500,6 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     /// 1 kHz for [`constant_speed`](Self::constant_speed) and [`trapezoid`](Self::trapezoid)).
     pub fn rate(&self) -> f64 {
         self.rate
-    }
-
-    /// What the plan reserved for feed changes (none for the laws without [`Limits`]).
-    pub(crate) fn feed_reserve(&self) -> Option<FeedReserve> {
-        self.feed
     }
 
     /// The curve.
@@ -561,6 +550,13 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
     /// acceleration; [`constant_speed`](Self::constant_speed) nothing.
     fn limits(&self) -> Option<MotionLimits> {
         self.limits
+    }
+
+    /// The planned laws ([`plan`](Self::plan), [`scurve`](Self::scurve)) leave their
+    /// [`PlanOptions::feed_share`] of the machine's [`Limits`] free; the others reserve
+    /// nothing.
+    fn feed_reserve(&self) -> Option<FeedReserve> {
+        self.feed
     }
 
     /// The phase boundaries of the motion profile where its jerk `s⃛` jumps and its

@@ -81,6 +81,37 @@ impl MotionLimits {
     }
 }
 
+/// What a planned motion left free for feed changes (override, hold, resume): the machine's
+/// limits it was planned against (path acceleration and jerk, per-axis accelerations,
+/// `f64::INFINITY` for an axis without a limit of its own and beyond the curve's axes) and
+/// the share of them the plan did not use. [`compile`](crate::compile()) derives the feed
+/// ramps from it when its options give no limits (see
+/// [`CompileOptions`](crate::CompileOptions)).
+///
+/// ```
+/// use strak_curves::Bezier;
+/// use strak_trajectory::{Limits, PathTiming, Timing};
+/// let line = Bezier::new([[0.0, 0.0], [30.0, 40.0]])?;
+/// let limits = Limits::<2>::new(100.0, 1_000.0, 20_000.0)?
+///     .with_axis_acceleration([800.0, f64::INFINITY])?;
+/// let reserve = PathTiming::<_, 16, 4>::scurve(&line, &limits)?.feed_reserve().unwrap();
+/// assert_eq!((reserve.acceleration, reserve.jerk, reserve.share), (1_000.0, 20_000.0, 0.25));
+/// assert_eq!(reserve.axis_acceleration[..2], [800.0, f64::INFINITY]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FeedReserve {
+    /// The path acceleration limit `|ẍ|`.
+    pub acceleration: f64,
+    /// The path jerk limit `|x⃛|`.
+    pub jerk: f64,
+    /// The acceleration limit `|ẍᵢ|` of axis `i`.
+    pub axis_acceleration: [f64; MAX_DIM],
+    /// The share of these limits the plan left free (in `(0, 1)`).
+    pub share: f64,
+}
+
 /// A time law mapped onto a curve: the curve parameter `u(t)` and its rate `du/dt` over
 /// `t ∈ [0, duration]`.
 ///
@@ -155,6 +186,23 @@ pub trait Timing {
     /// assert_eq!(Slow.limits(), None);
     /// ```
     fn limits(&self) -> Option<MotionLimits> {
+        None
+    }
+
+    /// What the law left free for feed changes, if it was planned with a reserve
+    /// ([`FeedReserve`]); the default has none (the compiler then derives the feed limits
+    /// from the compiled peaks, see [`CompileOptions`](crate::CompileOptions)).
+    ///
+    /// ```
+    /// use strak_trajectory::Timing;
+    /// struct Slow;
+    /// impl Timing for Slow {
+    ///     fn duration(&self) -> f64 { 1.0 }
+    ///     fn param(&self, t: f64) -> (f64, f64) { (t.clamp(0.0, 1.0), 1.0) }
+    /// }
+    /// assert_eq!(Slow.feed_reserve(), None);
+    /// ```
+    fn feed_reserve(&self) -> Option<FeedReserve> {
         None
     }
 }
