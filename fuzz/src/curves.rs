@@ -39,9 +39,9 @@ const M: usize = 20;
 /// Speed evaluations of one piece's arc-length quadrature at most: 16 parts, 16 + 2·(2·2¹²
 /// + 16) Gauss rules of 16 nodes (the work bound of `arc_length`).
 const ARC_LENGTH_PER_PIECE: u64 = 16 * (16 + 2 * (2 * (1 << 12) + 16));
-/// Evaluations of flattening at most: 2¹⁶ intervals of 2 evaluations and 12·64 chord
+/// Evaluations of flattening at most: 2¹² intervals of 2 evaluations and 12·64 chord
 /// certificates of 8 evaluations each (the work bound of `flatten`).
-const FLATTEN_CERTIFICATES: u64 = (1 << 16) * (2 + 12 * 64 * 8);
+const FLATTEN_CERTIFICATES: u64 = (1 << 12) * (2 + 12 * 64 * 8);
 
 /// A scalar the harness builds from any `f64` (floats by a cast, so NaN and infinities
 /// reach the constructors; fixed-point saturating, NaN as 0).

@@ -1017,11 +1017,11 @@ fn flatten_capacity_exceeded() {
     );
     // The first four vertices were stored.
     assert_eq!(out[0], c.eval(0.0));
-    // A tolerance far below the curve's size: more than 2^20 segments in one piece.
+    // A tolerance far below the curve's size: more than 2^16 segments in one piece.
     match flatten_count(&c, 1e-14).unwrap_err() {
         Error::CapacityExceeded { capacity, required } => {
-            assert_eq!(capacity, 1 << 20);
-            assert!(required > 1 << 20);
+            assert_eq!(capacity, 1 << 16);
+            assert!(required > 1 << 16);
         }
         e => panic!("unexpected {e:?}"),
     }

@@ -13,8 +13,9 @@ use super::{c64, check_resolvable, greater, norm64, param, resolution, spacing};
 const MAX_ORDER: usize = 8;
 
 /// The largest number of segments of the whole curve (all pieces together); more means the
-/// tolerance is unreachable.
-const MAX_SEGMENTS: usize = 1 << 20;
+/// tolerance is far below the curve's size (a polyline of 2¹⁶ segments resolves a circle to
+/// 10⁻⁹ of its radius).
+const MAX_SEGMENTS: usize = 1 << 16;
 
 /// Bisection for the segment count stops when the bracket is below `1/2^BISECT_SHIFT` of
 /// its upper end (exact below `2^(BISECT_SHIFT + 1)` segments).
@@ -23,8 +24,9 @@ const BISECT_SHIFT: u32 = 6;
 /// The most uniform segments of one interval; an interval that needs more is halved.
 const RUN: usize = 64;
 
-/// The most intervals (uniform runs and halved ones) of the whole curve.
-const MAX_INTERVALS: usize = 1 << 16;
+/// The most intervals (uniform runs and halved ones) of the whole curve: room for
+/// [`MAX_SEGMENTS`] in runs of 16 on average, and a work bound of about 2.5·10⁷ evaluations.
+const MAX_INTERVALS: usize = 1 << 12;
 
 /// The most pending intervals of one piece: an interval is halved at most `MAX_DEPTH − 1`
 /// times (to `2⁻⁷⁹` of its piece; near 0 an `f64` parameter could be halved ~1 000 times).
@@ -93,10 +95,11 @@ const MAX_DEPTH: usize = 80;
 /// certificates (each 7 derivatives and one point); an interval is halved only while its
 /// halves have distinct parameter values in the scalar, and at most 79 times (to `2⁻⁷⁹` of
 /// its piece; an interval that short that still needs more than 64 segments is an
-/// error, as the halving stops there). At most 2¹⁶ intervals are taken
+/// error, as the halving stops there). At most 2¹² intervals are taken
 /// in all (the halved ones included), and the counts of all pieces together never exceed
-/// 2²⁰ segments: a curve that would need more is an error, found within that work whatever
-/// the curve: at most `2¹⁶·(2 + 12·64·8)` evaluations in all, and one per vertex written.
+/// 2¹⁶ segments: a curve that would need more is an error, found within that work whatever
+/// the curve: at most `2¹²·(2 + 12·64·8)` (about 2.5·10⁷) evaluations in all, and one per
+/// vertex written.
 ///
 /// # Errors
 /// - [`Error::InvalidArgument`]: `tolerance` is not finite and positive.
@@ -106,9 +109,9 @@ const MAX_DEPTH: usize = 80;
 ///   parameter values.
 /// - [`Error::CapacityExceeded`]: `out` is too short; `required` is the number of vertices
 ///   needed (then `out` holds the first `out.len()` of them). Also when the pieces together
-///   would need more than 2²⁰ segments (a tolerance far below the curve's size); then
-///   `capacity` is 2²⁰ and `required` a lower estimate.
-/// - [`Error::IterationLimit`]: more than 2¹⁶ intervals (`limit` 2¹⁶), or an interval
+///   would need more than 2¹⁶ segments (a tolerance far below the curve's size); then
+///   `capacity` is 2¹⁶ and `required` a lower estimate.
+/// - [`Error::IterationLimit`]: more than 2¹² intervals (`limit` 2¹²), or an interval
 ///   halved 79 times that still needs more than 64 segments (`limit` 80): a tolerance far
 ///   below the curve's size, found before the segment count.
 /// - [`Error::NonFinite`]: a derivative of the curve is not finite.
@@ -743,14 +746,14 @@ mod tests {
     #[test]
     fn the_pieces_share_one_segment_budget() {
         // (s, s²) on pieces of length 1: h²/8·2 ≤ tol needs n = √(1/(4 tol)) segments per
-        // piece, 6.3·10⁵ at tol = 6.3e-13. One piece fits 2²⁰ segments, three do not.
+        // piece, 3.2·10⁴ at tol = 2.5e-10. One piece fits 2¹⁶ segments, three do not.
         let piece: &[[f64; 2]] = &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let tol = 6.3e-13;
+        let tol = 2.5e-10;
         let one = PolyCurve::<f64>::new(&[0.0, 1.0], &[piece]);
         let n = flatten_count(&one, tol).unwrap();
         // (Fewer than uniform segments: halved intervals follow the chord's turn, which
         // lowers the normal part of c'' where the parabola is steep.)
-        assert!((500_000..700_000).contains(&n), "{n}");
+        assert!((22_000..32_000).contains(&n), "{n}");
         let three = PolyCurve::<f64>::new(&[0.0, 1.0, 2.0, 3.0], &[piece, piece, piece]);
         let counted = Counted::new(&three);
         match flatten_count(&counted, tol) {
@@ -760,7 +763,7 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        // The documented bound: the resolution check, then at most 2¹⁶ intervals of two
+        // The documented bound: the resolution check, then at most 2¹² intervals of two
         // evaluations and 12·64 certificates of 8 evaluations each.
         let bound = (2 * 3 + 2 + MAX_INTERVALS * (2 + 12 * RUN * 8)) as u64;
         assert!(counted.calls() <= bound, "{}", counted.calls());
@@ -773,8 +776,8 @@ mod tests {
             flatten_count(&parabola(), 1e-300),
             Err(Error::ToleranceBelowResolution { scalar: "f64" })
         );
-        // 1e-14 is resolvable but needs about 1/√tol = 10⁷ segments: more than 2^20, in
-        // more than 2^16 intervals of at most 64 segments, which is found first.
+        // 1e-14 is resolvable but needs about 1/√tol = 10⁷ segments: more than 2^16, in
+        // more than 2^12 intervals of at most 64 segments, which is found first.
         assert_eq!(
             flatten_count(&parabola(), 1e-14),
             Err(Error::IterationLimit {
@@ -797,7 +800,7 @@ mod tests {
         // A "curve" whose second derivative claims 10⁶⁰ on [0, 1]: h²/8·10⁶⁰ ≤ 10⁻³ needs
         // h ≤ 2.8·10⁻³², far below the 2⁻⁷⁹ ≈ 1.7·10⁻²⁴ of 79 halvings. The halving goes
         // down one side, two evaluations per interval, and stops at its depth with an error
-        // (not with a uniform run of 2²⁰ segments at the deepest interval).
+        // (not with a uniform run of 2¹⁶ segments at the deepest interval).
         let steep = FnCurve {
             f: |t: f64, k: usize| match k {
                 0 => [t, 0.0],

@@ -26,7 +26,7 @@
 //! |---------|------|
 //! | [`classify_derivatives`] | constant: four derivatives per side, three vector comparisons |
 //! | [`classify_join`], [`classify_breaks`] | 8 derivative evaluations per join; `piece_count − 1` joins |
-//! | [`flatten`], [`flatten_count`] | at most 2¹⁶ intervals (else [`Error::IterationLimit`]), each 2 derivative evaluations and at most `12·64` chord certificates of 8 evaluations; the counts of all pieces together ≤ 2²⁰ segments (else [`Error::CapacityExceeded`]) |
+//! | [`flatten`], [`flatten_count`] | at most 2¹² intervals (else [`Error::IterationLimit`]), each 2 derivative evaluations and at most `12·64` chord certificates of 8 evaluations; the counts of all pieces together ≤ 2¹⁶ segments (else [`Error::CapacityExceeded`]) |
 //! | [`arc_length`], [`arc_length_between`] | per piece 16 parts, bisection depth ≤ 32 and at most 2¹² interval splits, so at most `16·(16 + 2·(2·2¹² + 16))` speed evaluations (else [`Error::IterationLimit`]) |
 //! | [`param_at_length`] | the piece lengths, then at most 128 Newton or bisection steps, each one arc-length integral |
 //! | [`ArcLengthTable::new`] | `2(N − 1)` arc-length integrals and `3N` speed evaluations |
