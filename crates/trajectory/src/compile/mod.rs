@@ -500,13 +500,36 @@ impl LawPeaks<'_> {
             self.peaks.acceleration
         }
     }
+
+    /// The reserve of a law that promises limits but reserves nothing: it is taken to move
+    /// at the limits it promises, which stand in for the machine's (the tangential
+    /// acceleration for a tangential law, the jerk, the axis accelerations); a quantity it
+    /// does not promise is derived as in [`derived_limits`].
+    fn standing_reserve(&self, share: f64) -> Option<FeedReserve> {
+        let promised = self.promised?;
+        let (a, j) = derived_limits(self, share);
+        let a_promised = if self.tangential() {
+            promised.tangential_acceleration
+        } else {
+            promised.acceleration
+        };
+        let given = |p: f64, derived: f64| if p.is_finite() { p } else { derived };
+        Some(FeedReserve {
+            acceleration: given(a_promised, a),
+            jerk: given(promised.jerk, j),
+            axis_acceleration: promised.axis_acceleration,
+            share,
+        })
+    }
 }
 
 /// The path's description: its peaks, and the limits of feed changes (the peaks plus what
 /// a ramp may add, [`ramp_budget`], from the given limits or those derived from the peaks;
 /// see [`CompileOptions`]).
 ///
-/// Without limits in `options`, the limits and share of the law's reserve are used.
+/// Without limits in `options`, the limits and share of the law's reserve are used; for a
+/// law that promises limits without a reserve, the limits it promises
+/// ([`LawPeaks::standing_reserve`]).
 /// Not inlined: its frame (the completed options) lives only after the fit, not through it.
 ///
 /// # Errors
@@ -522,7 +545,8 @@ fn path_meta(
     tolerance: f64,
     options: &CompileOptions,
 ) -> Result<PathMeta, Error> {
-    let options = &options.completed_by(reserve());
+    let share = options.feed_share();
+    let options = &options.completed_by(reserve().or_else(|| law.standing_reserve(share)));
     // A law's own reserve is checked like the options.
     options.validate()?;
     let share = options.feed_share();
@@ -598,9 +622,20 @@ fn ramp_budget(
     Ok((a_free, j_free))
 }
 
-/// What a feed ramp may add when no limits are given: `share` of the limits the plan is
-/// assumed to have used `1 − share` of (see [`CompileOptions`]).
+/// What a feed ramp may add when neither the options nor the law give limits: `share` of
+/// the limits the plan is assumed to have used `1 − share` of ([`derived_limits`]).
 fn derived_budget(law: &LawPeaks<'_>, share: f64) -> (f64, f64) {
+    let (a, j) = derived_limits(law, share);
+    (
+        (a - law.peaks.acceleration).max(share * a),
+        (j - law.peaks.jerk).max(share * j),
+    )
+}
+
+/// The path acceleration and jerk limits of a motion assumed to use `1 − share` of them
+/// (see [`CompileOptions`]): `a_used/(1 − share)` and `j_peak/(1 − share)`; for a motion
+/// without acceleration `v_peak / 0.1 s`, without jerk `a / 0.1 s`.
+fn derived_limits(law: &LawPeaks<'_>, share: f64) -> (f64, f64) {
     let peaks = &law.peaks;
     let (v_peak, a_used, j_peak) = (peaks.velocity_bound, law.acceleration_used(), peaks.jerk);
     let a = if a_used > 0.0 {
@@ -610,19 +645,12 @@ fn derived_budget(law: &LawPeaks<'_>, share: f64) -> (f64, f64) {
     } else {
         1.0
     };
-    let axis_acceleration = law
-        .promised
-        .map_or(f64::INFINITY, |l| l.tightest_axis_acceleration(law.axes));
-    let a = a.min(axis_acceleration / (1.0 - share));
     let j = if j_peak > 0.0 {
         j_peak / (1.0 - share)
     } else {
         a / 0.1
     };
-    (
-        (a - peaks.acceleration).max(share * a),
-        (j - j_peak).max(share * j),
-    )
+    (a, j)
 }
 
 /// The state rounded into `N` ([`Error::OutOfRange`] if a value does not fit).
@@ -1017,29 +1045,32 @@ mod tests {
     }
 
     #[test]
-    fn a_tangential_law_derives_the_feed_limit_from_its_tangential_peak() {
+    fn a_tangential_law_without_a_reserve_stands_at_its_tangential_limit() {
         // v²/r = 40 on a circle of radius 2.5 at v = 10: the centripetal part, which the
         // trapezoid law does not limit, is four times its tangential limit
         let circle = strak_curves::Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 2.5).unwrap();
-        let timing = crate::PathTiming::<_, 256, 4>::trapezoid(&circle, 10.0, 10.0).unwrap();
-        let path: Box<Path<f64, 2, 1024>> = compile_boxed(
-            &timing,
-            1_000.0,
-            &CompileOptions::new().with_tolerance(1e-6),
-        )
-        .unwrap();
+        let o = CompileOptions::new().with_tolerance(1e-6);
+        let full = crate::PathTiming::<_, 256, 4>::trapezoid(&circle, 10.0, 10.0).unwrap();
+        // at its limit of 10 it leaves nothing for the default share of ¼
+        let r: Result<Box<Path<f64, 2, 1024>>, _> = compile_boxed(&full, 1_000.0, &o);
+        let quantity = Quantity::TangentialAcceleration;
+        assert_eq!(r.err(), Some(Error::FeedReserveExceeded { quantity }));
+        // planned at ¾ of the machine's 10 and compiled with the machine's limits, a ramp
+        // may add what the compiled motion leaves of 10: about the remaining quarter, 2.5
+        // (the compiled tangential peak is 7.47)
+        let kept = crate::PathTiming::<_, 256, 4>::trapezoid(&circle, 10.0, 7.5).unwrap();
+        let path: Box<Path<f64, 2, 1024>> =
+            compile_boxed(&kept, 1_000.0, &o.with_limits(10.0, 1e6)).unwrap();
         assert!(
             path.peak_acceleration() > 35.0,
             "{}",
             path.peak_acceleration()
         );
-        // the plan is assumed to have used 3/4 of the machine's tangential limit: a ramp
-        // may add the remaining quarter, 10/3, to the tangential acceleration
         let ramp = path.acceleration_limit() - path.peak_acceleration();
-        assert!(ramp > 2.5 && ramp <= 10.0 / 3.0 * 1.001, "{ramp}");
+        assert!(ramp > 2.5 && ramp < 2.55, "{ramp}");
     }
 
-    /// Forwards a time law with or without its breaks and its limits.
+    /// Forwards a time law with or without its breaks and its limits (with its reserve).
     struct Forward<'a, T> {
         law: &'a T,
         breaks: bool,
@@ -1059,6 +1090,9 @@ mod tests {
         }
         fn limits(&self) -> Option<crate::MotionLimits> {
             self.law.limits().filter(|_| self.limits)
+        }
+        fn feed_reserve(&self) -> Option<FeedReserve> {
+            self.law.feed_reserve().filter(|_| self.limits)
         }
     }
 

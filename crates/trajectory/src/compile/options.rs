@@ -46,8 +46,13 @@ pub enum Tolerance {
 ///   law that promises none (a parameter rate, a constant speed: its own motion is not
 ///   limited), each free part is at least `share` of its limit.
 /// * Without limits, a planned law's reserve ([`Timing::feed_reserve`](crate::Timing::feed_reserve):
-///   the machine's limits and the plan's share, which replaces this one) is used. For a
-///   law without a reserve the compiler assumes the plan used exactly `(1 − share)` of the
+///   the machine's limits and the plan's share, which replaces this one) is used. A law
+///   that promises limits but reserves nothing (such as
+///   [`PathTiming::trapezoid`](crate::PathTiming::trapezoid)) is taken to move at them: they
+///   stand in for the machine's, so that with a share it fails with
+///   [`Error::FeedReserveExceeded`](crate::Error::FeedReserveExceeded) unless the options
+///   give the machine's limits (plan it with `1 − share` of them). For a law that promises
+///   no limits the compiler assumes the plan used exactly `(1 − share)` of the
 ///   limits: `a_max = a_peak/(1 − share)`, `j_max = j_peak/(1 − share)`, where for a law that
 ///   limits only the tangential acceleration (such as
 ///   [`PathTiming::trapezoid`](crate::PathTiming::trapezoid)) `a_peak` is the tangential

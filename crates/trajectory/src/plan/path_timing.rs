@@ -237,7 +237,9 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
     /// The trapezoidal speed profile along the arc length, rest to rest, with the global
     /// limits `v_max` and `a_max` only (no curvature or per-axis limits: for those use
     /// [`plan`](Self::plan) with [`ProfileShape::Trapezoid`](crate::ProfileShape)). See
-    /// [`MotionProfile::trapezoid`].
+    /// [`MotionProfile::trapezoid`]. It reserves nothing for feed changes: to compile it for
+    /// feed override, plan it with `1 − share` of the machine's tangential acceleration and
+    /// give the machine's limits to [`CompileOptions::with_limits`](crate::CompileOptions::with_limits).
     ///
     /// # Errors
     /// As for [`constant_speed`](Self::constant_speed).

@@ -102,37 +102,53 @@ impl<N: Kernel, const A: usize> Sampler<'_, N, A> {
     }
 }
 
-/// `out.len()` plain forward-differencing ticks from `tick` on: each sample, then the step
-/// of [`portable::step_whole`](super::kernel::portable::step_whole) (the same additions in
-/// the same order as every tick kernel), on a copy of the state that the compiler keeps in
-/// registers.
+/// `out.len()` plain forward-differencing ticks from `tick` on: each sample, then the
+/// additions of [`portable::step_whole`](super::kernel::portable::step_whole) (the same
+/// additions of the same values as every tick kernel), on the chains copied into one local
+/// array per difference order, the axes of one order side by side so that the compiler keeps
+/// them in registers and may add them as one vector.
 #[inline(always)]
 fn run_ticks<N: Number, const A: usize>(
     state: &mut [AxisState<N>; A],
     tick: u64,
     out: &mut [Sample<N::Out, A>],
 ) {
-    let mut s = *state;
+    let mut p = state.map(|s| s.position);
+    let mut d1 = state.map(|s| s.delta1);
+    let mut d2 = state.map(|s| s.delta2);
+    let d3 = state.map(|s| s.delta3);
+    let mut v = state.map(|s| s.velocity);
+    let mut v1 = state.map(|s| s.velocity_delta1);
+    let v2 = state.map(|s| s.velocity_delta2);
+    let mut a = state.map(|s| s.acceleration);
+    let a1 = state.map(|s| s.acceleration_delta);
     let mut t = tick;
     for o in out {
         o.tick = t;
-        for (a, x) in s.iter_mut().enumerate() {
-            if let (Some(p), Some(v), Some(c)) = (
-                o.position.get_mut(a),
-                o.velocity.get_mut(a),
-                o.acceleration.get_mut(a),
-            ) {
-                (*p, *v, *c) = (
-                    x.position.to_out(),
-                    x.velocity.to_out(),
-                    x.acceleration.to_out(),
-                );
-            }
-            super::kernel::portable::step_whole(x);
-        }
+        o.position = p.map(N::to_out);
+        o.velocity = v.map(N::to_out);
+        o.acceleration = a.map(N::to_out);
+        add_each(&mut p, &d1);
+        add_each(&mut d1, &d2);
+        add_each(&mut d2, &d3);
+        add_each(&mut v, &v1);
+        add_each(&mut v1, &v2);
+        add_each(&mut a, &a1);
         t = t.wrapping_add(1);
     }
-    *state = s;
+    for (i, s) in state.iter_mut().enumerate() {
+        if let (Some(&p), Some(&d1), Some(&d2), Some(&v), Some(&v1), Some(&a)) = (
+            p.get(i),
+            d1.get(i),
+            d2.get(i),
+            v.get(i),
+            v1.get(i),
+            a.get(i),
+        ) {
+            (s.position, s.delta1, s.delta2) = (p, d1, d2);
+            (s.velocity, s.velocity_delta1, s.acceleration) = (v, v1, a);
+        }
+    }
 }
 
 /// `out.len()` position ticks: each position, then the additions of
@@ -149,20 +165,20 @@ fn run_positions<N: Number, const A: usize>(
     let mut d2 = state.map(|s| s.delta2);
     let d3 = state.map(|s| s.delta3);
     for o in out {
-        for (x, p) in o.iter_mut().zip(&p) {
-            *x = p.to_out();
-        }
-        for (p, d1) in p.iter_mut().zip(&d1) {
-            *p = *p + *d1;
-        }
-        for (d1, d2) in d1.iter_mut().zip(&d2) {
-            *d1 = *d1 + *d2;
-        }
-        for (d2, d3) in d2.iter_mut().zip(&d3) {
-            *d2 = *d2 + *d3;
-        }
+        *o = p.map(N::to_out);
+        add_each(&mut p, &d1);
+        add_each(&mut d1, &d2);
+        add_each(&mut d2, &d3);
     }
     for (s, ((p, d1), d2)) in state.iter_mut().zip(p.iter().zip(&d1).zip(&d2)) {
         (s.position, s.delta1, s.delta2) = (*p, *d1, *d2);
+    }
+}
+
+/// One forward-differencing addition of every axis: `x += d`, axis by axis.
+#[inline(always)]
+fn add_each<N: Number, const A: usize>(x: &mut [N; A], d: &[N; A]) {
+    for (x, d) in x.iter_mut().zip(d) {
+        *x = *x + *d;
     }
 }
