@@ -545,8 +545,8 @@ fn path_meta(
     tolerance: f64,
     options: &CompileOptions,
 ) -> Result<PathMeta, Error> {
-    let share = options.feed_share();
-    let options = &options.completed_by(reserve().or_else(|| law.standing_reserve(share)));
+    let standing = || law.standing_reserve(options.feed_share());
+    let options = &options.completed_by(reserve().or_else(standing));
     // A law's own reserve is checked like the options.
     options.validate()?;
     let share = options.feed_share();

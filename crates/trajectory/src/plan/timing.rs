@@ -63,22 +63,6 @@ impl MotionLimits {
             axis_acceleration: [f64::INFINITY; MAX_DIM],
         }
     }
-
-    /// The tightest acceleration limit of the first `axes` axes (`f64::INFINITY`: none).
-    ///
-    /// ```
-    /// use strak_trajectory::MotionLimits;
-    /// let mut l = MotionLimits::new(1.0, 2.0, 3.0);
-    /// l.axis_acceleration[1] = 0.5;
-    /// assert_eq!(l.tightest_axis_acceleration(1), f64::INFINITY);
-    /// assert_eq!(l.tightest_axis_acceleration(2), 0.5);
-    /// ```
-    pub fn tightest_axis_acceleration(&self, axes: usize) -> f64 {
-        self.axis_acceleration
-            .iter()
-            .take(axes)
-            .fold(f64::INFINITY, |m, &a| m.min(a))
-    }
 }
 
 /// What a planned motion left free for feed changes (override, hold, resume): the machine's
@@ -190,7 +174,8 @@ pub trait Timing {
     }
 
     /// What the law left free for feed changes, if it was planned with a reserve
-    /// ([`FeedReserve`]); the default has none (the compiler then derives the feed limits
+    /// ([`FeedReserve`]); the default has none (the compiler then takes a law that promises
+    /// [`limits`](Self::limits) to move at them, and derives the feed limits of any other
     /// from the compiled peaks, see [`CompileOptions`](crate::CompileOptions)).
     ///
     /// ```
