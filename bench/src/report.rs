@@ -339,16 +339,33 @@ target/release/deps/peers-*`) and from the flatness benches above:
   in the same order (the samples are `next()`'s and `next_position()`'s, bit for bit).
   Instructions per sample under `valgrind --tool=callgrind` (`src/bin/ticks.rs`, n = 1024,
   3 axes, whole path 20 times; repeatable, unlike the times on a shared machine): `next()`
-  f32 75.5, f64 80.5, Q40 100.5; `fill` 35.6, 40.6, 95.8; `fill_positions` 15.1, 15.9,
-  26.9. `fill` writes ten values per sample (the tick, and position, velocity and
-  acceleration of 3 axes) after 18 additions, a floor of its own several times what 20×
-  allows. `fill_positions` does the peers' job, positions only: 9 additions per tick, which
+  f32 75.5, f64 80.5, Q40 100.5; `fill` 33.2, 31.6, 92.8; `fill_positions` 15.1, 15.9,
+  26.9. `fill_positions` does the peers' job, positions only: 9 additions per tick, which
   the compiler groups by difference order into vector additions (f32: the x–y pair in one
   `addps`, z in an `addss`), 3 stores, and a piece switch every 18 ticks of this path on
   average (3 593 pieces in 65 672 ticks). Each tick still waits for the previous tick's
-  additions (one add latency per tick), which bounds it at about 3 cycles. Why Q40 `fill`
-  gains so little over `next()` (27 `i64` state values against 16 general registers on
-  x86-64 is the suspect) is not yet read from the listing.
+  additions (one add latency per tick), which bounds it at about 3 cycles.
+  What keeps `fill` short of 20×, from the listing of its loop (x86-64 baseline, SSE2, so
+  at most 16 bytes per store and 2 doubles or 4 floats per addition). An f64 tick is 23
+  instructions: 6 stores (the 80-byte sample: the tick, and position, velocity and
+  acceleration of 3 axes), 10 additions (8 `addpd`, 2 `addsd` for the 18 additions of the
+  chains), 3 register moves and 4 of loop control. An f32 tick is 25: 4 stores, 5 `addps`,
+  and 12 shuffles and moves, because the compiler packs the values in the order the sample
+  stores them (position x, y, z, velocity x, …), which puts different difference orders in
+  one register and reorders them every tick. The other 8–9 instructions per sample are paid
+  once per run of ticks, at every piece switch: the state is gathered from its per-axis
+  records into per-order registers and written back (about 100 instructions), and the
+  switch tick is `next()`. 20× asks for a half to two thirds of today's time per sample
+  (the worst case is f64 at small n; the runs on a shared machine differ by that much). A layout tried for this, the chains held as levels in
+  the sample's order (`[p, v, a]`, `[Δp, Δv, Δa]`, …, the velocity's and acceleration's
+  missing differences padded with −0.0, whose addition changes no bit), cut the f32 tick to
+  17 instructions (26.4 per sample) but gave no time difference beyond the noise of a loaded
+  machine, and cost f64 14 % and Q40 36 % more instructions (more values than registers);
+  it was not taken. Narrower stores need 32-byte registers (AVX), which the x86-64
+  baseline does not have: runtime detection and `unsafe` code in the trajectory crate for
+  a host-only call. Q40 `fill` is 86 instructions per tick: 27 `i64` chain values against
+  16 general registers, so about 36 of them are spill stores and reloads, besides the 18
+  additions, 10 stores and 18 instructions (`lea`, `sar`) of the rounding to `I32F32`.
 - **Flatness across n**: the work of a tick does not depend on n (no search; the same
   additions; one piece load per at most 256 ticks, and the piece density along the path is
   the same for every n). The spread over n measured in one run is therefore timing noise
@@ -636,6 +653,68 @@ impl Machine {
     }
 }
 
+/// The host speed targets' worst cases in one run: the smallest speed-up of each.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HostRun {
+    /// The processor (`model name` of `/proc/cpuinfo`).
+    pub cpu: &'static str,
+    /// The commit measured.
+    pub commit: &'static str,
+    /// Fixed-rate playback (`next()`).
+    pub playback: f64,
+    /// Batch playback (`fill`).
+    pub fill: f64,
+    /// Batch playback of positions (`fill_positions`).
+    pub fill_positions: f64,
+    /// Random-access evaluation.
+    pub eval: f64,
+}
+
+/// Earlier runs on the other kind of processor that the development machines come in, kept
+/// by hand (a report reads one run): the targets must hold on both.
+pub const EARLIER_RUNS: [HostRun; 1] = [HostRun {
+    cpu: "AMD EPYC",
+    commit: "068ec98",
+    playback: 2.7,
+    fill: 11.8,
+    fill_positions: 20.7,
+    eval: 3.5,
+}];
+
+/// The smallest speed-up of `checks` (`–` when none was measured).
+fn smallest(checks: &[Check]) -> String {
+    checks
+        .iter()
+        .map(|c| c.value)
+        .min_by(f64::total_cmp)
+        .map_or_else(|| "–".to_string(), |v| format!("{v:.1}×"))
+}
+
+/// The host targets' worst cases on each processor: this run's, then [`EARLIER_RUNS`].
+fn processor_table(o: &mut String, m: &Machine, this: [&[Check]; 4]) {
+    let _ = writeln!(
+        o,
+        "### Each processor\n\nThe smallest speed-up of each host target, in this run and in \
+         earlier runs on the other kind of processor (kept in `bench/src/report.rs`):\n\n\
+         | processor | run | playback (`next`) | `fill` | `fill_positions` | random access |\n\
+         |---|---|---:|---:|---:|---:|"
+    );
+    let [play, fill, positions, eval] = this.map(smallest);
+    let _ = writeln!(
+        o,
+        "| {} | this one | {play} | {fill} | {positions} | {eval} |",
+        m.cpu
+    );
+    for e in EARLIER_RUNS {
+        let _ = writeln!(
+            o,
+            "| {} | commit {} | {:.1}× | {:.1}× | {:.1}× | {:.1}× |",
+            e.cpu, e.commit, e.playback, e.fill, e.fill_positions, e.eval
+        );
+    }
+    let _ = writeln!(o);
+}
+
 /// Where the inputs are.
 #[derive(Clone, Debug)]
 pub struct Inputs {
@@ -816,6 +895,7 @@ pub fn render(
          shared with other work; compare ratios from one run, not absolute times across runs.\n",
         m.load
     );
+    processor_table(&mut o, m, [&play, &fill, &fill_positions, &eval]);
     let _ = writeln!(o, "## Reproduce\n");
     let _ = writeln!(o, "```sh\n{BENCH_COMMAND}\n{REPORT_COMMAND}\n```\n");
     let _ = writeln!(

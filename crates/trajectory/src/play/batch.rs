@@ -182,3 +182,63 @@ fn add_each<N: Number, const A: usize>(x: &mut [N; A], d: &[N; A]) {
         *x = *x + *d;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Q40;
+    use crate::play::kernel::portable::tick_sample;
+    use crate::play::tests::bits;
+
+    /// An axis whose every chain value is `v`.
+    fn axis<N: Number>(v: N) -> AxisState<N> {
+        AxisState {
+            position: v,
+            delta1: v,
+            delta2: v,
+            delta3: v,
+            velocity: v,
+            velocity_delta1: v,
+            velocity_delta2: v,
+            acceleration: v,
+            acceleration_delta: v,
+        }
+    }
+
+    /// `run_ticks` against `tick_sample` called as often, bit for bit: an axis at rest on
+    /// negative zeros (a padding or reordering of the additions that adds `+0.0` turns them
+    /// positive, which `==` cannot see), one on positive zeros, and one moving.
+    fn run_ticks_is_tick_sample_repeated<N: Number>() {
+        let zero = N::ZERO;
+        let moving = AxisState {
+            position: N::from_f64(-1.25).unwrap(),
+            delta1: N::from_f64(0.5).unwrap(),
+            delta2: N::from_f64(-0.125).unwrap(),
+            delta3: N::from_f64(0.0625).unwrap(),
+            velocity: N::from_f64(-0.75).unwrap(),
+            velocity_delta1: N::from_f64(0.25).unwrap(),
+            velocity_delta2: N::from_f64(-0.5).unwrap(),
+            acceleration: zero - N::EPSILON,
+            acceleration_delta: N::EPSILON,
+        };
+        let start = [axis(-zero), axis(zero), moving];
+        let (mut batched, mut one) = (start, start);
+        let mut out = [Sample::splat(<N::Out as strak_curves::Scalar>::ZERO); 7];
+        run_ticks(&mut batched, 40, &mut out);
+        for (k, got) in out.iter().enumerate() {
+            assert_eq!(
+                bits(got),
+                bits(&tick_sample(&mut one, 40 + k as u64)),
+                "tick {k}"
+            );
+        }
+        assert_eq!(bits(&batched), bits(&one));
+    }
+
+    #[test]
+    fn run_ticks_keeps_every_bit() {
+        run_ticks_is_tick_sample_repeated::<f32>();
+        run_ticks_is_tick_sample_repeated::<f64>();
+        run_ticks_is_tick_sample_repeated::<Q40>();
+    }
+}

@@ -813,6 +813,12 @@ mod tests {
         native_samples::<Q40>();
     }
 
+    /// A value's every bit as text: `Debug` prints the shortest decimal that reads back
+    /// as the same value, and the sign of a zero, which `==` does not compare.
+    pub(super) fn bits<T: core::fmt::Debug>(x: &T) -> std::string::String {
+        std::format!("{x:?}")
+    }
+
     /// `fill` against as many `next` calls, bit for bit: batches of 1 to 300 samples (so
     /// that batches start and end inside pieces, at piece switches and at the end), with the
     /// control events between batches.
@@ -831,13 +837,13 @@ mod tests {
             batched.fill(&mut buf[..len]);
             for (i, got) in buf[..len].iter().enumerate() {
                 assert_eq!(
-                    *got,
-                    one.next(),
+                    bits(got),
+                    bits(&one.next()),
                     "tick {} (batch {n}, {len} long)",
                     k + i as u64
                 );
             }
-            assert_eq!(batched.state(), one.state());
+            assert_eq!(bits(&batched.state()), bits(&one.state()));
             assert_eq!(batched.progress(), one.progress());
             k += len as u64;
             n += 1;
@@ -873,8 +879,8 @@ mod tests {
             batched.fill_positions(&mut buf[..len]);
             for (i, got) in buf[..len].iter().enumerate() {
                 assert_eq!(
-                    *got,
-                    one.next_position(),
+                    bits(got),
+                    bits(&one.next_position()),
                     "tick {} (batch {n})",
                     k + i as u64
                 );
@@ -884,7 +890,7 @@ mod tests {
                 assert_eq!(batched.next(), one.next(), "tick {k}");
                 k += 1;
             }
-            assert_eq!(batched.state(), one.state());
+            assert_eq!(bits(&batched.state()), bits(&one.state()));
             n += 1;
         }
         assert!(one.is_finished() && batched.is_finished());
