@@ -356,12 +356,13 @@ target/release/deps/peers-*`) and from the flatness benches above:
   once per run of ticks, at every piece switch: the state is gathered from its per-axis
   records into per-order registers and written back (about 100 instructions), and the
   switch tick is `next()`. 20× asks for a half to two thirds of today's time per sample
-  (the worst case is f64 at small n; the runs on a shared machine differ by that much). A layout tried for this, the chains held as levels in
-  the sample's order (`[p, v, a]`, `[Δp, Δv, Δa]`, …, the velocity's and acceleration's
-  missing differences padded with −0.0, whose addition changes no bit), cut the f32 tick to
-  17 instructions (26.4 per sample) but gave no time difference beyond the noise of a loaded
-  machine, and cost f64 14 % and Q40 36 % more instructions (more values than registers);
-  it was not taken. Narrower stores need 32-byte registers (AVX), which the x86-64
+  (the worst case is f64 at small n; runs on a shared machine differ by that much).
+  Holding the chains as levels in the sample's order instead (`[p, v, a]`,
+  `[Δp, Δv, Δa]`, …, the missing differences of the velocity and acceleration padded with
+  −0.0, whose addition changes no bit) cuts the f32 tick to 17 instructions (26.4 per
+  sample) but measured no faster beyond the noise of a loaded machine, and costs f64 14 %
+  and Q40 36 % more instructions (more values than registers), so `fill` keeps its
+  per-order chains. Fewer, wider stores need 32-byte registers (AVX), which the x86-64
   baseline does not have: runtime detection and `unsafe` code in the trajectory crate for
   a host-only call. Q40 `fill` is 86 instructions per tick: 27 `i64` chain values against
   16 general registers, so about 36 of them are spill stores and reloads, besides the 18
@@ -683,11 +684,7 @@ pub const EARLIER_RUNS: [HostRun; 1] = [HostRun {
 
 /// The smallest speed-up of `checks` (`–` when none was measured).
 fn smallest(checks: &[Check]) -> String {
-    checks
-        .iter()
-        .map(|c| c.value)
-        .min_by(f64::total_cmp)
-        .map_or_else(|| "–".to_string(), |v| format!("{v:.1}×"))
+    weakest(checks).map_or_else(|| "–".to_string(), |c| format!("{:.1}×", c.value))
 }
 
 /// The host targets' worst cases on each processor: this run's, then [`EARLIER_RUNS`].
@@ -782,11 +779,16 @@ fn verdict(checks: &[Check]) -> &'static str {
     }
 }
 
+/// The check with the smallest speed-up.
+fn weakest(checks: &[Check]) -> Option<&Check> {
+    checks.iter().min_by(|a, b| a.value.total_cmp(&b.value))
+}
+
 fn worst(checks: &[Check], spread: bool) -> String {
     let w = if spread {
         checks.iter().max_by(|a, b| a.value.total_cmp(&b.value))
     } else {
-        checks.iter().min_by(|a, b| a.value.total_cmp(&b.value))
+        weakest(checks)
     };
     match w {
         Some(c) if spread => format!("largest spread {:.1} % ({})", 100.0 * c.value, c.what),
