@@ -87,6 +87,17 @@ pub enum Error {
         /// The quantity whose limit the motion leaves too little of.
         quantity: Quantity,
     },
+    /// A start or target state of an online move has a value that is NaN or infinite.
+    NonFiniteState,
+    /// The target of an online move is outside the axis's limits: its velocity or
+    /// acceleration, or a velocity it cannot be arrived at without passing.
+    TargetOutsideLimits {
+        /// The quantity whose limit the target breaks.
+        quantity: Quantity,
+    },
+    /// The online solver found no profile that passes its checks: a numerical failure (for
+    /// example limits and states many orders of magnitude apart, in `f32`).
+    NoProfile,
     /// The error that playback in the path's number format may add
     /// ([`PathHeader::playback_bound`](crate::PathHeader::playback_bound): rounding of the
     /// stored states, propagated over a piece) exceeds the position tolerance the path was
@@ -253,6 +264,11 @@ impl fmt::Display for Error {
                 "the motion uses more than 1 − feed share of the {quantity} limit: the plan left \
                  too little for feed changes (plan with the compile's feed share and limits)"
             ),
+            Error::NonFiniteState => f.write_str("a start or target value is not finite"),
+            Error::TargetOutsideLimits { quantity } => {
+                write!(f, "the target {quantity} is outside the axis's limits")
+            }
+            Error::NoProfile => f.write_str("no motion profile passed the solver's checks"),
             Error::PlaybackBoundExceeded { bound, tolerance } => write!(
                 f,
                 "playback in the path's number format may add an error of {bound} units, more \

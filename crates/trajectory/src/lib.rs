@@ -8,6 +8,7 @@
 mod compile;
 mod error;
 mod num;
+mod online;
 mod path;
 mod plan;
 mod play;
@@ -18,6 +19,10 @@ pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use path::{
     AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, END_AGREEMENT_SLACK, Path, PathBlob,
     PathHeader, PathView, Piece, Sample, crc32,
+};
+pub use online::{
+    AxisLimits, AxisProfile, Block, Interface, JerkPhase, Kinematics, MAX_PHASES, MoveOptions,
+    OnlineMove, Real, Synchronization, solve_axis, solve_axis_velocity,
 };
 pub use plan::*;
 pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};

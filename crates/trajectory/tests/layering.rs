@@ -1,6 +1,7 @@
 //! The crate is laid out by pipeline stage, and data flows one way through the stages:
-//! `error` and `num` (the number formats), then `path` (what a compiled path is), `plan`
-//! (limits and time laws), `compile` (plan → path), `play` (the sampler and its kernels).
+//! `error` and `num` (the number formats), then `online` (the state-to-state solver, which
+//! the planner uses between zones), `path` (what a compiled path is), `plan` (limits and time
+//! laws), `compile` (plan → path), `play` (the sampler and its kernels).
 //! A module of one layer names only its own layer and the layers before it, outside its
 //! `#[cfg(test)]` items (tests may use the whole pipeline). Inside `plan`, whose modules
 //! once formed a circle, the modules are ordered as well (`PLAN_ORDER`).
@@ -15,13 +16,14 @@ use std::path::{Path, PathBuf};
 
 /// The layers in the order data flows through them, with their rank (a layer may name the
 /// layers of lower or equal rank).
-const LAYERS: [(&str, u8); 6] = [
+const LAYERS: [(&str, u8); 7] = [
     ("error", 0),
     ("num", 0),
-    ("path", 1),
-    ("plan", 2),
-    ("compile", 3),
-    ("play", 4),
+    ("online", 1),
+    ("path", 2),
+    ("plan", 3),
+    ("compile", 4),
+    ("play", 5),
 ];
 
 /// The modules of `plan` in dependency order (`mod` is the layer's own helpers): a module

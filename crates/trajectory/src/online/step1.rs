@@ -1,0 +1,367 @@
+//! The time-optimal motion of one axis from a state inside its limits to a target state, and
+//! the durations it can take: every profile of the form that the time-optimal motion has.
+//!
+//! By Pontryagin's maximum principle the time-optimal jerk-limited motion switches between
+//! maximal jerk `±J` and zero jerk, and zero jerk only on a limit: the acceleration held at
+//! a limit, or the velocity held at a limit with zero acceleration. Berscheid & Kröger
+//! ("Jerk-limited Real-time Trajectory Generation with Arbitrary Target States", *Robotics:
+//! Science and Systems* 2021, §III–IV) show that the time-optimal motion between states
+//! inside the limits has at most seven phases with the jerks `(+J, 0, −J, 0, −J, 0, +J)` or
+//! their mirror image `(−J, 0, +J, 0, +J, 0, −J)` ("UDDU"). In the first form the
+//! acceleration rises from `a₀` to a peak `a₁` (held there for `t₂` if `a₁ = a_max`), falls
+//! to a trough `a₅` (through zero, where the velocity may be held at `v_max` for `t₄`), is
+//! held there for `t₆` if `a₅ = a_min`, and rises to `a_f`.
+//!
+//! Which limits are reached decides the unknowns. The velocity equation and the position
+//! equation leave one unknown, found as a root of a polynomial:
+//!
+//! | limits reached   | unknown               | equation                              |
+//! |------------------|-----------------------|---------------------------------------|
+//! | `v` (± `a` both) | —                     | closed form, `t₄` from the position   |
+//! | `a_max`, `a_min` | `t₂`                  | quadratic                             |
+//! | `a_max`          | `a₅`                  | quartic                               |
+//! | `a_min`          | `a₁`                  | quartic                               |
+//! | none             | `u = a₁ − a₅`         | quartic (`a₁, a₅ = (K/u ± u)/2`)      |
+//!
+//! The polynomials follow from integrating the phases (derived symbolically; the tests
+//! check each against the integrated motion). A root is a profile when every duration is
+//! non-negative, the limits hold in every phase (the velocity where the acceleration
+//! crosses zero included) and the integrated motion ends on the target.
+//!
+//! Every such profile is a local extreme of the durations the axis can take: they sort
+//! into `t_min` and pairs bounding the gaps (durations the axis cannot take although a
+//! shorter one is possible, when the target has a velocity or the start is moving). See
+//! [`Block`].
+
+use super::form::{Candidate, Shape, Up};
+use super::profile::{AxisLimits, AxisProfile, JerkPhase, Kinematics, MAX_PHASES};
+use super::real::Real;
+use super::roots::roots_in;
+
+/// The most profiles one axis can have: the boundaries of `[t_min, ∞)` and two gaps.
+const MAX_VALID: usize = 5;
+
+/// The durations one axis can take, and its time-optimal profile.
+///
+/// The feasible durations are `[t_min, ∞)` without at most two open gaps. A synchronized
+/// motion of several axes takes the smallest duration that no axis finds in a gap.
+///
+/// ```
+/// use strak_trajectory::{AxisLimits, Kinematics, solve_axis};
+/// let limits = AxisLimits::new(1.0_f64, 1.0, 1.0)?;
+/// // Moving fast towards a target that must be passed at full speed in the other direction:
+/// let start = Kinematics::new(0.0, 1.0, 0.0);
+/// let target = Kinematics::new(0.5, -1.0, 0.0);
+/// let block = solve_axis(&start, &target, &limits)?;
+/// assert!(block.t_min() > 2.0);
+/// assert!(!block.is_blocked(block.t_min()));
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Block<R> {
+    pub(super) profile: AxisProfile<R>,
+    pub(super) gaps: [(R, R); 2],
+    pub(super) gap_count: usize,
+}
+
+impl<R: Real> Block<R> {
+    /// No motion: at rest at 0, duration 0.
+    pub(super) fn still() -> Self {
+        let profile = AxisProfile::with_accelerations(Kinematics::default(), Default::default(), &Default::default());
+        Block { profile, gaps: [(R::ZERO, R::ZERO); 2], gap_count: 0 }
+    }
+
+    /// The time-optimal profile.
+    pub fn profile(&self) -> &AxisProfile<R> {
+        &self.profile
+    }
+
+    /// The shortest duration.
+    pub fn t_min(&self) -> R {
+        self.profile.duration
+    }
+
+    /// The gaps: open intervals of durations the axis cannot take.
+    pub fn gaps(&self) -> &[(R, R)] {
+        &self.gaps[..self.gap_count]
+    }
+
+    /// Whether the axis cannot take the duration `t`.
+    pub fn is_blocked(&self, t: R) -> bool {
+        t < self.t_min() || self.gaps().iter().any(|&(a, b)| t > a && t < b)
+    }
+}
+
+impl<R: Real> Up<R> {
+    /// Every profile of the first form, written to `out`.
+    fn profiles(&self, out: &mut Found<R>) {
+        self.with_cruise(out);
+        self.both_accelerations(out);
+        self.peak_at_limit(out);
+        self.trough_at_limit(out);
+        self.no_limit(out);
+    }
+
+    fn add(&self, s: &Shape<R>, out: &mut Found<R>) {
+        if let Some(c) = self.reaching(s) {
+            out.push(c);
+        }
+    }
+
+    /// The velocity held at `v_max`: the time-optimal velocity changes from the start to
+    /// `(v_max, 0)` and from there to the target, and the cruise in between from the
+    /// position.
+    fn with_cruise(&self, out: &mut Found<R>) {
+        let (l, j) = (&self.l, self.l.jerk);
+        let two = R::TWO;
+        // Rising to a1 and falling to 0: a1² = a0²/2 + J(v_max − v0), held at a_max beyond.
+        let peak = self.a0 * self.a0 * R::HALF + j * (l.v_max - self.v0);
+        let trough = self.af * self.af * R::HALF + j * (l.v_max - self.vf);
+        if peak.is_negative() || trough.is_negative() {
+            return;
+        }
+        let mut s = Shape { a1: peak.sqrt(), t2: R::ZERO, t4: R::ZERO, a5: -trough.sqrt(), t6: R::ZERO, cruise: true };
+        if s.a1 > l.a_max {
+            s.a1 = l.a_max;
+            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j)) / l.a_max;
+        }
+        if s.a5 < l.a_min {
+            s.a5 = l.a_min;
+            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j)) / l.a_min;
+        }
+        // The distance without cruise, then the cruise that covers the rest.
+        let Some(t) = self.durations(&s) else { return };
+        let mut k = Kinematics::new(R::ZERO, self.v0, self.a0);
+        for (&jk, &dt) in self.jerks().iter().zip(&t) {
+            k = k.advance(jk, dt);
+        }
+        s.t4 = (self.dp - k.position) / l.v_max;
+        self.add(&s, out);
+    }
+
+    /// Both acceleration limits reached, no cruise: `t₂` from a quadratic, `t₆` from the
+    /// velocity.
+    fn both_accelerations(&self, out: &mut Found<R>) {
+        let (l, j) = (&self.l, self.l.jerk);
+        let (a, am) = (l.a_max, l.a_min);
+        let (a0, v0, af, vf, dp) = (self.a0, self.v0, self.af, self.vf, self.dp);
+        let c = R::lit;
+        let (a0s, afs) = (a0 * a0, af * af);
+        let c2 = -c(12.0) * a * j * j * (a - am);
+        let c1 = -c(12.0) * j * (a - am) * (c(2.0) * a * a - a * am + c(2.0) * j * v0 - a0s);
+        let c0 = c(-12.0) * a * a * a * a + c(24.0) * a * a * a * am - c(12.0) * a * a * am * am
+            - c(24.0) * a * a * j * v0 + c(12.0) * a * a * a0s + c(48.0) * a * am * j * v0
+            - c(24.0) * a * am * a0s - c(12.0) * am * am * j * (v0 + vf)
+            + c(6.0) * am * am * (a0s + afs) - c(24.0) * am * j * j * dp
+            - c(24.0) * am * j * (a0 * v0 - af * vf) + c(8.0) * am * (a0s * a0 - afs * af)
+            + self.common_terms();
+        let hi = self.t_bound();
+        for &t2 in roots_in(&[c0, c1, c2], R::ZERO, hi).as_slice() {
+            let t6 = -(c(2.0) * a * a + c(2.0) * a * j * t2 - c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs)
+                / (c(2.0) * am * j);
+            self.add(&Shape { a1: a, t2, t4: R::ZERO, a5: am, t6, cruise: false }, out);
+        }
+    }
+
+    /// `−12J²v0² + 12J²vf² + 12J(a0²v0 − af²vf) − 3a0⁴ + 3af⁴`: the part of the position
+    /// polynomials' constant terms that every form shares.
+    fn common_terms(&self) -> R {
+        let c = R::lit;
+        let (a0s, afs, j) = (self.a0 * self.a0, self.af * self.af, self.l.jerk);
+        c(12.0) * j * j * (self.vf * self.vf - self.v0 * self.v0) + c(12.0) * j * (a0s * self.v0 - afs * self.vf)
+            + c(3.0) * (afs * afs - a0s * a0s)
+    }
+
+    /// An upper bound of any hold in a profile: long enough to change the velocity across
+    /// its range at the smaller acceleration limit, twice.
+    fn t_bound(&self) -> R {
+        let l = &self.l;
+        let a = l.a_max.min_of(-l.a_min);
+        let span = (l.v_max - l.v_min) + self.v0.abs() + self.vf.abs();
+        R::lit(4.0) * span / a + R::lit(4.0) * (l.a_max - l.a_min) / l.jerk
+    }
+
+    /// The peak held at `a_max`, no cruise: the trough `a₅` from a quartic, `t₂` from the
+    /// velocity.
+    fn peak_at_limit(&self, out: &mut Found<R>) {
+        let (l, j) = (&self.l, self.l.jerk);
+        let a = l.a_max;
+        let (a0, v0, af, vf, dp) = (self.a0, self.v0, self.af, self.vf, self.dp);
+        let c = R::lit;
+        let (a0s, afs) = (a0 * a0, af * af);
+        let k = c(2.0) * j * vf - afs;
+        let c0 = c(12.0) * a * a * j * (v0 + vf) - c(6.0) * a * a * (a0s + afs) - c(24.0) * a * j * j * dp
+            - c(24.0) * a * j * (a0 * v0 - af * vf) + c(8.0) * a * (a0s * a0 - afs * af)
+            + self.common_terms();
+        let coeffs = [c0, -c(24.0) * a * k, c(12.0) * (a * a + k), -c(24.0) * a, c(12.0)];
+        let hi = af.min_of(a);
+        for &a5 in roots_in(&coeffs, l.a_min, hi).as_slice() {
+            let t2 = (-c(2.0) * a * a + c(2.0) * j * (vf - v0) + a0s - afs + c(2.0) * a5 * a5) / (c(2.0) * a * j);
+            self.add(&Shape { a1: a, t2, t4: R::ZERO, a5, t6: R::ZERO, cruise: false }, out);
+        }
+    }
+
+    /// The trough held at `a_min`, no cruise: the peak `a₁` from a quartic, `t₆` from the
+    /// velocity.
+    fn trough_at_limit(&self, out: &mut Found<R>) {
+        let (l, j) = (&self.l, self.l.jerk);
+        let am = l.a_min;
+        let (a0, v0, af, vf, dp) = (self.a0, self.v0, self.af, self.vf, self.dp);
+        let c = R::lit;
+        let (a0s, afs) = (a0 * a0, af * af);
+        let k = c(2.0) * j * v0 - a0s;
+        let c0 = -c(12.0) * am * am * j * (v0 + vf) + c(6.0) * am * am * (a0s + afs) - c(24.0) * am * j * j * dp
+            - c(24.0) * am * j * (a0 * v0 - af * vf) + c(8.0) * am * (a0s * a0 - afs * af)
+            + self.common_terms();
+        let coeffs = [c0, c(24.0) * am * k, -c(12.0) * (am * am + k), c(24.0) * am, -c(12.0)];
+        let lo = a0.max_of(am);
+        for &a1 in roots_in(&coeffs, lo, l.a_max).as_slice() {
+            let t6 = -(-c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs + c(2.0) * a1 * a1) / (c(2.0) * am * j);
+            self.add(&Shape { a1, t2: R::ZERO, t4: R::ZERO, a5: am, t6, cruise: false }, out);
+        }
+    }
+
+    /// No limit reached: `u = a₁ − a₅` from a quartic; the velocity gives
+    /// `a₁² − a₅² = K = J(v_f − v₀) + (a₀² − a_f²)/2`. At `u = 0` (then `K = 0`) the motion
+    /// is one phase of rising acceleration.
+    fn no_limit(&self, out: &mut Found<R>) {
+        let (l, j) = (&self.l, self.l.jerk);
+        let (a0, v0, af, vf, dp) = (self.a0, self.v0, self.af, self.vf, self.dp);
+        let c = R::lit;
+        let (a0s, afs) = (a0 * a0, af * af);
+        let kk = j * (vf - v0) + (a0s - afs) * R::HALF;
+        let coeffs = [
+            -c(12.0) * kk * kk,
+            -c(16.0) * (c(3.0) * j * j * dp + c(3.0) * j * (a0 * v0 - af * vf) - a0s * a0 + afs * af),
+            c(24.0) * (c(2.0) * j * (v0 + vf) - a0s - afs),
+            R::ZERO,
+            c(12.0),
+        ];
+        for &u in roots_in(&coeffs, R::ZERO, l.a_max - l.a_min).as_slice() {
+            let (a1, a5) = if u > R::ZERO {
+                ((u + kk / u) * R::HALF, (kk / u - u) * R::HALF)
+            } else {
+                (a0, a0)
+            };
+            self.add(&Shape { a1, t2: R::ZERO, t4: R::ZERO, a5, t6: R::ZERO, cruise: false }, out);
+        }
+    }
+}
+
+/// The profiles found, with their durations, at most [`MAX_VALID`] + 3 kept.
+#[derive(Clone, Copy, Debug)]
+struct Found<R> {
+    items: [(Candidate<R>, R); MAX_VALID + 3],
+    len: usize,
+}
+
+impl<R: Real> Found<R> {
+    fn push(&mut self, c: Candidate<R>) {
+        if self.len < self.items.len() {
+            self.items[self.len] = (c, c.duration());
+            self.len += 1;
+        }
+    }
+}
+
+/// The time-optimal profile from `start` (inside the limits, after any brake phases
+/// `brake`) to `target`, and the feasible durations; `None` when no profile passes its
+/// checks (a numerical failure).
+pub(super) fn time_optimal<R: Real>(
+    origin: &Kinematics<R>,
+    brake: [JerkPhase<R>; 2],
+    target: &Kinematics<R>,
+    l: &AxisLimits<R>,
+) -> Option<Block<R>> {
+    let mut start = *origin;
+    let mut brake_time = R::ZERO;
+    for p in &brake {
+        start = start.advance(p.jerk, p.duration);
+        brake_time += p.duration;
+    }
+    let up = Up::new(&start, target, l);
+    let down = up.mirrored();
+    let empty = Candidate { t: [R::ZERO; 7], jerks: [R::ZERO; 7], accelerations: [R::ZERO; 8], position_tolerance: R::ZERO };
+    let mut found = Found { items: [(empty, R::ZERO); MAX_VALID + 3], len: 0 };
+    up.profiles(&mut found);
+    let from_up = found.len;
+    down.profiles(&mut found);
+    for item in &mut found.items[from_up..found.len] {
+        item.0 = item.0.negated();
+    }
+    block(origin, brake, brake_time, &mut found, up.tol.time)
+}
+
+/// Sorts the profiles by duration, merges those that coincide within `tol`, and reads the
+/// block: the shortest, and the gaps between the next pairs.
+fn block<R: Real>(
+    origin: &Kinematics<R>,
+    brake: [JerkPhase<R>; 2],
+    brake_time: R,
+    found: &mut Found<R>,
+    tol: R,
+) -> Option<Block<R>> {
+    let items = &mut found.items[..found.len];
+    // Insertion sort by duration (at most eight items).
+    for i in 1..items.len() {
+        let mut k = i;
+        while k > 0 && items[k].1 < items[k - 1].1 {
+            items.swap(k, k - 1);
+            k -= 1;
+        }
+    }
+    let mut durations = [R::ZERO; MAX_VALID + 3];
+    let mut n = 0;
+    for item in items.iter() {
+        if n == 0 || item.1 - durations[n - 1] > tol {
+            durations[n] = item.1;
+            n += 1;
+        }
+    }
+    let best = items.first()?.0;
+    let profile = with_brake(origin, brake, &best.t, &best.jerks, &best.accelerations);
+    let mut gaps = [(R::ZERO, R::ZERO); 2];
+    let mut gap_count = 0;
+    // An even count means a boundary was missed or found twice: the gaps cannot be read,
+    // and the shortest duration stands alone.
+    if n % 2 == 1 {
+        let mut i = 1;
+        while i + 1 < n && gap_count < 2 {
+            gaps[gap_count] = (durations[i] + brake_time, durations[i + 1] + brake_time);
+            gap_count += 1;
+            i += 2;
+        }
+    }
+    Some(Block { profile, gaps, gap_count })
+}
+
+/// The profile of the brake phases followed by up to seven main phases (durations, jerks,
+/// and the accelerations at the main phases' starts and end).
+pub(super) fn with_brake<R: Real>(
+    origin: &Kinematics<R>,
+    brake: [JerkPhase<R>; 2],
+    t: &[R],
+    jerks: &[R],
+    accelerations: &[R],
+) -> AxisProfile<R> {
+    let mut phases = [JerkPhase::default(); MAX_PHASES];
+    let mut accs = [R::ZERO; MAX_PHASES + 1];
+    let mut a = origin.acceleration;
+    accs[0] = a;
+    for (i, p) in brake.iter().enumerate() {
+        phases[i] = *p;
+        a += p.jerk * p.duration;
+        accs[i + 1] = a;
+    }
+    for (i, (&dt, &j)) in t.iter().zip(jerks).enumerate() {
+        phases[2 + i] = JerkPhase { jerk: j, duration: dt };
+    }
+    // The main phases start where the brake ends; then the form's accelerations.
+    let last = accelerations.len().min(MAX_PHASES - 1);
+    accs[2..2 + last].copy_from_slice(&accelerations[..last]);
+    for a in &mut accs[2 + last..] {
+        *a = accelerations[last - 1];
+    }
+    AxisProfile::with_accelerations(*origin, phases, &accs)
+}

@@ -1,0 +1,187 @@
+//! Several axes moved together: each axis's time-optimal motion and feasible durations,
+//! then one duration for all ([`Synchronization`]).
+
+use super::profile::{AxisLimits, AxisProfile, Kinematics};
+use super::real::Real;
+use super::step1::Block;
+use super::{brake, step2, velocity};
+use crate::error::Error;
+
+/// How the axes of a move are timed together.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Synchronization {
+    /// Every axis finishes at the same time: the smallest duration that every axis can take
+    /// (at least the slowest axis's minimum, and outside every axis's gaps).
+    #[default]
+    Time,
+    /// Every axis follows the same motion scaled (a straight line in axis space) when the
+    /// start and target states lie on one line (velocities and accelerations parallel to
+    /// the displacement); otherwise as [`Synchronization::Time`].
+    Phase,
+    /// Every axis on its own, as fast as it can.
+    None,
+}
+
+/// Whether the move goes to a target position, or only to a velocity.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Interface {
+    /// To the target's position, velocity and acceleration.
+    #[default]
+    Position,
+    /// To the target's velocity and acceleration, the position free (jogging).
+    Velocity,
+}
+
+/// One axis's block in the move's interface.
+pub(super) fn axis_block<R: Real>(
+    start: &Kinematics<R>,
+    target: &Kinematics<R>,
+    l: &AxisLimits<R>,
+    interface: Interface,
+) -> Result<Block<R>, Error> {
+    match interface {
+        Interface::Position => super::solve_axis(start, target, l),
+        Interface::Velocity => super::solve_axis_velocity(start, target, l),
+    }
+}
+
+/// One axis's motion of exactly `duration` in the move's interface.
+pub(super) fn axis_with_duration<R: Real>(
+    start: &Kinematics<R>,
+    target: &Kinematics<R>,
+    l: &AxisLimits<R>,
+    interface: Interface,
+    duration: R,
+) -> Option<AxisProfile<R>> {
+    match interface {
+        Interface::Position => {
+            let brake = brake::position_brake(start.velocity, start.acceleration, l);
+            step2::with_duration(start, brake, target, l, duration)
+        }
+        Interface::Velocity => velocity::with_duration(start, target, l, duration),
+    }
+}
+
+/// The smallest duration at least every axis's minimum that no axis finds in a gap: the
+/// largest minimum, or the end of a gap that holds it (and so on, at most `2A` steps).
+pub(super) fn common_duration<R: Real>(blocks: &[Block<R>]) -> R {
+    let mut t = R::ZERO;
+    for b in blocks {
+        t = t.max_of(b.t_min());
+    }
+    // Each pass moves `t` to the end of a gap that holds it; a gap's end is never held by
+    // the same gap again, so after one pass per gap no gap holds `t`.
+    for _ in 0..=2 * blocks.len() {
+        let mut moved = false;
+        for b in blocks {
+            for &(lo, hi) in b.gaps() {
+                if t > lo && t < hi {
+                    t = hi;
+                    moved = true;
+                }
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+    t
+}
+
+/// The state of axis `i` as its share `r` of a line motion that starts at `line0`:
+/// `x₀ + r·(x_line − x_line₀)`, velocity and acceleration `r·` the line's.
+fn scaled<R: Real>(x0: R, r: R, line0: R, k: &Kinematics<R>) -> Kinematics<R> {
+    Kinematics::new(x0 + r * (k.position - line0), r * k.velocity, r * k.acceleration)
+}
+
+/// The values that must lie on one line for a phase-synchronized move: displacement,
+/// start and target velocity and acceleration.
+fn line_values<R: Real>(start: &Kinematics<R>, target: &Kinematics<R>, interface: Interface) -> [R; 5] {
+    let dp = match interface {
+        Interface::Position => target.position - start.position,
+        Interface::Velocity => R::ZERO,
+    };
+    [dp, start.velocity, start.acceleration, target.velocity, target.acceleration]
+}
+
+/// The share `r_i` of every axis in a line through the reference axis's values, if the
+/// axes' values lie on one (within rounding), with the reference axis.
+fn line_shares<R: Real, const A: usize>(values: &[[R; 5]; A]) -> Option<([R; A], usize)> {
+    // The reference: the axis with the largest value in the first component any axis has.
+    let mut reference = None;
+    for c in 0..5 {
+        let mut best = R::ZERO;
+        for (i, w) in values.iter().enumerate() {
+            if w[c].abs() > best {
+                best = w[c].abs();
+                reference = Some((i, c));
+            }
+        }
+        if reference.is_some() {
+            break;
+        }
+    }
+    let (k, c) = reference?;
+    let mut shares = [R::ZERO; A];
+    for (i, w) in values.iter().enumerate() {
+        let r = w[c] / values[k][c];
+        for m in 0..5 {
+            let scale = w[m].abs().max_of(values[k][m].abs() * r.abs());
+            if (w[m] - r * values[k][m]).abs() > R::lit(64.0) * R::EPS * scale {
+                return None;
+            }
+        }
+        shares[i] = r;
+    }
+    Some((shares, k))
+}
+
+/// The limits of the line parameter (the reference axis's coordinate): every axis's
+/// limits divided by its share, the tightest of each.
+fn line_limits<R: Real, const A: usize>(shares: &[R; A], limits: &[AxisLimits<R>; A]) -> Result<AxisLimits<R>, Error> {
+    let big = R::MAX;
+    let (mut v_max, mut v_min, mut a_max, mut a_min, mut jerk) = (big, -big, big, -big, big);
+    for (r, l) in shares.iter().zip(limits) {
+        let m = r.abs();
+        if m == R::ZERO {
+            continue;
+        }
+        let l = if r.is_negative() { l.mirrored() } else { *l };
+        v_max = v_max.min_of(l.v_max / m);
+        v_min = v_min.max_of(l.v_min / m);
+        a_max = a_max.min_of(l.a_max / m);
+        a_min = a_min.max_of(l.a_min / m);
+        jerk = jerk.min_of(l.jerk / m);
+    }
+    AxisLimits::new(v_max, a_max, jerk)?.with_minimum(v_min, a_min)
+}
+
+/// The phase-synchronized profiles: the reference axis's motion along the line, every
+/// axis its share of it. `None` when the states do not lie on one line.
+pub(super) fn phase_profiles<R: Real, const A: usize>(
+    start: &[Kinematics<R>; A],
+    target: &[Kinematics<R>; A],
+    limits: &[AxisLimits<R>; A],
+    interface: Interface,
+) -> Result<Option<[AxisProfile<R>; A]>, Error> {
+    let mut values = [[R::ZERO; 5]; A];
+    for i in 0..A {
+        values[i] = line_values(&start[i], &target[i], interface);
+    }
+    let Some((shares, k)) = line_shares(&values) else { return Ok(None) };
+    let line = axis_block(&start[k], &target[k], &line_limits(&shares, limits)?, interface)?;
+    let reference = line.profile();
+    let mut profiles = [*reference; A];
+    for (i, p) in profiles.iter_mut().enumerate() {
+        let r = shares[i];
+        for ph in &mut p.phases {
+            ph.jerk = r * ph.jerk;
+        }
+        for (s, k_state) in p.states.iter_mut().zip(&reference.states) {
+            *s = scaled(start[i].position, r, start[k].position, k_state);
+        }
+    }
+    Ok(Some(profiles))
+}
