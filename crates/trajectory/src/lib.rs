@@ -13,16 +13,18 @@ mod path;
 mod plan;
 mod play;
 
-pub use compile::{CompileOptions, Tolerance, compile, compile_into};
+pub use compile::{
+    CompileOptions, Tolerance, compile, compile_into, compile_move, compile_move_into,
+};
 pub use error::{BlobFormat, Error, Quantity, Units};
 pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
-pub use path::{
-    AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, END_AGREEMENT_SLACK, Path, PathBlob,
-    PathHeader, PathView, Piece, Sample, crc32,
-};
 pub use online::{
     AxisLimits, AxisProfile, Block, Interface, JerkPhase, Kinematics, MAX_PHASES, MoveOptions,
     OnlineMove, Real, Synchronization, solve_axis, solve_axis_velocity,
+};
+pub use path::{
+    AlignedBlob, AxisState, BLOB_MAGIC, BLOB_VERSION, END_AGREEMENT_SLACK, Path, PathBlob,
+    PathHeader, PathView, Piece, Sample, crc32,
 };
 pub use plan::*;
 pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};

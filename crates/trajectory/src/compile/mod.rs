@@ -2,6 +2,7 @@
 
 mod knots;
 mod law;
+mod online;
 mod options;
 mod peaks;
 mod planned;
@@ -10,13 +11,14 @@ mod tangential;
 #[cfg(test)]
 pub(crate) mod testing;
 
+pub use online::{compile_move, compile_move_into};
 pub use options::{CompileOptions, Tolerance};
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use crate::error::{Error, Quantity, Units};
-use crate::num::Number;
-use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta, RATE_RANGE};
+use crate::num::{Number, RATE_RANGE};
+use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta};
 use crate::plan::{FeedReserve, MotionLimits, Timing, Trajectory};
 use knots::{Knots, PieceKnots};
 use law::TickLaw;
@@ -270,7 +272,9 @@ where
 ///
 /// # Errors
 /// [`Error::PlaybackBoundExceeded`] otherwise.
-fn check_playback_bound<N: Number, const A: usize>(header: &PathHeader<N, A>) -> Result<(), Error> {
+pub(super) fn check_playback_bound<N: Number, const A: usize>(
+    header: &PathHeader<N, A>,
+) -> Result<(), Error> {
     let (bound, tolerance) = (header.playback_bound(), header.tolerance());
     if bound <= tolerance {
         Ok(())
@@ -654,7 +658,7 @@ fn derived_limits(law: &LawPeaks<'_>, share: f64) -> (f64, f64) {
 }
 
 /// The state rounded into `N` ([`Error::OutOfRange`] if a value does not fit).
-fn round_state<N: Number>(s: &AxisState<f64>) -> Result<AxisState<N>, Error> {
+pub(super) fn round_state<N: Number>(s: &AxisState<f64>) -> Result<AxisState<N>, Error> {
     let r = |v: f64| N::from_f64(v).ok_or(Error::OutOfRange);
     Ok(AxisState {
         position: r(s.position)?,

@@ -10,6 +10,9 @@ mod format;
 
 pub use format::{NumberFormat, ParseNumberFormatError};
 
+/// The lowest and highest control rates in Hz.
+pub(crate) const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);
+
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}

@@ -47,9 +47,15 @@ pub(super) fn position_brake<R: Real>(v: R, a: R, l: &AxisLimits<R>) -> [JerkPha
 pub(super) fn velocity_mode_brake<R: Real>(a: R, l: &AxisLimits<R>) -> [JerkPhase<R>; 2] {
     let mut phases = [JerkPhase::default(); 2];
     if a > l.a_max {
-        phases[0] = JerkPhase { jerk: -l.jerk, duration: (a - l.a_max) / l.jerk };
+        phases[0] = JerkPhase {
+            jerk: -l.jerk,
+            duration: (a - l.a_max) / l.jerk,
+        };
     } else if a < l.a_min {
-        phases[0] = JerkPhase { jerk: l.jerk, duration: (l.a_min - a) / l.jerk };
+        phases[0] = JerkPhase {
+            jerk: l.jerk,
+            duration: (l.a_min - a) / l.jerk,
+        };
     }
     phases
 }
@@ -69,7 +75,13 @@ fn acceleration_brake<R: Real>(v: R, a: R, l: &AxisLimits<R>) -> [JerkPhase<R>; 
     let to_a_max = (a - l.a_max) / j;
     let v_at_a_max = velocity_after(v, a, -j, to_a_max);
     let v_at_zero = velocity_after(v, a, -j, a / j);
-    let mut phases = [JerkPhase { jerk: -j, duration: to_a_max }, JerkPhase::default()];
+    let mut phases = [
+        JerkPhase {
+            jerk: -j,
+            duration: to_a_max,
+        },
+        JerkPhase::default(),
+    ];
     if v_at_zero > l.v_max {
         return velocity_brake(v, a, l);
     }
@@ -92,7 +104,13 @@ fn velocity_brake<R: Real>(v: R, a: R, l: &AxisLimits<R>) -> [JerkPhase<R>; 2] {
     let to_v_max = (a + (a * a + R::TWO * j * (v - l.v_max)).sqrt()) / j;
     let to_v_min = (a + (a * a * R::HALF + j * (v - l.v_min)).sqrt()) / j;
     let first = to_v_max.min_of(to_v_min);
-    let mut phases = [JerkPhase { jerk: -j, duration: first }, JerkPhase::default()];
+    let mut phases = [
+        JerkPhase {
+            jerk: -j,
+            duration: first,
+        },
+        JerkPhase::default(),
+    ];
     if to_a_min < first {
         let v_at_a_min = velocity_after(v, a, -j, to_a_min);
         let hold_to_v_max = (l.v_max - v_at_a_min) / l.a_min;

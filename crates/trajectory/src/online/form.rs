@@ -39,11 +39,20 @@ impl<R: Real> Tolerance<R> {
     pub(super) fn of(start: &Kinematics<R>, target: &Kinematics<R>, l: &AxisLimits<R>) -> Self {
         let ulps = R::lit(if R::EPS > R::lit(1e-10) { 64.0 } else { 1024.0 }) * R::EPS;
         let big = |a: R, b: R| if a.abs() > b.abs() { a.abs() } else { b.abs() };
-        let a = big(big(l.a_max, l.a_min), big(start.acceleration, target.acceleration));
+        let a = big(
+            big(l.a_max, l.a_min),
+            big(start.acceleration, target.acceleration),
+        );
         let v = big(big(l.v_max, l.v_min), big(start.velocity, target.velocity));
         let t = a / l.jerk + v / a;
         let p = big(target.position - start.position, v * t);
-        Tolerance { ulps, time: ulps * t, position: ulps * p, velocity: ulps * v, acceleration: ulps * a }
+        Tolerance {
+            ulps,
+            time: ulps * t,
+            position: ulps * p,
+            velocity: ulps * v,
+            acceleration: ulps * a,
+        }
     }
 }
 
@@ -59,7 +68,6 @@ pub(super) struct Shape<R> {
     pub(super) t6: R,
     pub(super) cruise: bool,
 }
-
 
 impl<R: Real> Up<R> {
     /// The problem from `start` to `target`.
@@ -98,10 +106,25 @@ impl<R: Real> Up<R> {
     /// The seven durations of a candidate (`None` if one is negative beyond rounding).
     pub(super) fn durations(&self, s: &Shape<R>) -> Option<[R; 7]> {
         let j = self.l.jerk;
-        let (t3, t5) = if s.cruise { (s.a1 / j, -s.a5 / j) } else { ((s.a1 - s.a5) / j, R::ZERO) };
-        let mut t = [(s.a1 - self.a0) / j, s.t2, t3, s.t4, t5, s.t6, (self.af - s.a5) / j];
+        let (t3, t5) = if s.cruise {
+            (s.a1 / j, -s.a5 / j)
+        } else {
+            ((s.a1 - s.a5) / j, R::ZERO)
+        };
+        let mut t = [
+            (s.a1 - self.a0) / j,
+            s.t2,
+            t3,
+            s.t4,
+            t5,
+            s.t6,
+            (self.af - s.a5) / j,
+        ];
         for x in &mut t {
-            if (*x).partial_cmp(&-self.tol.time).is_none_or(core::cmp::Ordering::is_lt) {
+            if (*x)
+                .partial_cmp(&-self.tol.time)
+                .is_none_or(core::cmp::Ordering::is_lt)
+            {
                 return None;
             }
             if x.is_negative() {
@@ -149,7 +172,10 @@ impl<R: Real> Up<R> {
             }
             // The form's acceleration where rounding left it a little off.
             let close = (integrated.acceleration - accelerations[i + 1]).abs() <= tol.acceleration;
-            k = Kinematics { acceleration: accelerations[i + 1], ..integrated };
+            k = Kinematics {
+                acceleration: accelerations[i + 1],
+                ..integrated
+            };
             if !close {
                 return None;
             }
@@ -160,8 +186,19 @@ impl<R: Real> Up<R> {
         for x in &t {
             total += *x;
         }
-        let position_tolerance = tol.position.max_of(tol.ulps * travelled).max_of(tol.velocity * total);
-        reached.then_some((Candidate { t, jerks, accelerations, position_tolerance }, k.position))
+        let position_tolerance = tol
+            .position
+            .max_of(tol.ulps * travelled)
+            .max_of(tol.velocity * total);
+        reached.then_some((
+            Candidate {
+                t,
+                jerks,
+                accelerations,
+                position_tolerance,
+            },
+            k.position,
+        ))
     }
 
     /// The motion of a candidate when it is one and ends on the target position.
@@ -199,4 +236,3 @@ impl<R: Real> Candidate<R> {
         self
     }
 }
-

@@ -28,9 +28,9 @@ mod step2;
 mod sync;
 mod velocity;
 
+pub use moves::{MoveOptions, OnlineMove};
 pub use profile::{AxisLimits, AxisProfile, JerkPhase, Kinematics, MAX_PHASES};
 pub use real::Real;
-pub use moves::{MoveOptions, OnlineMove};
 pub use step1::Block;
 pub use sync::{Interface, Synchronization};
 
@@ -99,7 +99,8 @@ pub fn solve_axis_velocity<R: Real>(
     target: &Kinematics<R>,
     limits: &AxisLimits<R>,
 ) -> Result<Block<R>, Error> {
-    let finite = start.is_finite() && target.velocity.is_finite() && target.acceleration.is_finite();
+    let finite =
+        start.is_finite() && target.velocity.is_finite() && target.acceleration.is_finite();
     if !finite {
         return Err(Error::NonFiniteState);
     }
@@ -109,21 +110,33 @@ pub fn solve_axis_velocity<R: Real>(
 
 /// The target's velocity and acceleration inside the limits (and, in position mode,
 /// reachable without passing a velocity limit).
-fn check_target<R: Real>(target: &Kinematics<R>, l: &AxisLimits<R>, position: bool) -> Result<(), Error> {
+fn check_target<R: Real>(
+    target: &Kinematics<R>,
+    l: &AxisLimits<R>,
+    position: bool,
+) -> Result<(), Error> {
     let (v, a) = (target.velocity, target.acceleration);
     if v > l.v_max || v < l.v_min {
-        return Err(Error::TargetOutsideLimits { quantity: Quantity::Velocity });
+        return Err(Error::TargetOutsideLimits {
+            quantity: Quantity::Velocity,
+        });
     }
     if a > l.a_max || a < l.a_min {
-        return Err(Error::TargetOutsideLimits { quantity: Quantity::Acceleration });
+        return Err(Error::TargetOutsideLimits {
+            quantity: Quantity::Acceleration,
+        });
     }
     let carried = a * a / (R::TWO * l.jerk);
     let passes = (a < R::ZERO && v + carried > l.v_max) || (a > R::ZERO && v - carried < l.v_min);
     if position && passes {
-        return Err(Error::TargetOutsideLimits { quantity: Quantity::Velocity });
+        return Err(Error::TargetOutsideLimits {
+            quantity: Quantity::Velocity,
+        });
     }
     Ok(())
 }
 
+#[cfg(test)]
+pub(crate) mod testing;
 #[cfg(test)]
 mod tests;

@@ -3,8 +3,9 @@
 use super::profile::{AxisLimits, AxisProfile, Kinematics};
 use super::real::Real;
 use super::step1::Block;
-use super::sync::{self, Interface, Synchronization};
+use super::sync::{self, Grid, Interface, Synchronization};
 use crate::error::Error;
+use crate::num::RATE_RANGE;
 
 /// How a move is timed and what it goes to.
 ///
@@ -13,25 +14,46 @@ use crate::error::Error;
 /// let o = MoveOptions::new().with_synchronization(Synchronization::Phase);
 /// assert_eq!((o.synchronization, o.interface), (Synchronization::Phase, Interface::Position));
 /// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct MoveOptions {
     /// How the axes are timed together (default: [`Synchronization::Time`]).
     pub synchronization: Synchronization,
     /// Position or velocity targets (default: [`Interface::Position`]).
     pub interface: Interface,
+    /// The control rate the move is played at (Hz), if any: every axis's duration is then
+    /// a whole number of ticks, so that the compiled path ends on the target exactly at a
+    /// tick (default: none, the durations as solved).
+    pub rate_hz: Option<f64>,
 }
 
 impl MoveOptions {
-    /// Time-synchronized, to target positions.
+    /// Time-synchronized, to target positions, off the tick grid.
     pub const fn new() -> Self {
-        MoveOptions { synchronization: Synchronization::Time, interface: Interface::Position }
+        MoveOptions {
+            synchronization: Synchronization::Time,
+            interface: Interface::Position,
+            rate_hz: None,
+        }
+    }
+
+    /// Durations in whole ticks of `rate_hz` (100 Hz ..= 100 kHz, checked by
+    /// [`OnlineMove::solve`]).
+    #[must_use]
+    pub const fn with_rate(self, rate_hz: f64) -> Self {
+        MoveOptions {
+            rate_hz: Some(rate_hz),
+            ..self
+        }
     }
 
     /// With the given synchronization.
     #[must_use]
     pub const fn with_synchronization(self, synchronization: Synchronization) -> Self {
-        MoveOptions { synchronization, ..self }
+        MoveOptions {
+            synchronization,
+            ..self
+        }
     }
 
     /// With the given interface.
@@ -67,6 +89,8 @@ pub struct OnlineMove<R, const A: usize> {
     duration: R,
     synchronization: Synchronization,
     interface: Interface,
+    rate_hz: Option<f64>,
+    limits: [AxisLimits<R>; A],
 }
 
 impl<R: Real, const A: usize> OnlineMove<R, A> {
@@ -88,6 +112,8 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
             duration: R::ZERO,
             synchronization: options.synchronization,
             interface: options.interface,
+            rate_hz: options.rate_hz,
+            limits: *limits,
         };
         m.solve_in_place(start, target, limits, options)?;
         Ok(m)
@@ -106,33 +132,52 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
         options: &MoveOptions,
     ) -> Result<(), Error> {
         let interface = options.interface;
+        if options
+            .rate_hz
+            .is_some_and(|f| !(f >= RATE_RANGE.0 && f <= RATE_RANGE.1))
+        {
+            return Err(Error::InvalidRate);
+        }
+        let grid = Grid(options.rate_hz);
         let mut blocks = [Block::still(); A];
         for i in 0..A {
             blocks[i] = sync::axis_block(&start[i], &target[i], &limits[i], interface)?;
         }
         let mut used = options.synchronization;
         let mut profiles = blocks.map(|b| *b.profile());
-        let mut duration = R::ZERO;
-        for b in &blocks {
-            duration = duration.max_of(b.t_min());
-        }
+        let mut durations = blocks.map(|b| b.t_min());
         if used == Synchronization::Phase {
-            match sync::phase_profiles(start, target, limits, interface)? {
+            match sync::phase_profiles(start, target, limits, interface, grid)? {
                 Some(p) => {
                     profiles = p;
-                    duration = profiles[0].duration();
+                    durations = [profiles[0].duration(); A];
                 }
                 None => used = Synchronization::Time,
             }
         }
-        if used == Synchronization::Time {
-            duration = sync::common_duration(&blocks);
+        if used != Synchronization::Phase {
+            let common = sync::common_duration(&blocks, grid);
             for i in 0..A {
-                if blocks[i].t_min() < duration {
-                    profiles[i] = sync::axis_with_duration(&start[i], &target[i], &limits[i], interface, duration)
-                        .ok_or(Error::NoProfile)?;
+                if used == Synchronization::None {
+                    durations[i] = sync::common_duration(core::slice::from_ref(&blocks[i]), grid);
+                } else {
+                    durations[i] = common;
+                }
+                if durations[i] != blocks[i].t_min() {
+                    profiles[i] = sync::axis_with_duration(
+                        &start[i],
+                        &target[i],
+                        &limits[i],
+                        interface,
+                        durations[i],
+                    )
+                    .ok_or(Error::NoProfile)?;
                 }
             }
+        }
+        let mut duration = R::ZERO;
+        for d in &durations {
+            duration = duration.max_of(*d);
         }
         *self = OnlineMove {
             profiles,
@@ -141,6 +186,8 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
             duration,
             synchronization: used,
             interface,
+            rate_hz: options.rate_hz,
+            limits: *limits,
         };
         Ok(())
     }
@@ -174,6 +221,16 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
     /// Position or velocity targets.
     pub fn interface(&self) -> Interface {
         self.interface
+    }
+
+    /// Each axis's limits.
+    pub fn limits(&self) -> &[AxisLimits<R>; A] {
+        &self.limits
+    }
+
+    /// The control rate the durations are whole ticks of, if one was given.
+    pub fn rate_hz(&self) -> Option<f64> {
+        self.rate_hz
     }
 
     /// Every axis's state at time `t` (seconds from the start).

@@ -25,7 +25,11 @@ pub struct Kinematics<R> {
 impl<R: Real> Kinematics<R> {
     /// The state `(position, velocity, acceleration)`.
     pub const fn new(position: R, velocity: R, acceleration: R) -> Self {
-        Kinematics { position, velocity, acceleration }
+        Kinematics {
+            position,
+            velocity,
+            acceleration,
+        }
     }
 
     /// At rest at `position`.
@@ -51,7 +55,6 @@ impl<R: Real> Kinematics<R> {
     pub(super) fn is_finite(&self) -> bool {
         self.position.is_finite() && self.velocity.is_finite() && self.acceleration.is_finite()
     }
-
 }
 
 /// The limits of one axis: velocity and acceleration in `[minimum, maximum]` (by default
@@ -99,7 +102,12 @@ impl<R: Real> AxisLimits<R> {
     /// # Errors
     /// [`Error::InvalidLimit`] unless both are finite and negative.
     pub fn with_minimum(self, velocity_min: R, acceleration_min: R) -> Result<Self, Error> {
-        AxisLimits { v_min: velocity_min, a_min: acceleration_min, ..self }.validated()
+        AxisLimits {
+            v_min: velocity_min,
+            a_min: acceleration_min,
+            ..self
+        }
+        .validated()
     }
 
     fn validated(self) -> Result<Self, Error> {
@@ -109,7 +117,11 @@ impl<R: Real> AxisLimits<R> {
             && positive(self.a_max)
             && positive(-self.a_min)
             && positive(self.jerk);
-        if ok { Ok(self) } else { Err(Error::InvalidLimit) }
+        if ok {
+            Ok(self)
+        } else {
+            Err(Error::InvalidLimit)
+        }
     }
 
     /// The largest velocity.
@@ -203,12 +215,35 @@ impl<R: Real> AxisProfile<R> {
             states[i + 1].acceleration = accelerations[i + 1];
             duration += p.duration;
         }
-        AxisProfile { phases, states, duration }
+        AxisProfile {
+            phases,
+            states,
+            duration,
+        }
     }
 
     /// The duration in seconds.
     pub fn duration(&self) -> R {
         self.duration
+    }
+
+    /// The profile with every value converted to `f64` (exactly).
+    pub fn to_f64(&self) -> AxisProfile<f64> {
+        let k = |s: &Kinematics<R>| {
+            Kinematics::new(
+                s.position.to_f64(),
+                s.velocity.to_f64(),
+                s.acceleration.to_f64(),
+            )
+        };
+        AxisProfile {
+            phases: self.phases.map(|p| JerkPhase {
+                jerk: p.jerk.to_f64(),
+                duration: p.duration.to_f64(),
+            }),
+            states: self.states.map(|s| k(&s)),
+            duration: self.duration.to_f64(),
+        }
     }
 
     /// The start state.
@@ -245,11 +280,12 @@ impl<R: Real> AxisProfile<R> {
         (MAX_PHASES, R::ZERO)
     }
 
-    /// The state at time `t` in seconds from the start (the start state before it, the end
-    /// state from the end on).
+    /// The state at time `t` in seconds from the start: the start state before it; from
+    /// the end on, the end state continued without jerk (an axis of an unsynchronized
+    /// move that arrives early keeps its target velocity and acceleration).
     pub fn at(&self, t: R) -> Kinematics<R> {
         match self.locate(t) {
-            (MAX_PHASES, _) => self.end(),
+            (MAX_PHASES, _) => self.end().advance(R::ZERO, t - self.duration),
             (i, dt) => self.states[i].advance(self.phases[i].jerk, dt),
         }
     }

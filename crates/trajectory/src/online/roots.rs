@@ -25,7 +25,10 @@ pub(super) struct Roots<R> {
 
 impl<R: Real> Roots<R> {
     fn new() -> Self {
-        Roots { values: [R::ZERO; MAX_DEGREE], len: 0 }
+        Roots {
+            values: [R::ZERO; MAX_DEGREE],
+            len: 0,
+        }
     }
 
     /// Appends `x` unless it repeats the last root (a root found from both sides of a
@@ -82,14 +85,22 @@ pub(super) fn roots_in<R: Real>(c: &[R], lo: R, hi: R) -> Roots<R> {
     for (i, &k) in c.iter().enumerate().skip(1) {
         d[i - 1] = k * R::from_i16(i16::try_from(i).unwrap_or(0));
     }
-    let critical = if n > 2 { roots_in(&d[..n - 1], lo, hi) } else { Roots::new() };
+    let critical = if n > 2 {
+        roots_in(&d[..n - 1], lo, hi)
+    } else {
+        Roots::new()
+    };
     let mut left = lo;
     let (mut f_left, _, mut err_left) = eval(c, left);
     if f_left.abs() <= err_left {
         out.push(left);
     }
     for i in 0..=critical.len {
-        let right = if i < critical.len { critical.values[i] } else { hi };
+        let right = if i < critical.len {
+            critical.values[i]
+        } else {
+            hi
+        };
         let (f_right, _, err_right) = eval(c, right);
         let left_zero = f_left.abs() <= err_left;
         let right_zero = f_right.abs() <= err_right;
@@ -124,7 +135,11 @@ fn bracketed<R: Real>(c: &[R], mut l: R, mut r: R, f_l: R) -> R {
             r = x;
         }
         let newton = x - f / df;
-        let next = if newton > l && newton < r { newton } else { (l + r) * R::HALF };
+        let next = if newton > l && newton < r {
+            newton
+        } else {
+            (l + r) * R::HALF
+        };
         if (next - x).abs() <= R::EPS * x.abs() || next == l || next == r {
             return next;
         }
@@ -181,7 +196,11 @@ mod tests {
         let got = roots_in(&c, 0.0, 2.0);
         assert_eq!(got.as_slice().len(), 1);
         assert!((got.as_slice()[0] - core::f32::consts::SQRT_2).abs() < 2e-7);
-        assert!(roots_in(&[1.0_f64, 0.0, 0.0], -1.0, 1.0).as_slice().is_empty());
+        assert!(
+            roots_in(&[1.0_f64, 0.0, 0.0], -1.0, 1.0)
+                .as_slice()
+                .is_empty()
+        );
         assert!(roots_in(&c, 2.0, 0.0).as_slice().is_empty());
         assert!(roots_in(&c, f32::NAN, 1.0).as_slice().is_empty());
         assert_eq!(roots_in(&[-1.0_f64, 2.0], 0.0, 1.0).as_slice(), &[0.5]);

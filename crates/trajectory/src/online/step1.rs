@@ -68,8 +68,16 @@ pub struct Block<R> {
 impl<R: Real> Block<R> {
     /// No motion: at rest at 0, duration 0.
     pub(super) fn still() -> Self {
-        let profile = AxisProfile::with_accelerations(Kinematics::default(), Default::default(), &Default::default());
-        Block { profile, gaps: [(R::ZERO, R::ZERO); 2], gap_count: 0 }
+        let profile = AxisProfile::with_accelerations(
+            Kinematics::default(),
+            Default::default(),
+            &Default::default(),
+        );
+        Block {
+            profile,
+            gaps: [(R::ZERO, R::ZERO); 2],
+            gap_count: 0,
+        }
     }
 
     /// The time-optimal profile.
@@ -121,14 +129,23 @@ impl<R: Real> Up<R> {
         if peak.is_negative() || trough.is_negative() {
             return;
         }
-        let mut s = Shape { a1: peak.sqrt(), t2: R::ZERO, t4: R::ZERO, a5: -trough.sqrt(), t6: R::ZERO, cruise: true };
+        let mut s = Shape {
+            a1: peak.sqrt(),
+            t2: R::ZERO,
+            t4: R::ZERO,
+            a5: -trough.sqrt(),
+            t6: R::ZERO,
+            cruise: true,
+        };
         if s.a1 > l.a_max {
             s.a1 = l.a_max;
-            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j)) / l.a_max;
+            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j))
+                / l.a_max;
         }
         if s.a5 < l.a_min {
             s.a5 = l.a_min;
-            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j)) / l.a_min;
+            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j))
+                / l.a_min;
         }
         // The distance without cruise, then the cruise that covers the rest.
         let Some(t) = self.durations(&s) else { return };
@@ -150,17 +167,36 @@ impl<R: Real> Up<R> {
         let (a0s, afs) = (a0 * a0, af * af);
         let c2 = -c(12.0) * a * j * j * (a - am);
         let c1 = -c(12.0) * j * (a - am) * (c(2.0) * a * a - a * am + c(2.0) * j * v0 - a0s);
-        let c0 = c(-12.0) * a * a * a * a + c(24.0) * a * a * a * am - c(12.0) * a * a * am * am
-            - c(24.0) * a * a * j * v0 + c(12.0) * a * a * a0s + c(48.0) * a * am * j * v0
-            - c(24.0) * a * am * a0s - c(12.0) * am * am * j * (v0 + vf)
-            + c(6.0) * am * am * (a0s + afs) - c(24.0) * am * j * j * dp
-            - c(24.0) * am * j * (a0 * v0 - af * vf) + c(8.0) * am * (a0s * a0 - afs * af)
+        let c0 = c(-12.0) * a * a * a * a + c(24.0) * a * a * a * am
+            - c(12.0) * a * a * am * am
+            - c(24.0) * a * a * j * v0
+            + c(12.0) * a * a * a0s
+            + c(48.0) * a * am * j * v0
+            - c(24.0) * a * am * a0s
+            - c(12.0) * am * am * j * (v0 + vf)
+            + c(6.0) * am * am * (a0s + afs)
+            - c(24.0) * am * j * j * dp
+            - c(24.0) * am * j * (a0 * v0 - af * vf)
+            + c(8.0) * am * (a0s * a0 - afs * af)
             + self.common_terms();
         let hi = self.t_bound();
         for &t2 in roots_in(&[c0, c1, c2], R::ZERO, hi).as_slice() {
-            let t6 = -(c(2.0) * a * a + c(2.0) * a * j * t2 - c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs)
+            let t6 = -(c(2.0) * a * a + c(2.0) * a * j * t2 - c(2.0) * am * am
+                + c(2.0) * j * (v0 - vf)
+                - a0s
+                + afs)
                 / (c(2.0) * am * j);
-            self.add(&Shape { a1: a, t2, t4: R::ZERO, a5: am, t6, cruise: false }, out);
+            self.add(
+                &Shape {
+                    a1: a,
+                    t2,
+                    t4: R::ZERO,
+                    a5: am,
+                    t6,
+                    cruise: false,
+                },
+                out,
+            );
         }
     }
 
@@ -169,7 +205,8 @@ impl<R: Real> Up<R> {
     fn common_terms(&self) -> R {
         let c = R::lit;
         let (a0s, afs, j) = (self.a0 * self.a0, self.af * self.af, self.l.jerk);
-        c(12.0) * j * j * (self.vf * self.vf - self.v0 * self.v0) + c(12.0) * j * (a0s * self.v0 - afs * self.vf)
+        c(12.0) * j * j * (self.vf * self.vf - self.v0 * self.v0)
+            + c(12.0) * j * (a0s * self.v0 - afs * self.vf)
             + c(3.0) * (afs * afs - a0s * a0s)
     }
 
@@ -191,14 +228,34 @@ impl<R: Real> Up<R> {
         let c = R::lit;
         let (a0s, afs) = (a0 * a0, af * af);
         let k = c(2.0) * j * vf - afs;
-        let c0 = c(12.0) * a * a * j * (v0 + vf) - c(6.0) * a * a * (a0s + afs) - c(24.0) * a * j * j * dp
-            - c(24.0) * a * j * (a0 * v0 - af * vf) + c(8.0) * a * (a0s * a0 - afs * af)
+        let c0 = c(12.0) * a * a * j * (v0 + vf)
+            - c(6.0) * a * a * (a0s + afs)
+            - c(24.0) * a * j * j * dp
+            - c(24.0) * a * j * (a0 * v0 - af * vf)
+            + c(8.0) * a * (a0s * a0 - afs * af)
             + self.common_terms();
-        let coeffs = [c0, -c(24.0) * a * k, c(12.0) * (a * a + k), -c(24.0) * a, c(12.0)];
+        let coeffs = [
+            c0,
+            -c(24.0) * a * k,
+            c(12.0) * (a * a + k),
+            -c(24.0) * a,
+            c(12.0),
+        ];
         let hi = af.min_of(a);
         for &a5 in roots_in(&coeffs, l.a_min, hi).as_slice() {
-            let t2 = (-c(2.0) * a * a + c(2.0) * j * (vf - v0) + a0s - afs + c(2.0) * a5 * a5) / (c(2.0) * a * j);
-            self.add(&Shape { a1: a, t2, t4: R::ZERO, a5, t6: R::ZERO, cruise: false }, out);
+            let t2 = (-c(2.0) * a * a + c(2.0) * j * (vf - v0) + a0s - afs + c(2.0) * a5 * a5)
+                / (c(2.0) * a * j);
+            self.add(
+                &Shape {
+                    a1: a,
+                    t2,
+                    t4: R::ZERO,
+                    a5,
+                    t6: R::ZERO,
+                    cruise: false,
+                },
+                out,
+            );
         }
     }
 
@@ -211,14 +268,33 @@ impl<R: Real> Up<R> {
         let c = R::lit;
         let (a0s, afs) = (a0 * a0, af * af);
         let k = c(2.0) * j * v0 - a0s;
-        let c0 = -c(12.0) * am * am * j * (v0 + vf) + c(6.0) * am * am * (a0s + afs) - c(24.0) * am * j * j * dp
-            - c(24.0) * am * j * (a0 * v0 - af * vf) + c(8.0) * am * (a0s * a0 - afs * af)
+        let c0 = -c(12.0) * am * am * j * (v0 + vf) + c(6.0) * am * am * (a0s + afs)
+            - c(24.0) * am * j * j * dp
+            - c(24.0) * am * j * (a0 * v0 - af * vf)
+            + c(8.0) * am * (a0s * a0 - afs * af)
             + self.common_terms();
-        let coeffs = [c0, c(24.0) * am * k, -c(12.0) * (am * am + k), c(24.0) * am, -c(12.0)];
+        let coeffs = [
+            c0,
+            c(24.0) * am * k,
+            -c(12.0) * (am * am + k),
+            c(24.0) * am,
+            -c(12.0),
+        ];
         let lo = a0.max_of(am);
         for &a1 in roots_in(&coeffs, lo, l.a_max).as_slice() {
-            let t6 = -(-c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs + c(2.0) * a1 * a1) / (c(2.0) * am * j);
-            self.add(&Shape { a1, t2: R::ZERO, t4: R::ZERO, a5: am, t6, cruise: false }, out);
+            let t6 = -(-c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs + c(2.0) * a1 * a1)
+                / (c(2.0) * am * j);
+            self.add(
+                &Shape {
+                    a1,
+                    t2: R::ZERO,
+                    t4: R::ZERO,
+                    a5: am,
+                    t6,
+                    cruise: false,
+                },
+                out,
+            );
         }
     }
 
@@ -233,7 +309,8 @@ impl<R: Real> Up<R> {
         let kk = j * (vf - v0) + (a0s - afs) * R::HALF;
         let coeffs = [
             -c(12.0) * kk * kk,
-            -c(16.0) * (c(3.0) * j * j * dp + c(3.0) * j * (a0 * v0 - af * vf) - a0s * a0 + afs * af),
+            -c(16.0)
+                * (c(3.0) * j * j * dp + c(3.0) * j * (a0 * v0 - af * vf) - a0s * a0 + afs * af),
             c(24.0) * (c(2.0) * j * (v0 + vf) - a0s - afs),
             R::ZERO,
             c(12.0),
@@ -244,7 +321,17 @@ impl<R: Real> Up<R> {
             } else {
                 (a0, a0)
             };
-            self.add(&Shape { a1, t2: R::ZERO, t4: R::ZERO, a5, t6: R::ZERO, cruise: false }, out);
+            self.add(
+                &Shape {
+                    a1,
+                    t2: R::ZERO,
+                    t4: R::ZERO,
+                    a5,
+                    t6: R::ZERO,
+                    cruise: false,
+                },
+                out,
+            );
         }
     }
 }
@@ -282,8 +369,16 @@ pub(super) fn time_optimal<R: Real>(
     }
     let up = Up::new(&start, target, l);
     let down = up.mirrored();
-    let empty = Candidate { t: [R::ZERO; 7], jerks: [R::ZERO; 7], accelerations: [R::ZERO; 8], position_tolerance: R::ZERO };
-    let mut found = Found { items: [(empty, R::ZERO); MAX_VALID + 3], len: 0 };
+    let empty = Candidate {
+        t: [R::ZERO; 7],
+        jerks: [R::ZERO; 7],
+        accelerations: [R::ZERO; 8],
+        position_tolerance: R::ZERO,
+    };
+    let mut found = Found {
+        items: [(empty, R::ZERO); MAX_VALID + 3],
+        len: 0,
+    };
     up.profiles(&mut found);
     let from_up = found.len;
     down.profiles(&mut found);
@@ -333,7 +428,11 @@ fn block<R: Real>(
             i += 2;
         }
     }
-    Some(Block { profile, gaps, gap_count })
+    Some(Block {
+        profile,
+        gaps,
+        gap_count,
+    })
 }
 
 /// The profile of the brake phases followed by up to seven main phases (durations, jerks,
@@ -355,7 +454,10 @@ pub(super) fn with_brake<R: Real>(
         accs[i + 1] = a;
     }
     for (i, (&dt, &j)) in t.iter().zip(jerks).enumerate() {
-        phases[2 + i] = JerkPhase { jerk: j, duration: dt };
+        phases[2 + i] = JerkPhase {
+            jerk: j,
+            duration: dt,
+        };
     }
     // The main phases start where the brake ends; then the form's accelerations.
     let last = accelerations.len().min(MAX_PHASES - 1);

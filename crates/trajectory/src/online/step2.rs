@@ -51,14 +51,23 @@ impl<R: Real> Up<R> {
         if peak.is_negative() || trough.is_negative() {
             return None;
         }
-        let mut s = Shape { a1: peak.sqrt(), t2: R::ZERO, t4: R::ZERO, a5: -trough.sqrt(), t6: R::ZERO, cruise: true };
+        let mut s = Shape {
+            a1: peak.sqrt(),
+            t2: R::ZERO,
+            t4: R::ZERO,
+            a5: -trough.sqrt(),
+            t6: R::ZERO,
+            cruise: true,
+        };
         if s.a1 > l.a_max {
             s.a1 = l.a_max;
-            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j)) / l.a_max;
+            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j))
+                / l.a_max;
         }
         if s.a5 < l.a_min {
             s.a5 = l.a_min;
-            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j)) / l.a_min;
+            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j))
+                / l.a_min;
         }
         let t = self.durations(&s)?;
         let mut rest = tau;
@@ -76,7 +85,16 @@ impl<R: Real> Up<R> {
         let (l, j) = (&self.l, self.l.jerk);
         let (a0, v0, af, vf) = (self.a0, self.v0, self.af, self.vf);
         let (a, am, two, half) = (l.a_max, l.a_min, R::TWO, R::HALF);
-        let merged = |a1: R, t2: R, a5: R, t6: R| Some(Shape { a1, t2, t4: R::ZERO, a5, t6, cruise: false });
+        let merged = |a1: R, t2: R, a5: R, t6: R| {
+            Some(Shape {
+                a1,
+                t2,
+                t4: R::ZERO,
+                a5,
+                t6,
+                cruise: false,
+            })
+        };
         let squares = (a0 * a0 - af * af) * half;
         let kk = j * (vf - v0) + squares;
         let u = (j * tau + a0 - af) * half;
@@ -88,12 +106,26 @@ impl<R: Real> Up<R> {
         let c = -a * a + a * (j * tau + a0 - af) + j * (v0 - vf) - squares;
         let peak = (a * a + c >= R::ZERO).then(|| {
             let a5 = a - (a * a + c).sqrt();
-            Shape { a1: a, t2: (j * tau - two * a + a0 - af + two * a5) / j, t4: R::ZERO, a5, t6: R::ZERO, cruise: false }
+            Shape {
+                a1: a,
+                t2: (j * tau - two * a + a0 - af + two * a5) / j,
+                t4: R::ZERO,
+                a5,
+                t6: R::ZERO,
+                cruise: false,
+            }
         });
         let c = am * am + am * (j * tau + a0 - af) + j * (v0 - vf) - squares;
         let trough = (am * am - c >= R::ZERO).then(|| {
             let a1 = am + (am * am - c).sqrt();
-            Shape { a1, t2: R::ZERO, t4: R::ZERO, a5: am, t6: (two * am + j * tau + a0 - af - two * a1) / j, cruise: false }
+            Shape {
+                a1,
+                t2: R::ZERO,
+                t4: R::ZERO,
+                a5: am,
+                t6: (two * am + j * tau + a0 - af - two * a1) / j,
+                cruise: false,
+            }
         });
         let span = a - am;
         let t2 = (-span * span - am * (j * tau + a0 - af) + j * (vf - v0) + squares) / (j * span);
@@ -130,7 +162,11 @@ pub(super) fn with_duration<R: Real>(
         return None;
     }
     let width = p_hi - p_lo;
-    let lambda = if width > tol { ((up.dp - p_lo) / width).clamp_to(R::ZERO, R::ONE) } else { R::ONE };
+    let lambda = if width > tol {
+        ((up.dp - p_lo) / width).clamp_to(R::ZERO, R::ONE)
+    } else {
+        R::ONE
+    };
     let hi = with_brake(origin, brake, &hi.t, &hi.jerks, &hi.accelerations);
     let lo = with_brake(origin, brake, &lo.t, &lo.jerks, &lo.accelerations);
     Some(blend(&hi, &lo, lambda))
@@ -154,11 +190,19 @@ fn switches<R: Real>(p: &AxisProfile<R>, out: &mut [R; 7]) -> usize {
 /// `λ·x_hi(t) + (1 − λ)·x_lo(t)`: the phases between the merged switching times of both,
 /// each with the blended jerk, and the blended states at their starts. The two motions
 /// share their first two phases (the brake).
-pub(super) fn blend<R: Real>(hi: &AxisProfile<R>, lo: &AxisProfile<R>, lambda: R) -> AxisProfile<R> {
+pub(super) fn blend<R: Real>(
+    hi: &AxisProfile<R>,
+    lo: &AxisProfile<R>,
+    lambda: R,
+) -> AxisProfile<R> {
     let mix = |x: R, y: R| lambda * x + (R::ONE - lambda) * y;
     let state = |t: R| {
         let (x, y) = (hi.at(t), lo.at(t));
-        Kinematics::new(mix(x.position, y.position), mix(x.velocity, y.velocity), mix(x.acceleration, y.acceleration))
+        Kinematics::new(
+            mix(x.position, y.position),
+            mix(x.velocity, y.velocity),
+            mix(x.acceleration, y.acceleration),
+        )
     };
     let (mut a, mut b) = ([R::ZERO; 7], [R::ZERO; 7]);
     let (na, nb) = (switches(hi, &mut a), switches(lo, &mut b));
@@ -169,7 +213,11 @@ pub(super) fn blend<R: Real>(hi: &AxisProfile<R>, lo: &AxisProfile<R>, lambda: R
     let mut t = hi.phases[0].duration + hi.phases[1].duration;
     let (mut i, mut k, mut n) = (0, 0, 2);
     while (i < na || k < nb) && n < MAX_PHASES {
-        let next = if k >= nb || (i < na && a[i] <= b[k]) { a[i] } else { b[k] };
+        let next = if k >= nb || (i < na && a[i] <= b[k]) {
+            a[i]
+        } else {
+            b[k]
+        };
         if i < na && a[i] <= next {
             i += 1;
         }
@@ -178,8 +226,14 @@ pub(super) fn blend<R: Real>(hi: &AxisProfile<R>, lo: &AxisProfile<R>, lambda: R
         }
         if next > t {
             let mid = t + (next - t) * R::HALF;
-            phases[n] = JerkPhase { jerk: mix(hi.jerk_at(mid), lo.jerk_at(mid)), duration: next - t };
-            states[n] = state(t);
+            phases[n] = JerkPhase {
+                jerk: mix(hi.jerk_at(mid), lo.jerk_at(mid)),
+                duration: next - t,
+            };
+            // Both motions start the main phases from the same state: keep it exact.
+            if n > 2 {
+                states[n] = state(t);
+            }
             n += 1;
             t = next;
         }
@@ -191,5 +245,9 @@ pub(super) fn blend<R: Real>(hi: &AxisProfile<R>, lo: &AxisProfile<R>, lambda: R
     for p in &phases {
         duration += p.duration;
     }
-    AxisProfile { phases, states, duration }
+    AxisProfile {
+        phases,
+        states,
+        duration,
+    }
 }

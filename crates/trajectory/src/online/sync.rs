@@ -64,21 +64,35 @@ pub(super) fn axis_with_duration<R: Real>(
     }
 }
 
-/// The smallest duration at least every axis's minimum that no axis finds in a gap: the
-/// largest minimum, or the end of a gap that holds it (and so on, at most `2A` steps).
-pub(super) fn common_duration<R: Real>(blocks: &[Block<R>]) -> R {
+/// Rounds durations up to whole ticks of a control rate (or leaves them as they are).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Grid(pub(super) Option<f64>);
+
+impl Grid {
+    /// `t` rounded up to the next tick (at most one tick longer).
+    pub(super) fn up<R: Real>(&self, t: R) -> R {
+        match self.0 {
+            Some(rate) => R::lit(libm::ceil(t.to_f64() * rate) / rate),
+            None => t,
+        }
+    }
+}
+
+/// The smallest duration on the grid, at least every axis's minimum, that no axis finds in
+/// a gap: the largest minimum, or the end of a gap that holds it (and so on: each pass
+/// moves past one gap, so at most one pass per gap and one more).
+pub(super) fn common_duration<R: Real>(blocks: &[Block<R>], grid: Grid) -> R {
     let mut t = R::ZERO;
     for b in blocks {
         t = t.max_of(b.t_min());
     }
-    // Each pass moves `t` to the end of a gap that holds it; a gap's end is never held by
-    // the same gap again, so after one pass per gap no gap holds `t`.
+    t = grid.up(t);
     for _ in 0..=2 * blocks.len() {
         let mut moved = false;
         for b in blocks {
             for &(lo, hi) in b.gaps() {
                 if t > lo && t < hi {
-                    t = hi;
+                    t = grid.up(hi);
                     moved = true;
                 }
             }
@@ -93,17 +107,31 @@ pub(super) fn common_duration<R: Real>(blocks: &[Block<R>]) -> R {
 /// The state of axis `i` as its share `r` of a line motion that starts at `line0`:
 /// `x₀ + r·(x_line − x_line₀)`, velocity and acceleration `r·` the line's.
 fn scaled<R: Real>(x0: R, r: R, line0: R, k: &Kinematics<R>) -> Kinematics<R> {
-    Kinematics::new(x0 + r * (k.position - line0), r * k.velocity, r * k.acceleration)
+    Kinematics::new(
+        x0 + r * (k.position - line0),
+        r * k.velocity,
+        r * k.acceleration,
+    )
 }
 
 /// The values that must lie on one line for a phase-synchronized move: displacement,
 /// start and target velocity and acceleration.
-fn line_values<R: Real>(start: &Kinematics<R>, target: &Kinematics<R>, interface: Interface) -> [R; 5] {
+fn line_values<R: Real>(
+    start: &Kinematics<R>,
+    target: &Kinematics<R>,
+    interface: Interface,
+) -> [R; 5] {
     let dp = match interface {
         Interface::Position => target.position - start.position,
         Interface::Velocity => R::ZERO,
     };
-    [dp, start.velocity, start.acceleration, target.velocity, target.acceleration]
+    [
+        dp,
+        start.velocity,
+        start.acceleration,
+        target.velocity,
+        target.acceleration,
+    ]
 }
 
 /// The share `r_i` of every axis in a line through the reference axis's values, if the
@@ -140,7 +168,10 @@ fn line_shares<R: Real, const A: usize>(values: &[[R; 5]; A]) -> Option<([R; A],
 
 /// The limits of the line parameter (the reference axis's coordinate): every axis's
 /// limits divided by its share, the tightest of each.
-fn line_limits<R: Real, const A: usize>(shares: &[R; A], limits: &[AxisLimits<R>; A]) -> Result<AxisLimits<R>, Error> {
+fn line_limits<R: Real, const A: usize>(
+    shares: &[R; A],
+    limits: &[AxisLimits<R>; A],
+) -> Result<AxisLimits<R>, Error> {
     let big = R::MAX;
     let (mut v_max, mut v_min, mut a_max, mut a_min, mut jerk) = (big, -big, big, -big, big);
     for (r, l) in shares.iter().zip(limits) {
@@ -165,15 +196,25 @@ pub(super) fn phase_profiles<R: Real, const A: usize>(
     target: &[Kinematics<R>; A],
     limits: &[AxisLimits<R>; A],
     interface: Interface,
+    grid: Grid,
 ) -> Result<Option<[AxisProfile<R>; A]>, Error> {
     let mut values = [[R::ZERO; 5]; A];
     for i in 0..A {
         values[i] = line_values(&start[i], &target[i], interface);
     }
-    let Some((shares, k)) = line_shares(&values) else { return Ok(None) };
-    let line = axis_block(&start[k], &target[k], &line_limits(&shares, limits)?, interface)?;
-    let reference = line.profile();
-    let mut profiles = [*reference; A];
+    let Some((shares, k)) = line_shares(&values) else {
+        return Ok(None);
+    };
+    let line_limits = line_limits(&shares, limits)?;
+    let line = axis_block(&start[k], &target[k], &line_limits, interface)?;
+    let duration = common_duration(core::slice::from_ref(&line), grid);
+    let reference = if duration == line.t_min() {
+        *line.profile()
+    } else {
+        axis_with_duration(&start[k], &target[k], &line_limits, interface, duration)
+            .ok_or(Error::NoProfile)?
+    };
+    let mut profiles = [reference; A];
     for (i, p) in profiles.iter_mut().enumerate() {
         let r = shares[i];
         for ph in &mut p.phases {

@@ -4,45 +4,8 @@ extern crate std;
 
 use std::format;
 
+use super::testing::{Rng, case};
 use super::*;
-
-/// A small deterministic generator (xorshift64) for the random cases.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        #[allow(clippy::cast_precision_loss)]
-        let x = (self.0 >> 11) as f64 / (1_u64 << 53) as f64;
-        x
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    /// A value in `±k·limit`, zero 30 % of the time.
-    fn value(&mut self, k: f64, limit: f64) -> f64 {
-        let x = self.range(-k * limit, k * limit);
-        if self.next() < 0.3 { 0.0 } else { x }
-    }
-}
-
-/// A random case: start (within `k` times the limits), target (within the limits and
-/// reachable), limits.
-fn case(rng: &mut Rng, k: f64) -> (Kinematics<f64>, Kinematics<f64>, AxisLimits<f64>) {
-    loop {
-        let (v, a, j) = (rng.range(0.1, 10.0), rng.range(0.1, 10.0), rng.range(0.1, 10.0));
-        let start = Kinematics::new(rng.range(-5.0, 5.0), rng.value(k, v), rng.value(k, a));
-        let target = Kinematics::new(rng.range(-5.0, 5.0), rng.value(1.0, v), rng.value(1.0, a));
-        let limits = AxisLimits::new(v, a, j).unwrap();
-        if check_target(&target, &limits, true).is_ok() {
-            return (start, target, limits);
-        }
-    }
-}
 
 /// The limits hold at 400 points of the profile from the first instant on at which the
 /// state is in the limits and can stay there (its velocity, and the velocity it reaches
@@ -50,7 +13,9 @@ fn case(rng: &mut Rng, k: f64) -> (Kinematics<f64>, Kinematics<f64>, AxisLimits<
 /// outside them first brakes into them. The jerk holds everywhere.
 fn assert_keeps_limits(p: &AxisProfile<f64>, l: &AxisLimits<f64>, what: &str) {
     let slack = 1e-9;
-    let within = |x: f64, lo: f64, hi: f64| x <= hi * (1.0 + slack) + slack && x >= lo * (1.0 + slack) - slack;
+    let within = |x: f64, lo: f64, hi: f64| {
+        x <= hi * (1.0 + slack) + slack && x >= lo * (1.0 + slack) - slack
+    };
     let inside = |k: &Kinematics<f64>| {
         within(k.velocity, l.v_min, l.v_max) && within(k.acceleration, l.a_min, l.a_max)
     };
@@ -59,7 +24,11 @@ fn assert_keeps_limits(p: &AxisProfile<f64>, l: &AxisLimits<f64>, what: &str) {
         inside(k) && within(carried, l.v_min, l.v_max)
     };
     for ph in p.phases() {
-        assert!(ph.jerk.abs() <= l.jerk * (1.0 + 1e-12), "{what}: jerk {}", ph.jerk);
+        assert!(
+            ph.jerk.abs() <= l.jerk * (1.0 + 1e-12),
+            "{what}: jerk {}",
+            ph.jerk
+        );
         assert!(ph.duration >= 0.0, "{what}");
     }
     let mut entered = false;
@@ -75,9 +44,18 @@ fn assert_keeps_limits(p: &AxisProfile<f64>, l: &AxisLimits<f64>, what: &str) {
 fn assert_reaches(p: &AxisProfile<f64>, target: &Kinematics<f64>, what: &str) {
     let e = p.end();
     let scale = 1.0 + p.duration() * 10.0;
-    assert!((e.position - target.position).abs() < 1e-9 * scale, "{what}: {e:?} vs {target:?}");
-    assert!((e.velocity - target.velocity).abs() < 1e-9 * scale, "{what}: {e:?} vs {target:?}");
-    assert!((e.acceleration - target.acceleration).abs() < 1e-9, "{what}: {e:?} vs {target:?}");
+    assert!(
+        (e.position - target.position).abs() < 1e-9 * scale,
+        "{what}: {e:?} vs {target:?}"
+    );
+    assert!(
+        (e.velocity - target.velocity).abs() < 1e-9 * scale,
+        "{what}: {e:?} vs {target:?}"
+    );
+    assert!(
+        (e.acceleration - target.acceleration).abs() < 1e-9,
+        "{what}: {e:?} vs {target:?}"
+    );
 }
 
 #[test]
@@ -115,7 +93,9 @@ fn moving_towards_a_target_behind_overshoots_and_comes_back() {
     let p = b.profile();
     assert_reaches(p, &Kinematics::at_rest(-1.0), "overshoot");
     // It passes beyond the start before it turns.
-    let farthest = (0..=100).map(|i| p.at(p.duration() * f64::from(i) / 100.0).position).fold(0.0, f64::max);
+    let farthest = (0..=100)
+        .map(|i| p.at(p.duration() * f64::from(i) / 100.0).position)
+        .fold(0.0, f64::max);
     assert!(farthest > 0.9, "{farthest}");
 }
 
@@ -139,7 +119,12 @@ fn random_states_reach_their_targets_within_the_limits() {
             for &probe in probes.iter().filter(|&&x| x > 0.0) {
                 let brake = brake::position_brake(start.velocity, start.acceleration, &l);
                 let got = step2::with_duration(&start, brake, &target, &l, probe);
-                assert_eq!(got.is_some(), !b.is_blocked(probe), "{what}: duration {probe} gaps {:?}", b.gaps());
+                assert_eq!(
+                    got.is_some(),
+                    !b.is_blocked(probe),
+                    "{what}: duration {probe} gaps {:?}",
+                    b.gaps()
+                );
                 if let Some(p) = got {
                     assert!((p.duration() - probe).abs() < 1e-9 * probe, "{what}");
                     assert_reaches(&p, &target, &what);
@@ -164,7 +149,10 @@ fn several_axes_finish_together() {
         for i in 0..3 {
             let what = format!("{n} axis {i}");
             let p = &m.profiles()[i];
-            assert!((p.duration() - m.duration()).abs() < 1e-9 * m.duration(), "{what}");
+            assert!(
+                (p.duration() - m.duration()).abs() < 1e-9 * m.duration(),
+                "{what}"
+            );
             assert_reaches(p, &target[i], &what);
             assert_keeps_limits(p, &limits[i], &what);
         }
@@ -188,7 +176,10 @@ fn phase_synchronized_axes_move_on_a_line() {
         let s = m.at(m.duration() * f64::from(i) / 50.0);
         let along = (s[0].position - 1.0) / dir[0];
         for k in 0..3 {
-            assert!((s[k].position - 1.0 - along * dir[k]).abs() < 1e-12, "{i} {s:?}");
+            assert!(
+                (s[k].position - 1.0 - along * dir[k]).abs() < 1e-12,
+                "{i} {s:?}"
+            );
         }
     }
     for i in 0..3 {
@@ -210,12 +201,18 @@ fn velocity_mode_reaches_the_velocity() {
         target.acceleration = 0.0;
         let b = solve_axis_velocity(&start, &target, &l).unwrap();
         let e = b.profile().end();
-        assert!((e.velocity - target.velocity).abs() < 1e-9 * (1.0 + b.t_min()), "{n}");
+        assert!(
+            (e.velocity - target.velocity).abs() < 1e-9 * (1.0 + b.t_min()),
+            "{n}"
+        );
         assert_eq!(e.acceleration, target.acceleration);
         let t = b.t_min() * 1.7 + 0.1;
         let p = velocity::with_duration(&start, &target, &l, t).unwrap();
         assert!((p.duration() - t).abs() < 1e-12 * t);
-        assert!((p.end().velocity - target.velocity).abs() < 1e-9 * (1.0 + t), "{n}");
+        assert!(
+            (p.end().velocity - target.velocity).abs() < 1e-9 * (1.0 + t),
+            "{n}"
+        );
     }
 }
 
@@ -223,20 +220,33 @@ fn velocity_mode_reaches_the_velocity() {
 fn bad_input_is_an_error() {
     let l = AxisLimits::new(1.0, 1.0, 1.0).unwrap();
     let rest = Kinematics::at_rest(0.0);
-    assert_eq!(solve_axis(&Kinematics::new(f64::NAN, 0.0, 0.0), &rest, &l), Err(Error::NonFiniteState));
-    assert_eq!(solve_axis(&rest, &Kinematics::new(0.0, f64::INFINITY, 0.0), &l), Err(Error::NonFiniteState));
+    assert_eq!(
+        solve_axis(&Kinematics::new(f64::NAN, 0.0, 0.0), &rest, &l),
+        Err(Error::NonFiniteState)
+    );
+    assert_eq!(
+        solve_axis(&rest, &Kinematics::new(0.0, f64::INFINITY, 0.0), &l),
+        Err(Error::NonFiniteState)
+    );
     let too_fast = Kinematics::new(1.0, 1.5, 0.0);
     assert_eq!(
         solve_axis(&rest, &too_fast, &l),
-        Err(Error::TargetOutsideLimits { quantity: crate::Quantity::Velocity })
+        Err(Error::TargetOutsideLimits {
+            quantity: crate::Quantity::Velocity
+        })
     );
     // At v_max while decelerating: it was faster just before.
     let passing = Kinematics::new(1.0, 1.0, -0.5);
     assert_eq!(
         solve_axis(&rest, &passing, &l),
-        Err(Error::TargetOutsideLimits { quantity: crate::Quantity::Velocity })
+        Err(Error::TargetOutsideLimits {
+            quantity: crate::Quantity::Velocity
+        })
     );
-    assert_eq!(AxisLimits::new(1.0, f64::NAN, 1.0), Err(Error::InvalidLimit));
+    assert_eq!(
+        AxisLimits::new(1.0, f64::NAN, 1.0),
+        Err(Error::InvalidLimit)
+    );
     assert_eq!(l.with_minimum(0.0, -1.0), Err(Error::InvalidLimit));
 }
 
@@ -248,12 +258,26 @@ fn f32_agrees_with_f64() {
         let (s, t, l) = case(&mut rng, 1.0);
         #[allow(clippy::cast_possible_truncation)]
         let c = |x: f64| x as f32;
-        let k32 = |k: &Kinematics<f64>| Kinematics::new(c(k.position), c(k.velocity), c(k.acceleration));
-        let k64 = |k: &Kinematics<f32>| Kinematics::new(f64::from(k.position), f64::from(k.velocity), f64::from(k.acceleration));
+        let k32 =
+            |k: &Kinematics<f64>| Kinematics::new(c(k.position), c(k.velocity), c(k.acceleration));
+        let k64 = |k: &Kinematics<f32>| {
+            Kinematics::new(
+                f64::from(k.position),
+                f64::from(k.velocity),
+                f64::from(k.acceleration),
+            )
+        };
         let (s32, t32) = (k32(&s), k32(&t));
         let l32 = AxisLimits::new(c(l.v_max), c(l.a_max), c(l.jerk)).unwrap();
-        let l64 = AxisLimits::new(f64::from(l32.v_max), f64::from(l32.a_max), f64::from(l32.jerk)).unwrap();
-        let Ok(d) = solve_axis(&k64(&s32), &k64(&t32), &l64) else { continue };
+        let l64 = AxisLimits::new(
+            f64::from(l32.v_max),
+            f64::from(l32.a_max),
+            f64::from(l32.jerk),
+        )
+        .unwrap();
+        let Ok(d) = solve_axis(&k64(&s32), &k64(&t32), &l64) else {
+            continue;
+        };
         let f = solve_axis(&s32, &t32, &l32).unwrap();
         // The position difference is known to the f32 spacing of the positions.
         let dp = (t.position - s.position).abs().max(1e-3);

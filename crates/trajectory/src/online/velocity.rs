@@ -26,7 +26,11 @@ fn rise_hold_fall<R: Real>(v0: R, a0: R, vf: R, af: R, a_max: R, j: R) -> Option
     }
     let t = [(peak - a0) / j, hold, (peak - af) / j];
     let slack = R::lit(64.0) * R::EPS * (a_max / j);
-    if t.iter().all(|&x| x >= -slack) { Some(t.map(|x| x.max_of(R::ZERO))) } else { None }
+    if t.iter().all(|&x| x >= -slack) {
+        Some(t.map(|x| x.max_of(R::ZERO)))
+    } else {
+        None
+    }
 }
 
 /// The time-optimal velocity change from `origin` to `target`'s velocity and acceleration.
@@ -40,21 +44,41 @@ pub(super) fn time_optimal<R: Real>(
     for p in &brake {
         start = start.advance(p.jerk, p.duration);
     }
-    let (v0, a0, vf, af, j) = (start.velocity, start.acceleration, target.velocity, target.acceleration, l.jerk);
+    let (v0, a0, vf, af, j) = (
+        start.velocity,
+        start.acceleration,
+        target.velocity,
+        target.acceleration,
+        l.jerk,
+    );
     let up = rise_hold_fall(v0, a0, vf, af, l.a_max, j).map(|t| (t, j));
     let down = rise_hold_fall(-v0, -a0, -vf, -af, -l.a_min, j).map(|t| (t, -j));
     let sum = |t: &[R; 3]| t[0] + t[1] + t[2];
     let (t, jerk) = match (up, down) {
         (Some(u), Some(d)) => {
-            if sum(&d.0) < sum(&u.0) { d } else { u }
+            if sum(&d.0) < sum(&u.0) {
+                d
+            } else {
+                u
+            }
         }
         (Some(u), None) => u,
         (None, Some(d)) => d,
         (None, None) => return None,
     };
     let peak = a0 + jerk * t[0];
-    let profile = with_brake(origin, brake, &t, &[jerk, R::ZERO, -jerk], &[a0, peak, peak, af]);
-    Some(Block { profile, gaps: [(R::ZERO, R::ZERO); 2], gap_count: 0 })
+    let profile = with_brake(
+        origin,
+        brake,
+        &t,
+        &[jerk, R::ZERO, -jerk],
+        &[a0, peak, peak, af],
+    );
+    Some(Block {
+        profile,
+        gaps: [(R::ZERO, R::ZERO); 2],
+        gap_count: 0,
+    })
 }
 
 /// The velocity change of duration `tau` that ends fastest in the positive direction
@@ -73,7 +97,10 @@ fn fastest<R: Real>(v0: R, a0: R, af: R, a_max: R, j: R, tau: R) -> Option<([R; 
         return None;
     }
     let t = t.map(|x| x.max_of(R::ZERO));
-    let v = v0 + (peak * peak - a0 * a0) / (R::TWO * j) + peak * t[1] + (peak * peak - af * af) / (R::TWO * j);
+    let v = v0
+        + (peak * peak - a0 * a0) / (R::TWO * j)
+        + peak * t[1]
+        + (peak * peak - af * af) / (R::TWO * j);
     Some((t, v))
 }
 
@@ -93,7 +120,13 @@ pub(super) fn with_duration<R: Real>(
         start = start.advance(p.jerk, p.duration);
         tau -= p.duration;
     }
-    let (v0, a0, vf, af, j) = (start.velocity, start.acceleration, target.velocity, target.acceleration, l.jerk);
+    let (v0, a0, vf, af, j) = (
+        start.velocity,
+        start.acceleration,
+        target.velocity,
+        target.acceleration,
+        l.jerk,
+    );
     let tau = tau.max_of(R::ZERO);
     let (t_hi, v_hi) = fastest(v0, a0, af, l.a_max, j, tau)?;
     let (t_lo, v_lo) = fastest(-v0, -a0, -af, -l.a_min, j, tau)?;
@@ -104,10 +137,26 @@ pub(super) fn with_duration<R: Real>(
         return None;
     }
     let width = v_hi - v_lo;
-    let lambda = if width > tol { ((vf - v_lo) / width).clamp_to(R::ZERO, R::ONE) } else { R::ONE };
+    let lambda = if width > tol {
+        ((vf - v_lo) / width).clamp_to(R::ZERO, R::ONE)
+    } else {
+        R::ONE
+    };
     let peak_hi = a0 + j * t_hi[0];
     let peak_lo = a0 - j * t_lo[0];
-    let hi = with_brake(origin, brake, &t_hi, &[j, R::ZERO, -j], &[a0, peak_hi, peak_hi, af]);
-    let lo = with_brake(origin, brake, &t_lo, &[-j, R::ZERO, j], &[a0, peak_lo, peak_lo, af]);
+    let hi = with_brake(
+        origin,
+        brake,
+        &t_hi,
+        &[j, R::ZERO, -j],
+        &[a0, peak_hi, peak_hi, af],
+    );
+    let lo = with_brake(
+        origin,
+        brake,
+        &t_lo,
+        &[-j, R::ZERO, j],
+        &[a0, peak_lo, peak_lo, af],
+    );
     Some(super::step2::blend(&hi, &lo, lambda))
 }

@@ -6,7 +6,7 @@ use strak_curves::Scalar;
 use super::sample::Sample;
 use super::state::{AxisState, Newton};
 use crate::error::Error;
-use crate::num::Number;
+use crate::num::{Number, RATE_RANGE};
 
 /// Where a path ends: the exact end point (as the curve computes it, converted once) and
 /// the end velocity and acceleration, in the sample type.
@@ -49,9 +49,6 @@ pub(crate) struct FeedRampLimits<N> {
 
 /// The smallest change of the feed rate per tick: 2⁻⁴⁰ (one `Q40` ulp).
 const MIN_ALPHA: f64 = 1.0 / (1_u64 << 40) as f64;
-
-/// The lowest and highest control rates in Hz.
-pub(crate) const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);
 
 /// `max |C(x, k)|` for `x ∈ [0, n]`, `k ≤ 3` (the Newton coefficients of an offset `x`).
 fn binomial_bound(n: f64, k: u32) -> f64 {

@@ -4,7 +4,7 @@ use heapless::Vec;
 
 use super::greater;
 use crate::error::Error;
-use crate::path::RATE_RANGE;
+use crate::num::RATE_RANGE;
 
 /// The longest motion a path can play: `u32::MAX` ticks at the slowest control rate.
 const MAX_DURATION: f64 = u32::MAX as f64 / RATE_RANGE.0;

@@ -2,7 +2,7 @@
 //! the turning of the path and feed changes may take, corners, and the control rate.
 
 use crate::error::Error;
-use crate::path::RATE_RANGE;
+use crate::num::RATE_RANGE;
 
 /// The most sampling intervals [`PlanOptions::with_samples`] accepts.
 pub(super) const MAX_SAMPLES: usize = 1 << 20;

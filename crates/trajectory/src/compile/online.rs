@@ -1,0 +1,616 @@
+//! Compiling an online move ([`OnlineMove`]) into a path: pieces on the tick grid whose
+//! samples are the move's states.
+//!
+//! An axis's motion is a cubic in time between its switching times, which lie anywhere
+//! between ticks. The pieces' boundaries are the ticks just before and just after every
+//! switching time of every axis (and at most every `max_piece_ticks` ticks, the bound of
+//! playback's rounding in the number format). A piece of two or more ticks then holds no
+//! switch: it is the axis's cubic, exactly (forward differences of its Taylor polynomial in
+//! ticks). A piece of one tick may hold switches: it starts on the exact state, and its
+//! three chains end on the exact state of the next tick (position cubic through the start
+//! position, velocity and acceleration and the end position; velocity quadratic through
+//! both velocities with the start acceleration; acceleration linear between both). So every
+//! sample at a tick is the move's state at that tick, rounded once into the number format;
+//! between ticks (feed changes) a one-tick piece follows its chains, whose acceleration is
+//! the chord of the move's and whose velocity deviates from the move's by at most about
+//! `0.05·J·T²`.
+
+use super::options::CompileOptions;
+use super::{check_playback_bound, round_state};
+use crate::error::Error;
+use crate::num::{Number, RATE_RANGE};
+use crate::online::{AxisProfile, Kinematics, MAX_PHASES, OnlineMove, Real};
+use crate::path::{AxisState, Path, PathMeta};
+
+/// An axis's motion in `f64` with its phases' start times.
+struct Axis {
+    profile: AxisProfile<f64>,
+    starts: [f64; MAX_PHASES + 1],
+}
+
+impl Axis {
+    fn new<R: Real>(p: &AxisProfile<R>) -> Self {
+        let profile = p.to_f64();
+        let mut starts = [0.0; MAX_PHASES + 1];
+        for i in 0..MAX_PHASES {
+            starts[i + 1] = starts[i] + profile.phases()[i].duration;
+        }
+        Axis { profile, starts }
+    }
+
+    /// The phase that holds time `t` (`MAX_PHASES` from the end on).
+    fn phase(&self, t: f64) -> usize {
+        (0..MAX_PHASES)
+            .find(|&i| t < self.starts[i + 1] && self.profile.phases()[i].duration > 0.0)
+            .unwrap_or(MAX_PHASES)
+    }
+
+    /// The state and jerk at `t` on the polynomial of phase `i` (after the end: the end
+    /// state continued without jerk).
+    fn eval(&self, i: usize, t: f64) -> (Kinematics<f64>, f64) {
+        match (self.profile.states().get(i), self.profile.phases().get(i)) {
+            (Some(s), Some(p)) => (s.advance(p.jerk, t - self.starts[i]), p.jerk),
+            _ => (
+                self.profile.end().advance(0.0, t - self.starts[MAX_PHASES]),
+                0.0,
+            ),
+        }
+    }
+
+    /// The state at `t` (of the phase that holds it).
+    fn at(&self, t: f64) -> Kinematics<f64> {
+        self.eval(self.phase(t), t).0
+    }
+
+    /// Whether a switching time lies strictly between ticks `k` and `k + 1`.
+    fn switches_within(&self, k: u32, rate: f64) -> bool {
+        let (lo, hi) = (f64::from(k), f64::from(k) + 1.0);
+        self.starts[1..]
+            .iter()
+            .zip(self.profile.phases())
+            .any(|(&s, p)| {
+                let x = s * rate;
+                p.duration > 0.0 && x > lo + SNAP && x < hi - SNAP
+            })
+    }
+
+    /// The first boundary after tick `k`: the tick before or after a switching time.
+    fn next_boundary(&self, k: u32, rate: f64, ticks: u32) -> u32 {
+        let mut next = ticks;
+        for (&s, p) in self.starts[1..].iter().zip(self.profile.phases()) {
+            if p.duration <= 0.0 {
+                continue;
+            }
+            let x = s * rate;
+            for b in [libm::floor(x + SNAP), libm::ceil(x - SNAP)] {
+                if b > f64::from(k) && b < f64::from(next) {
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let b = b as u32;
+                    next = b;
+                }
+            }
+        }
+        next
+    }
+}
+
+/// A switching time within this many ticks of a tick is on it.
+const SNAP: f64 = 1e-9;
+
+/// Compiles an online move solved on a tick grid ([`MoveOptions::with_rate`]) into a path
+/// of at most `P` pieces, in the number format `N`. Every sample at a tick is the move's
+/// state at that tick (rounded once into `N`), the first is the start state and the last
+/// the target (position exactly as given, for a position move).
+///
+/// [`MoveOptions::with_rate`]: crate::MoveOptions::with_rate
+///
+/// # Errors
+/// * [`Error::InvalidRate`]: the move was not solved on a tick grid;
+/// * [`Error::EmptyPath`]: the move takes no time;
+/// * [`Error::CapacityExceeded`]: more than `P` pieces needed;
+/// * [`Error::OutOfRange`], [`Error::PlaybackBoundExceeded`]: a value does not fit `N`, or
+///   playback in `N` rounds by more than `10⁻⁴` of the motion's extent.
+///
+/// ```
+/// use strak_trajectory::{AxisLimits, Kinematics, MoveOptions, OnlineMove, Path, Sampler, compile_move};
+/// let limits = [AxisLimits::new(500.0_f64, 5_000.0, 100_000.0)?; 2];
+/// let start = [Kinematics::new(0.0, 100.0, 0.0), Kinematics::at_rest(0.0)];
+/// let target = [Kinematics::at_rest(30.0), Kinematics::at_rest(-20.0)];
+/// let m = OnlineMove::solve(&start, &target, &limits, &MoveOptions::new().with_rate(1_000.0))?;
+/// let path: Path<f32, 2, 64> = compile_move(&m)?;
+/// let mut sampler = Sampler::new(&path);
+/// let first = sampler.next();
+/// assert_eq!((first.position, first.velocity), ([0.0, 0.0], [100.0, 0.0]));
+/// let mut last = first;
+/// while !sampler.is_finished() {
+///     last = sampler.next();
+/// }
+/// assert_eq!(last.position, [30.0, -20.0]); // the target, exactly
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+pub fn compile_move<N, R, const A: usize, const P: usize>(
+    m: &OnlineMove<R, A>,
+) -> Result<Path<N, A, P>, Error>
+where
+    N: Number,
+    R: Real,
+{
+    let mut path = Path::new();
+    compile_move_into(m, &mut path)?;
+    Ok(path)
+}
+
+/// [`compile_move`] into caller storage, in place; on an error the path is left empty.
+///
+/// # Errors
+/// As [`compile_move`].
+pub fn compile_move_into<N, R, const A: usize, const P: usize>(
+    m: &OnlineMove<R, A>,
+    path: &mut Path<N, A, P>,
+) -> Result<(), Error>
+where
+    N: Number,
+    R: Real,
+{
+    path.clear();
+    let result = write_move(m, path);
+    if result.is_err() {
+        path.clear();
+    }
+    result
+}
+
+fn write_move<N, R, const A: usize, const P: usize>(
+    m: &OnlineMove<R, A>,
+    path: &mut Path<N, A, P>,
+) -> Result<(), Error>
+where
+    N: Number,
+    R: Real,
+{
+    let rate = m.rate_hz().ok_or(Error::InvalidRate)?;
+    if !(rate >= RATE_RANGE.0 && rate <= RATE_RANGE.1) {
+        return Err(Error::InvalidRate);
+    }
+    let exact = m.duration().to_f64() * rate;
+    let ticks = libm::round(exact);
+    if ticks.is_nan() || ticks < 1.0 {
+        return Err(Error::EmptyPath);
+    }
+    if (ticks - exact).abs() > 1e-6 * ticks {
+        return Err(Error::InvalidRate);
+    }
+    if ticks > f64::from(u32::MAX - 1) {
+        return Err(Error::TooLong);
+    }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let ticks = ticks as u32;
+    let axes: [Axis; A] = core::array::from_fn(|i| Axis::new(&m.profiles()[i]));
+    write_pieces(&axes, rate, ticks, path)?;
+    path.header.meta = meta(m, &axes, rate)?;
+    write_end(m, &axes, f64::from(ticks) / rate, path)?;
+    path.seal()?;
+    check_playback_bound(&path.header)
+}
+
+/// The pieces between the boundaries (every switch's neighbouring ticks, at most
+/// `max_piece_ticks` apart).
+fn write_pieces<N: Number, const A: usize, const P: usize>(
+    axes: &[Axis; A],
+    rate: f64,
+    ticks: u32,
+    path: &mut Path<N, A, P>,
+) -> Result<(), Error> {
+    let period = 1.0 / rate;
+    let longest = CompileOptions::DEFAULT_MAX_PIECE_TICKS;
+    let mut k = 0;
+    while k < ticks {
+        let mut next = ticks.min(k.saturating_add(longest));
+        for axis in axes {
+            next = next.min(axis.next_boundary(k, rate, ticks));
+        }
+        let n = next - k;
+        let mut states = [AxisState::ZERO; A];
+        for (state, axis) in states.iter_mut().zip(axes) {
+            let s = if n == 1 && axis.switches_within(k, rate) {
+                chord_state(axis, k, period)
+            } else {
+                cubic_state(axis, k, next, period)
+            };
+            *state = round_state(&s)?;
+        }
+        let piece = crate::path::Piece {
+            axes: states,
+            start: k,
+            ticks: n,
+        };
+        path.pieces
+            .push(piece)
+            .map_err(|_| Error::CapacityExceeded {
+                capacity: P,
+                required: P + 1,
+            })?;
+        k = next;
+    }
+    Ok(())
+}
+
+/// The forward-difference state of the axis's cubic on ticks `k ..= next` (no switch
+/// inside): its Taylor polynomial at tick `k` in the tick index.
+fn cubic_state(axis: &Axis, k: u32, next: u32, period: f64) -> AxisState<f64> {
+    let t0 = f64::from(k) * period;
+    let mid = (f64::from(k) + f64::from(next)) * 0.5 * period;
+    // The state of the phase that holds `t0`, the jerk of the one that holds the piece (they
+    // differ only by a switch within `SNAP` of the tick).
+    let s = axis.at(t0);
+    let j = axis.eval(axis.phase(mid), t0).1;
+    let (t, tt) = (period, period * period);
+    // The forward differences of p + v·τ + a·τ²/2 + j·τ³/6 at τ = i·T, with the state's
+    // own position, velocity and acceleration (not recovered from the differences, so that
+    // they are the move's to the last bit).
+    AxisState {
+        position: s.position,
+        delta1: t * (s.velocity + t * (0.5 * s.acceleration + t * (j / 6.0))),
+        delta2: tt * (s.acceleration + t * j),
+        delta3: tt * t * j,
+        velocity: s.velocity,
+        velocity_delta1: t * (s.acceleration + 0.5 * t * j),
+        velocity_delta2: tt * j,
+        acceleration: s.acceleration,
+        acceleration_delta: t * j,
+    }
+}
+
+/// The state of a one-tick piece that holds a switch: exact at both ticks in every chain.
+fn chord_state(axis: &Axis, k: u32, period: f64) -> AxisState<f64> {
+    let s = axis.at(f64::from(k) * period);
+    let e = axis.at(f64::from(k + 1) * period);
+    let tt = period * period;
+    // Position: a + b i + c i² + d i³ with the start's value and derivatives, through the end.
+    let (a, b, c) = (s.position, s.velocity * period, s.acceleration * tt * 0.5);
+    let d = e.position - (a + b + c);
+    // Velocity: v₀ + (a₀T) i + q i² through the end velocity.
+    let q = e.velocity - s.velocity - s.acceleration * period;
+    AxisState {
+        position: a,
+        delta1: b + c + d,
+        delta2: 2.0 * c + 6.0 * d,
+        delta3: 6.0 * d,
+        velocity: s.velocity,
+        velocity_delta1: e.velocity - s.velocity,
+        velocity_delta2: 2.0 * q,
+        acceleration: s.acceleration,
+        acceleration_delta: e.acceleration - s.acceleration,
+    }
+}
+
+/// The path's description: the move's peaks (Euclidean bounds from each axis's largest
+/// values), its axes' limits as the feed ramps' limits, and the tolerance `10⁻⁴` of its
+/// extent that playback's rounding must stay within.
+fn meta<R: Real, const A: usize>(
+    m: &OnlineMove<R, A>,
+    axes: &[Axis; A],
+    rate: f64,
+) -> Result<PathMeta, Error> {
+    let (mut v, mut a, mut j, mut a_lim, mut j_lim) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut extent, mut big) = (0.0_f64, 0.0_f64);
+    for (axis, l) in axes.iter().zip(m.limits()) {
+        let (mut vm, mut am, mut jm) = (0.0_f64, 0.0_f64, 0.0_f64);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for (s, p) in axis.profile.states().iter().zip(axis.profile.phases()) {
+            vm = vm.max(s.velocity.abs());
+            am = am.max(s.acceleration.abs());
+            jm = jm.max(p.jerk.abs());
+            lo = lo.min(s.position);
+            hi = hi.max(s.position);
+            // The velocity's extreme inside the phase.
+            if p.jerk != 0.0 {
+                let tz = -s.acceleration / p.jerk;
+                if tz > 0.0 && tz < p.duration {
+                    let x = s.advance(p.jerk, tz);
+                    vm = vm.max(x.velocity.abs());
+                    lo = lo.min(x.position);
+                    hi = hi.max(x.position);
+                }
+            }
+        }
+        let e = axis.profile.end();
+        vm = vm.max(e.velocity.abs());
+        am = am.max(e.acceleration.abs());
+        extent = extent.max(hi.max(e.position) - lo.min(e.position));
+        big = big.max(hi.abs()).max(lo.abs());
+        v += vm * vm;
+        a += am * am;
+        j += jm * jm;
+        let (al, jl) = (
+            l.acceleration_max()
+                .to_f64()
+                .max(-l.acceleration_min().to_f64()),
+            l.jerk().to_f64(),
+        );
+        a_lim += al * al;
+        j_lim += jl * jl;
+    }
+    Ok(PathMeta {
+        rate,
+        plan_duration: m.duration().to_f64(),
+        tolerance: (CompileOptions::DEFAULT_RELATIVE_TOLERANCE * extent).max(1e-12 * (1.0 + big)),
+        peak_velocity: libm::sqrt(v),
+        peak_acceleration: libm::sqrt(a),
+        peak_jerk: libm::sqrt(j),
+        acceleration_limit: libm::sqrt(a_lim).max(libm::sqrt(a)),
+        jerk_limit: libm::sqrt(j_lim).max(libm::sqrt(j)),
+        feed_share: CompileOptions::DEFAULT_FEED_SHARE,
+    })
+}
+
+/// The end: the targets (for a position move its positions exactly as given; for a
+/// velocity move, or an axis that arrived early and moves on, the state at the end).
+fn write_end<N: Number, R: Real, const A: usize, const P: usize>(
+    m: &OnlineMove<R, A>,
+    axes: &[Axis; A],
+    end: f64,
+    path: &mut Path<N, A, P>,
+) -> Result<(), Error> {
+    let out = |v: f64| N::out_from_f64(v).ok_or(Error::OutOfRange);
+    let position_move = m.interface() == crate::online::Interface::Position;
+    for (i, (axis, target)) in axes.iter().zip(m.targets()).enumerate() {
+        let arrives = axis.profile.duration() >= end - 1e-9 * end;
+        let s = axis.at(end);
+        let e = &mut path.header.end;
+        e.position[i] = out(if position_move && arrives {
+            target.position.to_f64()
+        } else {
+            s.position
+        })?;
+        e.velocity[i] = out(if arrives {
+            target.velocity.to_f64()
+        } else {
+            s.velocity
+        })?;
+        e.acceleration[i] = out(if arrives {
+            target.acceleration.to_f64()
+        } else {
+            s.acceleration
+        })?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::boxed::Box;
+    use std::vec::Vec;
+
+    use super::*;
+    use crate::num::Q40;
+    use crate::online::testing::{Rng, case, target};
+    use crate::online::{AxisLimits, MoveOptions, Synchronization};
+    use crate::play::{Kernel, Sampler};
+    use strak_curves::Scalar;
+
+    const RATE: f64 = 1_000.0;
+    type Move = OnlineMove<f64, 3>;
+
+    /// A random 3-axis move on the 1 kHz grid (at most 20 s), with its limits. A fifth are
+    /// unsynchronized, with targets without acceleration (an axis that arrives early moves
+    /// on at its target velocity).
+    fn random_move(rng: &mut Rng, k: f64) -> Move {
+        loop {
+            let mut cases: [_; 3] = core::array::from_fn(|_| case(rng, k));
+            let none = rng.next() < 0.2;
+            if none {
+                for c in &mut cases {
+                    c.1.acceleration = 0.0;
+                }
+            }
+            let sync = if none {
+                Synchronization::None
+            } else {
+                Synchronization::Time
+            };
+            let options = MoveOptions::new()
+                .with_rate(RATE)
+                .with_synchronization(sync);
+            let m = OnlineMove::solve(
+                &cases.map(|c| c.0),
+                &cases.map(|c| c.1),
+                &cases.map(|c| c.2),
+                &options,
+            )
+            .expect("a move");
+            if m.duration() < 20.0 && m.duration() > 0.0 {
+                return m;
+            }
+        }
+    }
+
+    /// Every sample of the compiled move.
+    fn play<N: Kernel>(path: &Path<N, 3, 512>) -> Vec<[[f64; 3]; 3]> {
+        let mut sampler = Sampler::new(path);
+        let mut out = Vec::new();
+        while !sampler.is_finished() {
+            let s = sampler.next();
+            out.push([
+                s.position.map(Scalar::to_f64),
+                s.velocity.map(Scalar::to_f64),
+                s.acceleration.map(Scalar::to_f64),
+            ]);
+        }
+        out
+    }
+
+    /// The samples equal the move's states at their ticks, within `tol(magnitude)`.
+    fn assert_samples_are_states<N: Kernel>(m: &Move, tol: impl Fn(f64) -> f64, what: &str) {
+        let path: Box<Path<N, 3, 512>> =
+            Box::new(compile_move(m).unwrap_or_else(|e| panic!("{what}: {e}")));
+        let bound = path.playback_bound();
+        let samples = play(&path);
+        assert_eq!(samples.len(), path.ticks() as usize + 1, "{what}");
+        for (k, s) in samples.iter().enumerate() {
+            #[allow(clippy::cast_precision_loss)]
+            let t = k as f64 / RATE;
+            let want = m.at(t);
+            for i in 0..3 {
+                let (w, g) = (&want[i], s);
+                for (x, y) in [
+                    (w.position, g[0][i]),
+                    (w.velocity, g[1][i]),
+                    (w.acceleration, g[2][i]),
+                ] {
+                    assert!(
+                        (x - y).abs() <= bound + tol(x.abs()),
+                        "{what}: tick {k} axis {i}: {y} vs {x}"
+                    );
+                }
+            }
+        }
+        let end = path.end_position().map(Scalar::to_f64);
+        let last = samples.last().expect("samples")[0];
+        assert_eq!(end, last, "{what}");
+        if m.synchronization() == Synchronization::Time {
+            for (e, t) in end.iter().zip(m.targets()) {
+                assert_eq!(
+                    *e,
+                    N::out_from_f64(t.position).expect("in range").to_f64(),
+                    "{what}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn every_sample_is_the_moves_state() {
+        let mut rng = Rng(0x5DEE_CE66_D1CE_4E5B);
+        for n in 0..60 {
+            let m = random_move(&mut rng, 1.2);
+            let what = std::format!("move {n}: {m:?}");
+            // The playback bound of the path, and the rounding of a value into the format.
+            assert_samples_are_states::<f64>(&m, |x| 1e-12 * (1.0 + x), &what);
+            assert_samples_are_states::<f32>(
+                &m,
+                |x| 2.0 * f64::from(f32::EPSILON) * (1.0 + x),
+                &what,
+            );
+            assert_samples_are_states::<Q40>(&m, |_| 1e-9, &what);
+        }
+    }
+
+    /// Finite differences of the samples: `(x[k+1] − x[k])·f` of the positions, velocities
+    /// and accelerations are averages of the velocity, acceleration and jerk over the tick,
+    /// so they keep the limits (here within 10⁻⁹ relative, for rounding).
+    fn assert_differences_keep_limits(
+        samples: &[[[f64; 3]; 3]],
+        limits: &[AxisLimits<f64>; 3],
+        what: &str,
+    ) {
+        for w in samples.windows(2) {
+            for (i, l) in limits.iter().enumerate() {
+                let d = |q: usize| (w[1][q][i] - w[0][q][i]) * RATE;
+                let slack = |x: f64| x * (1.0 + 1e-9) + 1e-9;
+                assert!(
+                    d(0) <= slack(l.velocity_max()) && -d(0) <= slack(-l.velocity_min()),
+                    "{what}: v {} axis {i}",
+                    d(0)
+                );
+                assert!(
+                    d(1) <= slack(l.acceleration_max()) && -d(1) <= slack(-l.acceleration_min()),
+                    "{what}: a {} axis {i}",
+                    d(1)
+                );
+                assert!(d(2).abs() <= slack(l.jerk()), "{what}: j {} axis {i}", d(2));
+            }
+        }
+    }
+
+    /// The first sample at which every axis is in its limits and can stay there (its
+    /// velocity, and the velocity it reaches when its acceleration is brought to zero at
+    /// full jerk, within the velocity limits): from there on the limits hold.
+    fn first_safe(samples: &[[[f64; 3]; 3]], limits: &[AxisLimits<f64>; 3]) -> usize {
+        let safe = |s: &[[f64; 3]; 3]| {
+            limits.iter().enumerate().all(|(i, l)| {
+                let (v, a) = (s[1][i], s[2][i]);
+                let carried = v + a * a.abs() / (2.0 * l.jerk());
+                (l.velocity_min()..=l.velocity_max()).contains(&v)
+                    && (l.velocity_min()..=l.velocity_max()).contains(&carried)
+                    && (l.acceleration_min()..=l.acceleration_max()).contains(&a)
+            })
+        };
+        samples.iter().position(safe).unwrap_or(samples.len())
+    }
+
+    #[test]
+    fn differences_of_the_samples_keep_the_limits() {
+        let mut rng = Rng(0x1234_5678_9ABC_DEF1);
+        for n in 0..60 {
+            let m = random_move(&mut rng, 0.6);
+            let path: Box<Path<f64, 3, 512>> = Box::new(compile_move(&m).expect("compiles"));
+            let samples = play(&path);
+            let from = first_safe(&samples, m.limits());
+            assert_differences_keep_limits(&samples[from..], m.limits(), &std::format!("move {n}"));
+        }
+    }
+
+    #[test]
+    fn a_new_target_takes_over_at_any_tick_without_a_jump() {
+        let mut rng = Rng(0xA076_1D64_78BD_642F);
+        for n in 0..60 {
+            let first = random_move(&mut rng, 0.5);
+            let a: Box<Path<f64, 3, 512>> = Box::new(compile_move(&first).expect("compiles"));
+            let before = play(&a);
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let k = (rng.next() * (before.len() - 1) as f64) as usize;
+            let last = before[k];
+            let start: [Kinematics<f64>; 3] =
+                core::array::from_fn(|i| Kinematics::new(last[0][i], last[1][i], last[2][i]));
+            let targets: [Kinematics<f64>; 3] =
+                core::array::from_fn(|i| target(&mut rng, &first.limits()[i]));
+            let options = MoveOptions::new().with_rate(RATE);
+            let second =
+                OnlineMove::solve(&start, &targets, first.limits(), &options).expect("solves");
+            if second.duration() == 0.0 || second.duration() > 20.0 {
+                continue;
+            }
+            let b: Box<Path<f64, 3, 512>> = Box::new(compile_move(&second).expect("compiles"));
+            let after = play(&b);
+            // The new path's first sample is the last one played, bit for bit.
+            assert_eq!(after[0], last, "take-over {n} at tick {k}");
+            let mut joined = before[..=k].to_vec();
+            joined.extend_from_slice(&after[1..]);
+            let what = std::format!("take-over {n} at tick {k}");
+            let from = first_safe(&joined, first.limits());
+            assert_differences_keep_limits(&joined[from..], first.limits(), &what);
+        }
+    }
+
+    #[test]
+    fn a_move_off_the_grid_or_without_time_is_an_error() {
+        let l = [AxisLimits::new(1.0_f64, 1.0, 1.0).expect("limits"); 1];
+        let rest = [Kinematics::at_rest(0.0)];
+        let off = OnlineMove::solve(&rest, &[Kinematics::at_rest(1.0)], &l, &MoveOptions::new())
+            .expect("solves");
+        assert_eq!(
+            compile_move::<f64, _, 1, 8>(&off).err(),
+            Some(Error::InvalidRate)
+        );
+        let none = OnlineMove::solve(&rest, &rest, &l, &MoveOptions::new().with_rate(RATE))
+            .expect("solves");
+        assert_eq!(
+            compile_move::<f64, _, 1, 8>(&none).err(),
+            Some(Error::EmptyPath)
+        );
+        let far = OnlineMove::solve(
+            &rest,
+            &[Kinematics::at_rest(100.0)],
+            &l,
+            &MoveOptions::new().with_rate(RATE),
+        )
+        .expect("solves");
+        assert!(matches!(
+            compile_move::<f64, _, 1, 8>(&far).err(),
+            Some(Error::CapacityExceeded { .. })
+        ));
+    }
+}
