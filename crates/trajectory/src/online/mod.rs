@@ -68,12 +68,9 @@ pub fn solve_axis<R: Real>(
     target: &Kinematics<R>,
     limits: &AxisLimits<R>,
 ) -> Result<Block<R>, Error> {
-    if !start.is_finite() || !target.is_finite() {
-        return Err(Error::NonFiniteState);
-    }
-    check_target(target, limits, true)?;
-    let brake = brake::position_brake(start.velocity, start.acceleration, limits);
-    step1::time_optimal(start, brake, target, limits).ok_or(Error::NoProfile)
+    let mut profile = AxisProfile::still(start.position);
+    let span = sync::axis_span(start, target, limits, Interface::Position, &mut profile)?;
+    Ok(Block { profile, span })
 }
 
 /// The time-optimal motion of one axis from `start` to the velocity and acceleration of
@@ -99,13 +96,9 @@ pub fn solve_axis_velocity<R: Real>(
     target: &Kinematics<R>,
     limits: &AxisLimits<R>,
 ) -> Result<Block<R>, Error> {
-    let finite =
-        start.is_finite() && target.velocity.is_finite() && target.acceleration.is_finite();
-    if !finite {
-        return Err(Error::NonFiniteState);
-    }
-    check_target(target, limits, false)?;
-    velocity::time_optimal(start, target, limits).ok_or(Error::NoProfile)
+    let mut profile = AxisProfile::still(start.position);
+    let span = sync::axis_span(start, target, limits, Interface::Velocity, &mut profile)?;
+    Ok(Block { profile, span })
 }
 
 /// The target's velocity and acceleration inside the limits (and, in position mode,

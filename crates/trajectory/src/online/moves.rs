@@ -2,7 +2,7 @@
 
 use super::profile::{AxisLimits, AxisProfile, Kinematics};
 use super::real::Real;
-use super::step1::Block;
+use super::step1::Span;
 use super::sync::{self, Grid, Interface, Synchronization};
 use crate::error::Error;
 use crate::num::RATE_RANGE;
@@ -106,7 +106,7 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
         options: &MoveOptions,
     ) -> Result<Self, Error> {
         let mut m = OnlineMove {
-            profiles: [*Block::still().profile(); A],
+            profiles: core::array::from_fn(|i| AxisProfile::still(start[i].position)),
             min_durations: [R::ZERO; A],
             targets: *target,
             duration: R::ZERO,
@@ -120,7 +120,8 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
     }
 
     /// [`OnlineMove::solve`] into `self` (in place, for firmware that keeps the move in a
-    /// `static`). On an error `self` is unchanged.
+    /// `static`: nothing of the move's size is moved by value). On an error `self` is a
+    /// move of no duration at the start positions.
     ///
     /// # Errors
     /// As [`OnlineMove::solve`].
@@ -131,6 +132,27 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
         limits: &[AxisLimits<R>; A],
         options: &MoveOptions,
     ) -> Result<(), Error> {
+        self.targets = *target;
+        self.limits = *limits;
+        self.interface = options.interface;
+        self.rate_hz = options.rate_hz;
+        let result = self.solve_profiles(start, options);
+        if result.is_err() {
+            for (p, s) in self.profiles.iter_mut().zip(start) {
+                *p = AxisProfile::still(s.position);
+            }
+            self.duration = R::ZERO;
+            self.min_durations = [R::ZERO; A];
+        }
+        result
+    }
+
+    /// Every axis's motion, the move's duration and the synchronization used, in place.
+    fn solve_profiles(
+        &mut self,
+        start: &[Kinematics<R>; A],
+        options: &MoveOptions,
+    ) -> Result<(), Error> {
         let interface = options.interface;
         if options
             .rate_hz
@@ -139,56 +161,55 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
             return Err(Error::InvalidRate);
         }
         let grid = Grid(options.rate_hz);
-        let mut blocks = [Block::still(); A];
+        let (target, limits) = (&self.targets, &self.limits);
+        let mut spans = [Span::from(R::ZERO); A];
         for i in 0..A {
-            blocks[i] = sync::axis_block(&start[i], &target[i], &limits[i], interface)?;
+            spans[i] = sync::axis_span(
+                &start[i],
+                &target[i],
+                &limits[i],
+                interface,
+                &mut self.profiles[i],
+            )?;
+            self.min_durations[i] = spans[i].t_min;
         }
         let mut used = options.synchronization;
-        let mut profiles = blocks.map(|b| *b.profile());
-        let mut durations = blocks.map(|b| b.t_min());
+        let mut durations = self.min_durations;
         if used == Synchronization::Phase {
-            match sync::phase_profiles(start, target, limits, interface, grid)? {
-                Some(p) => {
-                    profiles = p;
-                    durations = [profiles[0].duration(); A];
-                }
-                None => used = Synchronization::Time,
+            if sync::phase_profiles(start, target, limits, interface, grid, &mut self.profiles)? {
+                durations = [self.profiles[0].duration(); A];
+            } else {
+                used = Synchronization::Time;
             }
         }
         if used != Synchronization::Phase {
-            let common = sync::common_duration(&blocks, grid);
+            let common = sync::common_duration(&spans, grid);
             for i in 0..A {
-                if used == Synchronization::None {
-                    durations[i] = sync::common_duration(core::slice::from_ref(&blocks[i]), grid);
-                } else {
-                    durations[i] = common;
-                }
-                if durations[i] != blocks[i].t_min() {
-                    profiles[i] = sync::axis_with_duration(
+                durations[i] = match used {
+                    Synchronization::None => {
+                        sync::common_duration(core::slice::from_ref(&spans[i]), grid)
+                    }
+                    _ => common,
+                };
+                let solved = durations[i] == spans[i].t_min
+                    || sync::axis_with_duration(
                         &start[i],
                         &target[i],
                         &limits[i],
                         interface,
                         durations[i],
-                    )
-                    .ok_or(Error::NoProfile)?;
+                        &mut self.profiles[i],
+                    );
+                if !solved {
+                    return Err(Error::NoProfile);
                 }
             }
         }
-        let mut duration = R::ZERO;
+        self.duration = R::ZERO;
         for d in &durations {
-            duration = duration.max_of(*d);
+            self.duration = self.duration.max_of(*d);
         }
-        *self = OnlineMove {
-            profiles,
-            min_durations: blocks.map(|b| b.t_min()),
-            targets: *target,
-            duration,
-            synchronization: used,
-            interface,
-            rate_hz: options.rate_hz,
-            limits: *limits,
-        };
+        self.synchronization = used;
         Ok(())
     }
 

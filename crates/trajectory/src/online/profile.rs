@@ -203,22 +203,30 @@ impl<R: Real> AxisProfile<R> {
     /// `accelerations[i]` where the integration would put it only within rounding: the
     /// value the profile's form prescribes (zero during a cruise, a limit during a hold),
     /// so that rounding does not turn a hold or a cruise into a slow drift.
-    pub(super) fn with_accelerations(
+    pub(super) fn set(
+        &mut self,
         start: Kinematics<R>,
         phases: [JerkPhase<R>; MAX_PHASES],
         accelerations: &[R; MAX_PHASES + 1],
-    ) -> Self {
-        let mut states = [start; MAX_PHASES + 1];
+    ) {
+        self.phases = phases;
+        self.states[0] = start;
         let mut duration = R::ZERO;
         for (i, p) in phases.iter().enumerate() {
-            states[i + 1] = states[i].advance(p.jerk, p.duration);
-            states[i + 1].acceleration = accelerations[i + 1];
+            self.states[i + 1] = self.states[i].advance(p.jerk, p.duration);
+            self.states[i + 1].acceleration = accelerations[i + 1];
             duration += p.duration;
         }
+        self.duration = duration;
+    }
+
+    /// At rest at `position`, duration 0.
+    pub(super) fn still(position: R) -> Self {
+        let start = Kinematics::at_rest(position);
         AxisProfile {
-            phases,
-            states,
-            duration,
+            phases: [JerkPhase::default(); MAX_PHASES],
+            states: [start; MAX_PHASES + 1],
+            duration: R::ZERO,
         }
     }
 

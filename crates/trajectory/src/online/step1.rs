@@ -61,25 +61,10 @@ const MAX_VALID: usize = 5;
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Block<R> {
     pub(super) profile: AxisProfile<R>,
-    pub(super) gaps: [(R, R); 2],
-    pub(super) gap_count: usize,
+    pub(super) span: Span<R>,
 }
 
 impl<R: Real> Block<R> {
-    /// No motion: at rest at 0, duration 0.
-    pub(super) fn still() -> Self {
-        let profile = AxisProfile::with_accelerations(
-            Kinematics::default(),
-            Default::default(),
-            &Default::default(),
-        );
-        Block {
-            profile,
-            gaps: [(R::ZERO, R::ZERO); 2],
-            gap_count: 0,
-        }
-    }
-
     /// The time-optimal profile.
     pub fn profile(&self) -> &AxisProfile<R> {
         &self.profile
@@ -87,28 +72,66 @@ impl<R: Real> Block<R> {
 
     /// The shortest duration.
     pub fn t_min(&self) -> R {
-        self.profile.duration
+        self.span.t_min
     }
 
     /// The gaps: open intervals of durations the axis cannot take.
     pub fn gaps(&self) -> &[(R, R)] {
-        &self.gaps[..self.gap_count]
+        self.span.gaps()
     }
 
     /// Whether the axis cannot take the duration `t`.
     pub fn is_blocked(&self, t: R) -> bool {
-        t < self.t_min() || self.gaps().iter().any(|&(a, b)| t > a && t < b)
+        self.span.is_blocked(t)
+    }
+}
+
+/// The durations an axis can take: the shortest, and at most two gaps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(super) struct Span<R> {
+    pub(super) t_min: R,
+    gaps: [(R, R); 2],
+    gap_count: usize,
+}
+
+impl<R: Real> Span<R> {
+    /// `[t_min, ∞)` without gaps.
+    pub(super) fn from(t_min: R) -> Self {
+        Span {
+            t_min,
+            gaps: [(R::ZERO, R::ZERO); 2],
+            gap_count: 0,
+        }
+    }
+
+    /// The gaps.
+    pub(super) fn gaps(&self) -> &[(R, R)] {
+        &self.gaps[..self.gap_count]
+    }
+
+    /// Whether the duration `t` is not feasible.
+    pub(super) fn is_blocked(&self, t: R) -> bool {
+        t < self.t_min || self.gaps().iter().any(|&(a, b)| t > a && t < b)
     }
 }
 
 impl<R: Real> Up<R> {
     /// Every profile of the first form, written to `out`.
     fn profiles(&self, out: &mut Found<R>) {
-        self.with_cruise(out);
-        self.both_accelerations(out);
-        self.peak_at_limit(out);
-        self.trough_at_limit(out);
-        self.no_limit(out);
+        let families: [fn(&Self, &mut Found<R>); 5] = [
+            Self::with_cruise,
+            Self::no_limit,
+            Self::peak_at_limit,
+            Self::trough_at_limit,
+            Self::both_accelerations,
+        ];
+        for family in families {
+            if out.complete() {
+                return;
+            }
+            family(self, out);
+        }
     }
 
     fn add(&self, s: &Shape<R>, out: &mut Found<R>) {
@@ -341,9 +364,17 @@ impl<R: Real> Up<R> {
 struct Found<R> {
     items: [(Candidate<R>, R); MAX_VALID + 3],
     len: usize,
+    /// Stop at the first profile.
+    first_only: bool,
 }
 
 impl<R: Real> Found<R> {
+    /// Whether no further profile is needed: one was found and the target is at rest (then
+    /// it is the only one).
+    fn complete(&self) -> bool {
+        self.first_only && self.len > 0
+    }
+
     fn push(&mut self, c: Candidate<R>) {
         if self.len < self.items.len() {
             self.items[self.len] = (c, c.duration());
@@ -360,7 +391,8 @@ pub(super) fn time_optimal<R: Real>(
     brake: [JerkPhase<R>; 2],
     target: &Kinematics<R>,
     l: &AxisLimits<R>,
-) -> Option<Block<R>> {
+    out: &mut AxisProfile<R>,
+) -> Option<Span<R>> {
     let mut start = *origin;
     let mut brake_time = R::ZERO;
     for p in &brake {
@@ -375,17 +407,29 @@ pub(super) fn time_optimal<R: Real>(
         accelerations: [R::ZERO; 8],
         position_tolerance: R::ZERO,
     };
+    // A target at rest has one profile (no gaps: Berscheid & Kröger, §IV-C): the search
+    // stops at the first, beginning in the direction of the target.
+    let first_only = target.velocity == R::ZERO && target.acceleration == R::ZERO;
     let mut found = Found {
         items: [(empty, R::ZERO); MAX_VALID + 3],
         len: 0,
+        first_only,
     };
-    up.profiles(&mut found);
-    let from_up = found.len;
-    down.profiles(&mut found);
-    for item in &mut found.items[from_up..found.len] {
-        item.0 = item.0.negated();
+    let directions = if up.dp.is_negative() {
+        [(&down, true), (&up, false)]
+    } else {
+        [(&up, false), (&down, true)]
+    };
+    for (problem, mirrored) in directions {
+        let from = found.len;
+        problem.profiles(&mut found);
+        if mirrored {
+            for item in &mut found.items[from..found.len] {
+                item.0 = item.0.negated();
+            }
+        }
     }
-    block(origin, brake, brake_time, &mut found, up.tol.time)
+    block(origin, brake, brake_time, &mut found, up.tol.time, out)
 }
 
 /// Sorts the profiles by duration, merges those that coincide within `tol`, and reads the
@@ -396,7 +440,8 @@ fn block<R: Real>(
     brake_time: R,
     found: &mut Found<R>,
     tol: R,
-) -> Option<Block<R>> {
+    out: &mut AxisProfile<R>,
+) -> Option<Span<R>> {
     let items = &mut found.items[..found.len];
     // Insertion sort by duration (at most eight items).
     for i in 1..items.len() {
@@ -415,7 +460,14 @@ fn block<R: Real>(
         }
     }
     let best = items.first()?.0;
-    let profile = with_brake(origin, brake, &best.t, &best.jerks, &best.accelerations);
+    with_brake(
+        origin,
+        brake,
+        &best.t,
+        &best.jerks,
+        &best.accelerations,
+        out,
+    );
     let mut gaps = [(R::ZERO, R::ZERO); 2];
     let mut gap_count = 0;
     // An even count means a boundary was missed or found twice: the gaps cannot be read,
@@ -428,8 +480,8 @@ fn block<R: Real>(
             i += 2;
         }
     }
-    Some(Block {
-        profile,
+    Some(Span {
+        t_min: out.duration,
         gaps,
         gap_count,
     })
@@ -443,7 +495,8 @@ pub(super) fn with_brake<R: Real>(
     t: &[R],
     jerks: &[R],
     accelerations: &[R],
-) -> AxisProfile<R> {
+    out: &mut AxisProfile<R>,
+) {
     let mut phases = [JerkPhase::default(); MAX_PHASES];
     let mut accs = [R::ZERO; MAX_PHASES + 1];
     let mut a = origin.acceleration;
@@ -465,5 +518,5 @@ pub(super) fn with_brake<R: Real>(
     for a in &mut accs[2 + last..] {
         *a = accelerations[last - 1];
     }
-    AxisProfile::with_accelerations(*origin, phases, &accs)
+    out.set(*origin, phases, &accs);
 }

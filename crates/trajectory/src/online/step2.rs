@@ -18,7 +18,6 @@
 use super::form::{Candidate, Shape, Up};
 use super::profile::{AxisLimits, AxisProfile, JerkPhase, Kinematics, MAX_PHASES};
 use super::real::Real;
-use super::step1::with_brake;
 
 impl<R: Real> Up<R> {
     /// The motion of the form with duration `tau` that ends farthest in the positive
@@ -142,7 +141,8 @@ pub(super) fn with_duration<R: Real>(
     target: &Kinematics<R>,
     l: &AxisLimits<R>,
     duration: R,
-) -> Option<AxisProfile<R>> {
+    out: &mut AxisProfile<R>,
+) -> bool {
     let mut start = *origin;
     let mut tau = duration;
     for p in &brake {
@@ -151,15 +151,17 @@ pub(super) fn with_duration<R: Real>(
     }
     let up = Up::new(&start, target, l);
     if tau < -up.tol.time {
-        return None;
+        return false;
     }
     let tau = tau.max_of(R::ZERO);
-    let (hi, p_hi) = up.farthest(tau)?;
-    let (lo, p_lo) = up.mirrored().farthest(tau)?;
+    let (Some((hi, p_hi)), Some((lo, p_lo))) = (up.farthest(tau), up.mirrored().farthest(tau))
+    else {
+        return false;
+    };
     let (lo, p_lo) = (lo.negated(), -p_lo);
     let tol = hi.position_tolerance.max_of(lo.position_tolerance);
     if up.dp > p_hi + tol || up.dp < p_lo - tol {
-        return None;
+        return false;
     }
     let width = p_hi - p_lo;
     let lambda = if width > tol {
@@ -167,87 +169,147 @@ pub(super) fn with_duration<R: Real>(
     } else {
         R::ONE
     };
-    let hi = with_brake(origin, brake, &hi.t, &hi.jerks, &hi.accelerations);
-    let lo = with_brake(origin, brake, &lo.t, &lo.jerks, &lo.accelerations);
-    Some(blend(&hi, &lo, lambda))
+    let hi = Phases {
+        t: &hi.t,
+        jerks: &hi.jerks,
+        accelerations: &hi.accelerations,
+    };
+    let lo = Phases {
+        t: &lo.t,
+        jerks: &lo.jerks,
+        accelerations: &lo.accelerations,
+    };
+    blend(origin, brake, &hi, &lo, lambda, out);
+    true
 }
 
-/// The switching times of a profile's main phases (after the brake), in increasing order:
-/// the ends of its phases of positive duration.
-fn switches<R: Real>(p: &AxisProfile<R>, out: &mut [R; 7]) -> usize {
-    let mut t = p.phases[0].duration + p.phases[1].duration;
-    let mut n = 0;
-    for phase in &p.phases[2..] {
-        if phase.duration > R::ZERO && n < out.len() {
-            t += phase.duration;
-            out[n] = t;
-            n += 1;
+/// The main phases of a motion (after the brake): durations, jerks, and the accelerations
+/// at their starts and at the end, as its form prescribes.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Phases<'a, R> {
+    pub(super) t: &'a [R],
+    pub(super) jerks: &'a [R],
+    pub(super) accelerations: &'a [R],
+}
+
+/// A walk along [`Phases`] from a start state: the current phase, its start time and state.
+struct Walk<'a, R> {
+    phases: &'a Phases<'a, R>,
+    i: usize,
+    begin: R,
+    state: Kinematics<R>,
+}
+
+impl<R: Real> Walk<'_, R> {
+    /// The end of the current phase (the last end once past the last phase).
+    fn end(&self) -> R {
+        match self.phases.t.get(self.i) {
+            Some(&d) => self.begin + d,
+            None => self.begin,
         }
     }
-    n
+
+    fn done(&self) -> bool {
+        self.i >= self.phases.t.len()
+    }
+
+    fn jerk(&self) -> R {
+        self.phases.jerks.get(self.i).copied().unwrap_or(R::ZERO)
+    }
+
+    /// The state at time `x` of the current phase (after the last, continued without jerk).
+    fn at(&self, x: R) -> Kinematics<R> {
+        self.state.advance(self.jerk(), x - self.begin)
+    }
+
+    /// On to the next phase, at the acceleration the form prescribes there.
+    fn step(&mut self) {
+        if let Some(&d) = self.phases.t.get(self.i) {
+            self.state = self.state.advance(self.jerk(), d);
+            if let Some(&a) = self.phases.accelerations.get(self.i + 1) {
+                self.state.acceleration = a;
+            }
+            self.begin += d;
+            self.i += 1;
+        }
+    }
 }
 
-/// `λ·x_hi(t) + (1 − λ)·x_lo(t)`: the phases between the merged switching times of both,
-/// each with the blended jerk, and the blended states at their starts. The two motions
-/// share their first two phases (the brake).
+/// `λ·x_hi(t) + (1 − λ)·x_lo(t)` into `out`: the brake, then the phases between the merged
+/// switching times of both motions, each with the blended jerk, and the blended states at
+/// their starts (each motion's state evaluated on its own phase, not integrated across the
+/// blend).
 pub(super) fn blend<R: Real>(
-    hi: &AxisProfile<R>,
-    lo: &AxisProfile<R>,
+    origin: &Kinematics<R>,
+    brake: [JerkPhase<R>; 2],
+    hi: &Phases<'_, R>,
+    lo: &Phases<'_, R>,
     lambda: R,
-) -> AxisProfile<R> {
+    out: &mut AxisProfile<R>,
+) {
     let mix = |x: R, y: R| lambda * x + (R::ONE - lambda) * y;
-    let state = |t: R| {
-        let (x, y) = (hi.at(t), lo.at(t));
+    let mixed = |x: &Kinematics<R>, y: &Kinematics<R>| {
         Kinematics::new(
             mix(x.position, y.position),
             mix(x.velocity, y.velocity),
             mix(x.acceleration, y.acceleration),
         )
     };
-    let (mut a, mut b) = ([R::ZERO; 7], [R::ZERO; 7]);
-    let (na, nb) = (switches(hi, &mut a), switches(lo, &mut b));
     let mut phases = [JerkPhase::default(); MAX_PHASES];
-    let mut states = [hi.start(); MAX_PHASES + 1];
-    phases[..2].copy_from_slice(&hi.phases[..2]);
-    states[..3].copy_from_slice(&hi.states[..3]);
-    let mut t = hi.phases[0].duration + hi.phases[1].duration;
-    let (mut i, mut k, mut n) = (0, 0, 2);
-    while (i < na || k < nb) && n < MAX_PHASES {
-        let next = if k >= nb || (i < na && a[i] <= b[k]) {
-            a[i]
+    phases[..2].copy_from_slice(&brake);
+    out.states[0] = *origin;
+    for i in 0..2 {
+        let mut next = out.states[i].advance(brake[i].jerk, brake[i].duration);
+        next.acceleration = out.states[i].acceleration + brake[i].jerk * brake[i].duration;
+        out.states[i + 1] = next;
+    }
+    let start = out.states[2];
+    let mut a = Walk {
+        phases: hi,
+        i: 0,
+        begin: R::ZERO,
+        state: start,
+    };
+    let mut b = Walk {
+        phases: lo,
+        i: 0,
+        begin: R::ZERO,
+        state: start,
+    };
+    let (mut time, mut n) = (R::ZERO, 2);
+    while !(a.done() && b.done()) && n < MAX_PHASES {
+        let next = if a.done() {
+            b.end()
+        } else if b.done() {
+            a.end()
         } else {
-            b[k]
+            a.end().min_of(b.end())
         };
-        if i < na && a[i] <= next {
-            i += 1;
-        }
-        if k < nb && b[k] <= next {
-            k += 1;
-        }
-        if next > t {
-            let mid = t + (next - t) * R::HALF;
+        if next > time {
             phases[n] = JerkPhase {
-                jerk: mix(hi.jerk_at(mid), lo.jerk_at(mid)),
-                duration: next - t,
+                jerk: mix(a.jerk(), b.jerk()),
+                duration: next - time,
             };
             // Both motions start the main phases from the same state: keep it exact.
-            if n > 2 {
-                states[n] = state(t);
-            }
+            out.states[n] = if n == 2 {
+                start
+            } else {
+                mixed(&a.at(time), &b.at(time))
+            };
             n += 1;
-            t = next;
+            time = next;
+        }
+        if !a.done() && a.end() <= next {
+            a.step();
+        }
+        if !b.done() && b.end() <= next {
+            b.step();
         }
     }
-    for s in &mut states[n..] {
-        *s = state(t);
+    let end = mixed(&a.at(time), &b.at(time));
+    for s in &mut out.states[n..] {
+        *s = end;
     }
-    let mut duration = R::ZERO;
-    for p in &phases {
-        duration += p.duration;
-    }
-    AxisProfile {
-        phases,
-        states,
-        duration,
-    }
+    out.phases = phases;
+    out.duration = brake[0].duration + brake[1].duration + time;
 }

@@ -1,9 +1,10 @@
 //! Several axes moved together: each axis's time-optimal motion and feasible durations,
 //! then one duration for all ([`Synchronization`]).
 
+use super::profile::JerkPhase;
 use super::profile::{AxisLimits, AxisProfile, Kinematics};
 use super::real::Real;
-use super::step1::Block;
+use super::step1::{self, Span};
 use super::{brake, step2, velocity};
 use crate::error::Error;
 
@@ -34,17 +35,29 @@ pub enum Interface {
     Velocity,
 }
 
-/// One axis's block in the move's interface.
-pub(super) fn axis_block<R: Real>(
+/// One axis's time-optimal motion (into `out`) and feasible durations in the move's
+/// interface.
+pub(super) fn axis_span<R: Real>(
     start: &Kinematics<R>,
     target: &Kinematics<R>,
     l: &AxisLimits<R>,
     interface: Interface,
-) -> Result<Block<R>, Error> {
-    match interface {
-        Interface::Position => super::solve_axis(start, target, l),
-        Interface::Velocity => super::solve_axis_velocity(start, target, l),
+    out: &mut AxisProfile<R>,
+) -> Result<Span<R>, Error> {
+    let position = interface == Interface::Position;
+    let finite =
+        start.is_finite() && target.velocity.is_finite() && target.acceleration.is_finite();
+    if !finite || (position && !target.position.is_finite()) {
+        return Err(Error::NonFiniteState);
     }
+    super::check_target(target, l, position)?;
+    let span = if position {
+        let brake = brake::position_brake(start.velocity, start.acceleration, l);
+        step1::time_optimal(start, brake, target, l, out)
+    } else {
+        velocity::time_optimal(start, target, l, out)
+    };
+    span.ok_or(Error::NoProfile)
 }
 
 /// One axis's motion of exactly `duration` in the move's interface.
@@ -54,13 +67,14 @@ pub(super) fn axis_with_duration<R: Real>(
     l: &AxisLimits<R>,
     interface: Interface,
     duration: R,
-) -> Option<AxisProfile<R>> {
+    out: &mut AxisProfile<R>,
+) -> bool {
     match interface {
         Interface::Position => {
             let brake = brake::position_brake(start.velocity, start.acceleration, l);
-            step2::with_duration(start, brake, target, l, duration)
+            step2::with_duration(start, brake, target, l, duration, out)
         }
-        Interface::Velocity => velocity::with_duration(start, target, l, duration),
+        Interface::Velocity => velocity::with_duration(start, target, l, duration, out),
     }
 }
 
@@ -81,10 +95,10 @@ impl Grid {
 /// The smallest duration on the grid, at least every axis's minimum, that no axis finds in
 /// a gap: the largest minimum, or the end of a gap that holds it (and so on: each pass
 /// moves past one gap, so at most one pass per gap and one more).
-pub(super) fn common_duration<R: Real>(blocks: &[Block<R>], grid: Grid) -> R {
+pub(super) fn common_duration<R: Real>(blocks: &[Span<R>], grid: Grid) -> R {
     let mut t = R::ZERO;
     for b in blocks {
-        t = t.max_of(b.t_min());
+        t = t.max_of(b.t_min);
     }
     t = grid.up(t);
     for _ in 0..=2 * blocks.len() {
@@ -197,32 +211,49 @@ pub(super) fn phase_profiles<R: Real, const A: usize>(
     limits: &[AxisLimits<R>; A],
     interface: Interface,
     grid: Grid,
-) -> Result<Option<[AxisProfile<R>; A]>, Error> {
+    out: &mut [AxisProfile<R>; A],
+) -> Result<bool, Error> {
     let mut values = [[R::ZERO; 5]; A];
     for i in 0..A {
         values[i] = line_values(&start[i], &target[i], interface);
     }
     let Some((shares, k)) = line_shares(&values) else {
-        return Ok(None);
+        return Ok(false);
     };
     let line_limits = line_limits(&shares, limits)?;
-    let line = axis_block(&start[k], &target[k], &line_limits, interface)?;
+    let mut reference = AxisProfile::still(start[k].position);
+    let line = axis_span(
+        &start[k],
+        &target[k],
+        &line_limits,
+        interface,
+        &mut reference,
+    )?;
     let duration = common_duration(core::slice::from_ref(&line), grid);
-    let reference = if duration == line.t_min() {
-        *line.profile()
-    } else {
-        axis_with_duration(&start[k], &target[k], &line_limits, interface, duration)
-            .ok_or(Error::NoProfile)?
-    };
-    let mut profiles = [reference; A];
-    for (i, p) in profiles.iter_mut().enumerate() {
+    if duration != line.t_min
+        && !axis_with_duration(
+            &start[k],
+            &target[k],
+            &line_limits,
+            interface,
+            duration,
+            &mut reference,
+        )
+    {
+        return Err(Error::NoProfile);
+    }
+    for (i, p) in out.iter_mut().enumerate() {
         let r = shares[i];
-        for ph in &mut p.phases {
-            ph.jerk = r * ph.jerk;
+        p.duration = reference.duration;
+        for (ph, k_phase) in p.phases.iter_mut().zip(&reference.phases) {
+            *ph = JerkPhase {
+                jerk: r * k_phase.jerk,
+                duration: k_phase.duration,
+            };
         }
         for (s, k_state) in p.states.iter_mut().zip(&reference.states) {
             *s = scaled(start[i].position, r, start[k].position, k_state);
         }
     }
-    Ok(Some(profiles))
+    Ok(true)
 }

@@ -6,9 +6,11 @@
 //! acceleration phase of the double S generalized to non-zero end accelerations).
 
 use super::brake::velocity_mode_brake;
+use super::profile::AxisProfile;
 use super::profile::{AxisLimits, Kinematics};
 use super::real::Real;
-use super::step1::{Block, with_brake};
+use super::step1::{Span, with_brake};
+use super::step2::Phases;
 
 /// The three phases (rise, hold, fall) in the frame where the first phase has positive jerk,
 /// if they are a motion: every duration non-negative.
@@ -38,7 +40,8 @@ pub(super) fn time_optimal<R: Real>(
     origin: &Kinematics<R>,
     target: &Kinematics<R>,
     l: &AxisLimits<R>,
-) -> Option<Block<R>> {
+    out: &mut AxisProfile<R>,
+) -> Option<Span<R>> {
     let brake = velocity_mode_brake(origin.acceleration, l);
     let mut start = *origin;
     for p in &brake {
@@ -67,18 +70,15 @@ pub(super) fn time_optimal<R: Real>(
         (None, None) => return None,
     };
     let peak = a0 + jerk * t[0];
-    let profile = with_brake(
+    with_brake(
         origin,
         brake,
         &t,
         &[jerk, R::ZERO, -jerk],
         &[a0, peak, peak, af],
+        out,
     );
-    Some(Block {
-        profile,
-        gaps: [(R::ZERO, R::ZERO); 2],
-        gap_count: 0,
-    })
+    Some(Span::from(out.duration))
 }
 
 /// The velocity change of duration `tau` that ends fastest in the positive direction
@@ -112,7 +112,8 @@ pub(super) fn with_duration<R: Real>(
     target: &Kinematics<R>,
     l: &AxisLimits<R>,
     duration: R,
-) -> Option<super::profile::AxisProfile<R>> {
+    out: &mut AxisProfile<R>,
+) -> bool {
     let brake = velocity_mode_brake(origin.acceleration, l);
     let mut start = *origin;
     let mut tau = duration;
@@ -128,13 +129,17 @@ pub(super) fn with_duration<R: Real>(
         l.jerk,
     );
     let tau = tau.max_of(R::ZERO);
-    let (t_hi, v_hi) = fastest(v0, a0, af, l.a_max, j, tau)?;
-    let (t_lo, v_lo) = fastest(-v0, -a0, -af, -l.a_min, j, tau)?;
+    let (Some((t_hi, v_hi)), Some((t_lo, v_lo))) = (
+        fastest(v0, a0, af, l.a_max, j, tau),
+        fastest(-v0, -a0, -af, -l.a_min, j, tau),
+    ) else {
+        return false;
+    };
     let v_lo = -v_lo;
     let scale = v0.abs().max_of(vf.abs()).max_of(l.a_max * tau) + l.a_max * l.a_max / j;
     let tol = R::lit(1024.0) * R::EPS * scale;
     if vf > v_hi + tol || vf < v_lo - tol {
-        return None;
+        return false;
     }
     let width = v_hi - v_lo;
     let lambda = if width > tol {
@@ -144,19 +149,18 @@ pub(super) fn with_duration<R: Real>(
     };
     let peak_hi = a0 + j * t_hi[0];
     let peak_lo = a0 - j * t_lo[0];
-    let hi = with_brake(
-        origin,
-        brake,
-        &t_hi,
-        &[j, R::ZERO, -j],
-        &[a0, peak_hi, peak_hi, af],
-    );
-    let lo = with_brake(
-        origin,
-        brake,
-        &t_lo,
-        &[-j, R::ZERO, j],
-        &[a0, peak_lo, peak_lo, af],
-    );
-    Some(super::step2::blend(&hi, &lo, lambda))
+    let (jerks_hi, jerks_lo) = ([j, R::ZERO, -j], [-j, R::ZERO, j]);
+    let (accs_hi, accs_lo) = ([a0, peak_hi, peak_hi, af], [a0, peak_lo, peak_lo, af]);
+    let hi = Phases {
+        t: &t_hi,
+        jerks: &jerks_hi,
+        accelerations: &accs_hi,
+    };
+    let lo = Phases {
+        t: &t_lo,
+        jerks: &jerks_lo,
+        accelerations: &accs_lo,
+    };
+    super::step2::blend(origin, brake, &hi, &lo, lambda, out);
+    true
 }
