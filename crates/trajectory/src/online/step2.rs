@@ -258,9 +258,9 @@ pub(super) fn blend<R: Real>(
     let mut phases = [JerkPhase::default(); MAX_PHASES];
     phases[..2].copy_from_slice(&brake);
     out.states[0] = *origin;
-    for i in 0..2 {
-        let mut next = out.states[i].advance(brake[i].jerk, brake[i].duration);
-        next.acceleration = out.states[i].acceleration + brake[i].jerk * brake[i].duration;
+    for (i, b) in brake.iter().enumerate() {
+        let mut next = out.states[i].advance(b.jerk, b.duration);
+        next.acceleration = out.states[i].acceleration + b.jerk * b.duration;
         out.states[i + 1] = next;
     }
     let start = out.states[2];
