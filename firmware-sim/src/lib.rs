@@ -11,6 +11,7 @@ pub mod export;
 pub mod job;
 pub mod measure;
 pub mod number;
+pub mod online_move;
 pub mod pipeline;
 pub mod plot;
 pub mod run;

@@ -4,6 +4,7 @@
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
 //! strak-sim run [JOB.toml] [--out DIR]      # exit 3: a planned motion exceeded a limit
 //! strak-sim compile JOB.toml --number f32|fixed|f64 --out FILE.strk
+//! strak-sim move MOVE.toml [--out DIR]     # exit 3: the samples exceeded a limit
 //! ```
 
 use std::fs;
@@ -18,7 +19,10 @@ use strak_sim::curve_file::CurveFile;
 use strak_sim::export::export;
 use strak_sim::job::Job;
 use strak_sim::number::{self, NumberFormat};
-use strak_sim::run::{BUNDLED_JOB, BUNDLED_NAME, RunOptions, exit_code, run_job, violation_lines};
+use strak_sim::online_move::{MoveJob, run_move};
+use strak_sim::run::{
+    BUNDLED_JOB, BUNDLED_NAME, EXIT_EXCEEDED, RunOptions, exit_code, run_job, violation_lines,
+};
 use strak_sim::sample::{SampleOptions, sample_to_csv};
 
 /// Host simulator for strak: sample curves, run jobs through the firmware's sampler.
@@ -59,6 +63,17 @@ enum Command {
         /// The job file (TOML); the bundled example when omitted.
         job: Option<PathBuf>,
         /// Output folder (created if missing); default `out/<job name>`.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Solve an online move (from any start state to a target, with new targets and quick
+    /// stops at given ticks), compile it and play it through the sampler firmware uses; write
+    /// samples.csv, summary.json and motion.svg, and print the summary. Exit code 3 (one
+    /// error line per quantity) when a sample exceeds an axis limit.
+    Move {
+        /// The move file (TOML).
+        file: PathBuf,
+        /// Output folder (created if missing); default `out/<file name>`.
         #[arg(long)]
         out: Option<PathBuf>,
     },
@@ -122,6 +137,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         }
         Command::Run { job, out } => run_command(job.as_deref(), out),
         Command::Compile { job, number, out } => compile_command(&job, number, &out),
+        Command::Move { file, out } => move_command(&file, out),
     }
 }
 
@@ -177,6 +193,34 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
     match exit_code(&summary) {
         0 => Ok(Outcome::Done),
         code => Ok(Outcome::Exceeded(code, violation_lines(&label, &summary))),
+    }
+}
+
+/// `strak-sim move`: the summary on standard output; the violations, if any, for the exit.
+fn move_command(file: &FsPath, out: Option<PathBuf>) -> anyhow::Result<Outcome> {
+    let label = file.display().to_string();
+    let text = fs::read_to_string(file).with_context(|| format!("cannot read {label}"))?;
+    let job = MoveJob::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    let name = file
+        .file_stem()
+        .map_or_else(|| "move".to_owned(), |s| s.to_string_lossy().into_owned());
+    let options = RunOptions {
+        out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
+        name,
+        progress: false,
+        velocity_factor: None,
+    };
+    let summary = run_move(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    println!("{summary}");
+    if summary.violations.is_empty() {
+        Ok(Outcome::Done)
+    } else {
+        let lines = summary
+            .violations
+            .iter()
+            .map(|v| format!("strak-sim: error: {label}: limit exceeded: {v}"))
+            .collect();
+        Ok(Outcome::Exceeded(EXIT_EXCEEDED, lines))
     }
 }
 

@@ -263,7 +263,12 @@ fn progress_bar(show: bool, expected: u64) -> Option<ProgressBar> {
 }
 
 /// One CSV row: `tick,t`, positions, velocities, accelerations.
-fn write_row<T: CsvCell, const D: usize>(row: &mut String, k: u64, t: f64, s: &Sample<T, D>) {
+pub(crate) fn write_row<T: CsvCell, const D: usize>(
+    row: &mut String,
+    k: u64,
+    t: f64,
+    s: &Sample<T, D>,
+) {
     use std::fmt::Write as _;
     row.clear();
     let _ = write!(row, "{k},{t:?}");

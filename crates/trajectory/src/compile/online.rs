@@ -186,9 +186,12 @@ where
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let ticks = ticks as u32;
     let axes: [Axis; A] = core::array::from_fn(|i| Axis::new(&m.profiles()[i]));
-    write_pieces(&axes, rate, ticks, path)?;
+    let end_time = f64::from(ticks) / rate;
+    let ends: [Kinematics<f64>; A] =
+        core::array::from_fn(|i| end_state(m, &axes[i], i, end_time, rate));
+    write_pieces(&axes, &ends, rate, ticks, path)?;
     path.header.meta = meta(m, &axes, rate)?;
-    write_end(m, &axes, f64::from(ticks) / rate, path)?;
+    write_end(&ends, path)?;
     path.seal()?;
     check_playback_bound(&path.header)
 }
@@ -197,6 +200,7 @@ where
 /// `max_piece_ticks` apart).
 fn write_pieces<N: Number, const A: usize, const P: usize>(
     axes: &[Axis; A],
+    ends: &[Kinematics<f64>; A],
     rate: f64,
     ticks: u32,
     path: &mut Path<N, A, P>,
@@ -211,9 +215,14 @@ fn write_pieces<N: Number, const A: usize, const P: usize>(
         }
         let n = next - k;
         let mut states = [AxisState::ZERO; A];
-        for (state, axis) in states.iter_mut().zip(axes) {
-            let s = if n == 1 && axis.switches_within(k, rate) {
-                chord_state(axis, k, period)
+        for ((state, axis), end) in states.iter_mut().zip(axes).zip(ends) {
+            let start = || axis.at(f64::from(k) * period);
+            let s = if next == ticks {
+                // The last piece ends on the path's end exactly (the target, not the
+                // solver's rounding of it).
+                chord_state(&start(), end, n, period)
+            } else if n == 1 && axis.switches_within(k, rate) {
+                chord_state(&start(), &axis.at(f64::from(next) * period), 1, period)
             } else {
                 cubic_state(axis, k, next, period)
             };
@@ -261,26 +270,27 @@ fn cubic_state(axis: &Axis, k: u32, next: u32, period: f64) -> AxisState<f64> {
     }
 }
 
-/// The state of a one-tick piece that holds a switch: exact at both ticks in every chain.
-fn chord_state(axis: &Axis, k: u32, period: f64) -> AxisState<f64> {
-    let s = axis.at(f64::from(k) * period);
-    let e = axis.at(f64::from(k + 1) * period);
+/// The state of a piece of `n` ticks from the state `s` that ends exactly on the state `e`
+/// in every chain: position `a + b·i + c·i² + d·i³` with the start's value and derivatives,
+/// through the end position; velocity `v₀ + a₀T·i + q·i²` through the end velocity;
+/// acceleration linear between both. For a piece on one cubic phase whose end is that
+/// phase's end this is the phase itself (up to rounding).
+fn chord_state(s: &Kinematics<f64>, e: &Kinematics<f64>, n: u32, period: f64) -> AxisState<f64> {
+    let n = f64::from(n);
     let tt = period * period;
-    // Position: a + b i + c i² + d i³ with the start's value and derivatives, through the end.
     let (a, b, c) = (s.position, s.velocity * period, s.acceleration * tt * 0.5);
-    let d = e.position - (a + b + c);
-    // Velocity: v₀ + (a₀T) i + q i² through the end velocity.
-    let q = e.velocity - s.velocity - s.acceleration * period;
+    let d = (e.position - (a + n * (b + n * c))) / (n * n * n);
+    let q = (e.velocity - s.velocity - s.acceleration * period * n) / (n * n);
     AxisState {
         position: a,
         delta1: b + c + d,
         delta2: 2.0 * c + 6.0 * d,
         delta3: 6.0 * d,
         velocity: s.velocity,
-        velocity_delta1: e.velocity - s.velocity,
+        velocity_delta1: s.acceleration * period + q,
         velocity_delta2: 2.0 * q,
         acceleration: s.acceleration,
-        acceleration_delta: e.acceleration - s.acceleration,
+        acceleration_delta: (e.acceleration - s.acceleration) / n,
     }
 }
 
@@ -344,35 +354,44 @@ fn meta<R: Real, const A: usize>(
     })
 }
 
-/// The end: the targets (for a position move its positions exactly as given; for a
-/// velocity move, or an axis that arrived early and moves on, the state at the end).
-fn write_end<N: Number, R: Real, const A: usize, const P: usize>(
+/// Where axis `i` ends: its target (for a position move its position exactly as given; for
+/// a velocity move, or an axis that arrived early and moves on, the state at the end).
+fn end_state<R: Real, const A: usize>(
     m: &OnlineMove<R, A>,
-    axes: &[Axis; A],
+    axis: &Axis,
+    i: usize,
     end: f64,
+    rate: f64,
+) -> Kinematics<f64> {
+    let s = axis.at(end);
+    // Durations are whole ticks: an axis that arrives early does so by a tick at least.
+    let arrives = (end - axis.profile.duration()) * rate < 0.5;
+    let position_move = m.interface() == crate::online::Interface::Position;
+    match m.targets().get(i) {
+        Some(t) if arrives => Kinematics::new(
+            if position_move {
+                t.position.to_f64()
+            } else {
+                s.position
+            },
+            t.velocity.to_f64(),
+            t.acceleration.to_f64(),
+        ),
+        _ => s,
+    }
+}
+
+/// The path's end, in the sample type.
+fn write_end<N: Number, const A: usize, const P: usize>(
+    ends: &[Kinematics<f64>; A],
     path: &mut Path<N, A, P>,
 ) -> Result<(), Error> {
     let out = |v: f64| N::out_from_f64(v).ok_or(Error::OutOfRange);
-    let position_move = m.interface() == crate::online::Interface::Position;
-    for (i, (axis, target)) in axes.iter().zip(m.targets()).enumerate() {
-        let arrives = axis.profile.duration() >= end - 1e-9 * end;
-        let s = axis.at(end);
-        let e = &mut path.header.end;
-        e.position[i] = out(if position_move && arrives {
-            target.position.to_f64()
-        } else {
-            s.position
-        })?;
-        e.velocity[i] = out(if arrives {
-            target.velocity.to_f64()
-        } else {
-            s.velocity
-        })?;
-        e.acceleration[i] = out(if arrives {
-            target.acceleration.to_f64()
-        } else {
-            s.acceleration
-        })?;
+    let e = &mut path.header.end;
+    for (i, s) in ends.iter().enumerate() {
+        e.position[i] = out(s.position)?;
+        e.velocity[i] = out(s.velocity)?;
+        e.acceleration[i] = out(s.acceleration)?;
     }
     Ok(())
 }
@@ -582,6 +601,59 @@ mod tests {
             let what = std::format!("take-over {n} at tick {k}");
             let from = first_safe(&joined, first.limits());
             assert_differences_keep_limits(&joined[from..], first.limits(), &what);
+        }
+    }
+
+    #[test]
+    fn moves_solved_in_f32_end_exactly_on_their_targets() {
+        let mut rng = Rng(0x0F32_0F32_0F32_0F32);
+        #[allow(clippy::cast_possible_truncation)]
+        let c = |x: f64| x as f32;
+        for n in 0..60 {
+            let m = random_move(&mut rng, 0.8);
+            if m.synchronization() != Synchronization::Time {
+                continue;
+            }
+            let k32 = |k: &Kinematics<f64>| {
+                Kinematics::new(c(k.position), c(k.velocity), c(k.acceleration))
+            };
+            let start = m.profiles().map(|p| k32(&p.start()));
+            let target = m.targets().map(|t| k32(&t));
+            let limits = m.limits().map(|l| {
+                AxisLimits::new(c(l.velocity_max()), c(l.acceleration_max()), c(l.jerk()))
+                    .expect("limits")
+            });
+            let options = MoveOptions::new().with_rate(RATE);
+            let Ok(m32) = OnlineMove::solve(&start, &target, &limits, &options) else {
+                continue;
+            };
+            let f32_path: Box<Path<f32, 3, 512>> = Box::new(compile_move(&m32).expect("compiles"));
+            let q40_path: Box<Path<Q40, 3, 512>> = Box::new(compile_move(&m32).expect("compiles"));
+            let (a, b) = (play(&f32_path), play(&q40_path));
+            for (i, t) in target.iter().enumerate() {
+                let end = a.last().expect("samples");
+                assert_eq!(
+                    (end[0][i], end[1][i], end[2][i]),
+                    (
+                        f64::from(t.position),
+                        f64::from(t.velocity),
+                        f64::from(t.acceleration)
+                    ),
+                    "f32 move {n}"
+                );
+                let end = b.last().expect("samples");
+                let q = |x: f32| Q40::out_from_f64(f64::from(x)).expect("in range").to_f64();
+                assert_eq!(
+                    (end[0][i], end[1][i], end[2][i]),
+                    (q(t.position), q(t.velocity), q(t.acceleration)),
+                    "Q40 move {n}"
+                );
+                assert_eq!(
+                    (a[0][0][i], a[0][1][i]),
+                    (f64::from(start[i].position), f64::from(start[i].velocity)),
+                    "f32 move {n}"
+                );
+            }
         }
     }
 

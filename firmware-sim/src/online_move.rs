@@ -1,0 +1,761 @@
+//! `strak-sim move`: an online move ([`OnlineMove`]) from a start state to a target,
+//! compiled on the tick grid and played through the sampler firmware uses, with new targets
+//! and quick stops taken over at given ticks.
+//!
+//! ```toml
+//! rate_hz = 1000
+//! number = "f64"                 # f64 | f32 | fixed
+//! sync = "time"                  # time | phase | none (default time)
+//! unit = "mm"                    # optional, for the summary and plots
+//! [limits]                       # one value per axis, > 0
+//! velocity = [500, 500, 400]
+//! acceleration = [5000, 5000, 3000]
+//! jerk = [100000, 100000, 80000]
+//! [start]                        # velocity and acceleration optional, default 0
+//! position = [0, 0, 0]
+//! velocity = [100, 0, 0]
+//! acceleration = [0, 500, 0]
+//! [target]                       # position may be left out for a velocity move
+//! position = [300, 150, 80]
+//! velocity = [0, 0, 0]           # optional, default 0
+//! acceleration = [0, 0, 0]       # optional, default 0
+//! [[events]]                     # optional: a new target, or a quick stop, at a tick
+//! tick = 300
+//! target = { position = [100, 100, 0] }
+//! # or: tick = 300, stop = true
+//! ```
+//!
+//! The move is solved in the format the firmware would solve it in (`f32` for `number =
+//! "f32"`, `f64` otherwise), on the tick grid of `rate_hz`, and compiled
+//! ([`compile_move_into`]) into a path in the playback format. An event at tick `k` takes
+//! the sample of tick `k − 1` as the start of a new move (a quick stop: a velocity move to
+//! rest, each axis as fast as it can, all ending together), whose second sample is the
+//! sample of tick `k`. The summary measures every sample like `strak-sim run`: the sampled
+//! velocity and acceleration and the jerk from finite differences of the accelerations, per
+//! axis against its limits, from the first sample at which every axis is within its limits
+//! and can stay there (a start outside them brakes into them first).
+
+use std::fmt;
+use std::fs::{self, File};
+use std::io::{BufWriter, Write};
+use std::path::Path as FsPath;
+
+use serde::{Deserialize, Serialize};
+use strak_curves::Scalar;
+use strak_trajectory::{
+    AxisLimits, Interface, Kernel, Kinematics, MoveOptions, OnlineMove, Path, Q40, Real, Sample,
+    Sampler, Synchronization, compile_move_into,
+};
+
+use crate::job::JobError;
+use crate::measure::{Measure, Observed, norm, to_f64};
+use crate::number::{self, NumberFormat};
+use crate::pipeline::{PIECES, boxed_path};
+use crate::plot::{self, PlotLimits, Recorder};
+use crate::run::{CsvCell, RunError, RunOptions, csv_header, write_row};
+use crate::summary::{Checked, num};
+use crate::toml_error::locate;
+
+/// The synchronization names of the file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+enum SyncName {
+    #[default]
+    Time,
+    Phase,
+    None,
+}
+
+/// A state of the file: position (optional for a target: a velocity move), velocity and
+/// acceleration (default zero).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StateFile {
+    position: Option<Vec<f64>>,
+    velocity: Option<Vec<f64>>,
+    acceleration: Option<Vec<f64>>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LimitsFile {
+    velocity: Vec<f64>,
+    acceleration: Vec<f64>,
+    jerk: Vec<f64>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EventFile {
+    tick: u64,
+    target: Option<StateFile>,
+    stop: Option<bool>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MoveFile {
+    rate_hz: f64,
+    #[serde(deserialize_with = "number::deserialize")]
+    number: NumberFormat,
+    #[serde(default)]
+    sync: SyncName,
+    unit: Option<String>,
+    limits: LimitsFile,
+    start: StateFile,
+    target: StateFile,
+    #[serde(default)]
+    events: Vec<EventFile>,
+}
+
+/// A target: the states and whether the positions count (a position move) or not.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MoveTarget {
+    /// Per axis `(position, velocity, acceleration)` (position 0 for a velocity move).
+    pub states: Vec<[f64; 3]>,
+    /// A position move (the file gave positions).
+    pub position: bool,
+}
+
+/// What happens at a tick.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MoveEvent {
+    /// A new target.
+    Target(MoveTarget),
+    /// Come to rest as fast as the limits allow.
+    Stop,
+}
+
+/// A checked move file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MoveJob {
+    /// Control rate in Hz.
+    pub rate_hz: f64,
+    /// Playback number format.
+    pub number: NumberFormat,
+    /// How the axes are timed together.
+    pub sync: Synchronization,
+    /// Length unit.
+    pub unit: String,
+    /// Per axis `(velocity, acceleration, jerk)` limits.
+    pub limits: Vec<[f64; 3]>,
+    /// Per axis start `(position, velocity, acceleration)`.
+    pub start: Vec<[f64; 3]>,
+    /// The first target.
+    pub target: MoveTarget,
+    /// Events by tick (increasing).
+    pub events: Vec<(u64, MoveEvent)>,
+}
+
+impl MoveJob {
+    /// Parses and checks a move file; every problem names its field.
+    ///
+    /// # Errors
+    /// A [`JobError`] naming the field.
+    pub fn parse(text: &str) -> Result<Self, JobError> {
+        let file: MoveFile = toml::from_str(text).map_err(|e| {
+            let l = locate(text, &e, &[]);
+            JobError::new(l.field, l.message)
+        })?;
+        let axes = file.limits.velocity.len();
+        if !(1..=crate::axes::MAX_AXES).contains(&axes) {
+            return Err(JobError::new(
+                "limits.velocity",
+                "1 to 6 axes, one value each",
+            ));
+        }
+        if !(file.rate_hz >= crate::job::RATE_RANGE.0 && file.rate_hz <= crate::job::RATE_RANGE.1) {
+            return Err(JobError::new("rate_hz", "must be 100 ..= 100000 Hz"));
+        }
+        let list =
+            |field: &str, v: &Option<Vec<f64>>, default: bool| -> Result<Vec<f64>, JobError> {
+                match v {
+                    Some(v) if v.len() != axes => Err(JobError::new(
+                        field,
+                        format!("{} values for {axes} axes", v.len()),
+                    )),
+                    Some(v) => match v.iter().position(|x| !x.is_finite()) {
+                        Some(i) => Err(JobError::new(format!("{field}[{i}]"), "must be finite")),
+                        None => Ok(v.clone()),
+                    },
+                    None if default => Ok(vec![0.0; axes]),
+                    None => Err(JobError::new(field, "missing")),
+                }
+            };
+        let mut limits = vec![[0.0; 3]; axes];
+        for (q, (name, v)) in [
+            ("velocity", &file.limits.velocity),
+            ("acceleration", &file.limits.acceleration),
+            ("jerk", &file.limits.jerk),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let field = format!("limits.{name}");
+            let v = list(&field, &Some(v.clone()), false)?;
+            for (i, x) in v.iter().enumerate() {
+                if *x <= 0.0 {
+                    return Err(JobError::new(format!("{field}[{i}]"), "must be > 0"));
+                }
+                limits[i][q] = *x;
+            }
+        }
+        let state = |table: &str,
+                     s: &StateFile,
+                     position_required: bool|
+         -> Result<(Vec<[f64; 3]>, bool), JobError> {
+            let p = list(
+                &format!("{table}.position"),
+                &s.position,
+                !position_required,
+            )?;
+            let v = list(&format!("{table}.velocity"), &s.velocity, true)?;
+            let a = list(&format!("{table}.acceleration"), &s.acceleration, true)?;
+            Ok((
+                (0..axes).map(|i| [p[i], v[i], a[i]]).collect(),
+                s.position.is_some(),
+            ))
+        };
+        let (start, _) = state("start", &file.start, true)?;
+        let (states, position) = state("target", &file.target, false)?;
+        let target = MoveTarget { states, position };
+        let mut events = Vec::new();
+        let mut last = None;
+        for (n, e) in file.events.iter().enumerate() {
+            let field = format!("events[{n}]");
+            if e.tick == 0 || last.is_some_and(|t| e.tick <= t) {
+                return Err(JobError::new(
+                    format!("{field}.tick"),
+                    "ticks must be > 0 and increase",
+                ));
+            }
+            last = Some(e.tick);
+            let event = match (&e.target, e.stop) {
+                (Some(t), None) => {
+                    let (states, position) = state(&format!("{field}.target"), t, false)?;
+                    MoveEvent::Target(MoveTarget { states, position })
+                }
+                (None, Some(true)) => MoveEvent::Stop,
+                _ => return Err(JobError::new(field, "one of `target` or `stop = true`")),
+            };
+            events.push((e.tick, event));
+        }
+        let sync = match file.sync {
+            SyncName::Time => Synchronization::Time,
+            SyncName::Phase => Synchronization::Phase,
+            SyncName::None => Synchronization::None,
+        };
+        Ok(MoveJob {
+            rate_hz: file.rate_hz,
+            number: file.number,
+            sync,
+            unit: file.unit.unwrap_or_else(|| "units".to_owned()),
+            limits,
+            start,
+            target,
+            events,
+        })
+    }
+
+    /// The number of axes.
+    pub fn axes(&self) -> usize {
+        self.limits.len()
+    }
+}
+
+/// One solved move of a run.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct SolvedMove {
+    /// The tick it took over at (0 for the first).
+    pub tick: u64,
+    /// `target` or `stop`.
+    pub kind: String,
+    /// Its duration in seconds (whole ticks).
+    pub duration_s: f64,
+    /// Each axis's shortest duration on its own.
+    pub min_durations_s: Vec<f64>,
+    /// The synchronization used.
+    pub synchronization: String,
+    /// Pieces of its compiled path.
+    pub pieces: usize,
+}
+
+/// One axis's maxima against its limits.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct AxisMaxima {
+    /// The axis name.
+    pub name: String,
+    /// `|v|` of the samples.
+    pub velocity: Checked,
+    /// `|a|` of the samples.
+    pub acceleration: Checked,
+    /// `|Δa|·f`.
+    pub jerk: Checked,
+    /// `|Δx|·f`.
+    pub dx: Checked,
+    /// `|Δv|·f`.
+    pub dv: Checked,
+}
+
+/// Everything `strak-sim move` reports.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct MoveSummary {
+    /// The file's name.
+    pub name: String,
+    /// The playback format.
+    pub number: String,
+    /// The solver's format.
+    pub solver: String,
+    /// Number of axes.
+    pub axes: usize,
+    /// Length unit.
+    pub unit: String,
+    /// Control rate in Hz.
+    pub rate_hz: f64,
+    /// The duration of everything played (the last sample's time), in seconds.
+    pub duration_s: f64,
+    /// Samples written.
+    pub samples: u64,
+    /// The moves solved: the first, and one per event.
+    pub moves: Vec<SolvedMove>,
+    /// Events not played: after a move that ends moving (a path ends there).
+    pub events_ignored: usize,
+    /// From this time on the limits are checked (0 unless the start is outside them).
+    pub checked_from_s: f64,
+    /// Each axis's maxima against its limits.
+    pub per_axis: Vec<AxisMaxima>,
+    /// The last sample minus the last target, per axis (position, for a position move; then
+    /// velocity and acceleration).
+    pub end_error: Vec<[f64; 3]>,
+    /// The enforced checks the run failed, one line each (empty: it passed).
+    pub violations: Vec<String>,
+    /// The files written.
+    pub files: Vec<String>,
+}
+
+impl fmt::Display for MoveSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{}: {} axes, {} playback ({} solver), {} Hz",
+            self.name,
+            self.axes,
+            self.number,
+            self.solver,
+            num(self.rate_hz)
+        )?;
+        writeln!(
+            f,
+            "  duration_s {} ({} samples)",
+            num(self.duration_s),
+            self.samples
+        )?;
+        for m in &self.moves {
+            let mins: Vec<String> = m.min_durations_s.iter().map(|x| num(*x)).collect();
+            writeln!(
+                f,
+                "  move at tick {} ({}): {} s, {} synchronization, axis minima [{}] s, {} pieces",
+                m.tick,
+                m.kind,
+                num(m.duration_s),
+                m.synchronization,
+                mins.join(", "),
+                m.pieces
+            )?;
+        }
+        if self.checked_from_s > 0.0 {
+            writeln!(
+                f,
+                "  limits checked from {} s (the start brakes into them)",
+                num(self.checked_from_s)
+            )?;
+        }
+        for a in &self.per_axis {
+            let c =
+                |q: &Checked| format!("{} / {}", num(q.max), q.limit.map_or("-".to_owned(), num));
+            writeln!(
+                f,
+                "  {}: |v| {}  |a| {}  |j| {} {}/s³",
+                a.name,
+                c(&a.velocity),
+                c(&a.acceleration),
+                c(&a.jerk),
+                self.unit
+            )?;
+        }
+        let worst = self
+            .end_error
+            .iter()
+            .flat_map(|e| e.iter())
+            .fold(0.0_f64, |m, x| m.max(x.abs()));
+        writeln!(
+            f,
+            "  end error {} (largest of position, velocity, acceleration)",
+            num(worst)
+        )?;
+        if self.violations.is_empty() {
+            write!(f, "  every limit held")
+        } else {
+            write!(f, "  limits exceeded: {}", self.violations.join("; "))
+        }
+    }
+}
+
+/// Runs a move file: solves, compiles and plays it with its events, writes `samples.csv`,
+/// `summary.json` and `motion.svg` into `options.out_dir`, and returns the summary.
+///
+/// # Errors
+/// [`RunError::Job`] naming the field (a target outside the limits, an event the solver
+/// cannot take); [`RunError::Io`] when the output cannot be written.
+pub fn run_move(job: &MoveJob, options: &RunOptions) -> Result<MoveSummary, RunError> {
+    let axes = || -> RunError { JobError::new("limits.velocity", "1 to 6 axes").into() };
+    match job.number {
+        NumberFormat::F64 => {
+            crate::with_axes!(job.axes(), run_typed::<f64, f64>(job, options), Err(axes()))
+        }
+        NumberFormat::F32 => {
+            crate::with_axes!(job.axes(), run_typed::<f32, f32>(job, options), Err(axes()))
+        }
+        NumberFormat::Q40 => {
+            crate::with_axes!(job.axes(), run_typed::<Q40, f64>(job, options), Err(axes()))
+        }
+    }
+}
+
+/// Solves a move from `start` to `target` on the job's grid and compiles it into `path`.
+fn solve<N: Kernel, R: Real, const D: usize>(
+    job: &MoveJob,
+    start: &[Kinematics<R>; D],
+    target: &MoveTarget,
+    stop: bool,
+    field: &str,
+    path: &mut Path<N, D, PIECES>,
+) -> Result<OnlineMove<R, D>, RunError> {
+    let limits: [AxisLimits<R>; D] = core::array::from_fn(|i| {
+        let [v, a, j] = job.limits[i];
+        AxisLimits::new(R::lit(v), R::lit(a), R::lit(j))
+            .unwrap_or_else(|_| unreachable!("checked by the parse"))
+    });
+    let targets: [Kinematics<R>; D] = core::array::from_fn(|i| {
+        let [p, v, a] = target.states[i];
+        Kinematics::new(R::lit(p), R::lit(v), R::lit(a))
+    });
+    let interface = if target.position && !stop {
+        Interface::Position
+    } else {
+        Interface::Velocity
+    };
+    let sync = if stop {
+        Synchronization::Phase
+    } else {
+        job.sync
+    };
+    let options = MoveOptions::new()
+        .with_rate(job.rate_hz)
+        .with_synchronization(sync)
+        .with_interface(interface);
+    let error = |e: strak_trajectory::Error| RunError::Job(JobError::new(field, e.to_string()));
+    let m = OnlineMove::solve(start, &targets, &limits, &options).map_err(error)?;
+    compile_move_into(&m, path).map_err(error)?;
+    Ok(m)
+}
+
+fn sync_name(s: Synchronization) -> String {
+    match s {
+        Synchronization::Time => "time",
+        Synchronization::Phase => "phase",
+        Synchronization::None => "none",
+    }
+    .to_owned()
+}
+
+fn report<R: Real, const D: usize>(
+    m: &OnlineMove<R, D>,
+    tick: u64,
+    kind: &str,
+    pieces: usize,
+) -> SolvedMove {
+    SolvedMove {
+        tick,
+        kind: kind.to_owned(),
+        duration_s: m.duration().to_f64(),
+        min_durations_s: m.min_durations().iter().map(|x| x.to_f64()).collect(),
+        synchronization: sync_name(m.synchronization()),
+        pieces,
+    }
+}
+
+/// Whether every axis of the sample is within its limits and can stay there (its velocity
+/// once the jerk has brought its acceleration to zero is within them too).
+fn settled<const D: usize>(job: &MoveJob, s: &Observed<D>) -> bool {
+    let slack = 1.0 + crate::measure::RELATIVE_TOLERANCE;
+    job.limits.iter().enumerate().all(|(i, &[v, a, j])| {
+        let (vi, ai) = (s.velocity[i], s.acceleration[i]);
+        let carried = vi + ai * ai.abs() / (2.0 * j);
+        vi.abs() <= v * slack && carried.abs() <= v * slack && ai.abs() <= a * slack
+    })
+}
+
+/// The run's moves and samples so far.
+struct Played<const D: usize> {
+    moves: Vec<SolvedMove>,
+    measure: Measure<D>,
+    recorder: Recorder,
+    samples: u64,
+    checked_from: Option<f64>,
+    last: [[f64; 3]; D],
+    last_target: MoveTarget,
+    ignored: usize,
+}
+
+fn run_typed<N, R, const D: usize>(
+    job: &MoveJob,
+    options: &RunOptions,
+) -> Result<MoveSummary, RunError>
+where
+    N: Kernel,
+    N::Out: CsvCell,
+    R: Real,
+{
+    let out = &options.out_dir;
+    fs::create_dir_all(out)
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", out.display())))?;
+    let played = play::<N, R, D>(job, out)?;
+    let names = crate::axes::names(D);
+    let m = &played.measure;
+    let slack = |magnitude: f64| m.slack(job.number, magnitude, false);
+    let per_axis: Vec<AxisMaxima> = (0..D)
+        .map(|i| {
+            let [v, a, j] = job.limits[i];
+            let check = |w: crate::measure::Worst, limit: f64, extra: f64| {
+                Checked::new(w.max, w.at_s, Some(limit))
+                    .allowing(extra)
+                    .enforce(true)
+            };
+            AxisMaxima {
+                name: names[i].to_owned(),
+                velocity: check(m.velocity.axes[i], v, 0.0),
+                acceleration: check(m.acceleration.axes[i], a, 0.0),
+                jerk: check(m.jerk.axes[i], j, slack(m.acceleration.magnitude)),
+                dx: check(m.dx.axes[i], v, slack(m.position.magnitude)),
+                dv: check(m.dv.axes[i], a, slack(m.velocity.magnitude)),
+            }
+        })
+        .collect();
+    let mut violations = Vec::new();
+    for a in &per_axis {
+        for (what, c) in [
+            ("velocity", &a.velocity),
+            ("acceleration", &a.acceleration),
+            ("jerk", &a.jerk),
+            ("Δx·f", &a.dx),
+            ("Δv·f", &a.dv),
+        ] {
+            if c.exceeds() {
+                violations.push(format!(
+                    "axis {} {what} {} > {}",
+                    a.name,
+                    num(c.max),
+                    c.limit.map_or("-".to_owned(), num)
+                ));
+            }
+        }
+    }
+    let end_error = (0..D)
+        .map(|i| {
+            let want = played.last_target.states[i];
+            let got = played.last[i];
+            let dp = if played.last_target.position {
+                got[0] - want[0]
+            } else {
+                0.0
+            };
+            [dp, got[1] - want[1], got[2] - want[2]]
+        })
+        .collect();
+    let duration_s = (played.samples.saturating_sub(1)) as f64 / job.rate_hz;
+    let title = format!("{}: online move", options.name);
+    let motion = out.join("motion.svg");
+    plot::write_motion(
+        &motion,
+        &played.recorder,
+        &job.unit,
+        PlotLimits {
+            velocity: None,
+            acceleration: None,
+            jerk: None,
+        },
+        &title,
+    )
+    .map_err(|e| RunError::Io(format!("cannot write {}: {e}", motion.display())))?;
+    let mut summary = MoveSummary {
+        name: options.name.clone(),
+        number: number::name(job.number).to_owned(),
+        solver: R::NAME.to_owned(),
+        axes: D,
+        unit: job.unit.clone(),
+        rate_hz: job.rate_hz,
+        duration_s,
+        samples: played.samples,
+        moves: played.moves,
+        events_ignored: played.ignored,
+        checked_from_s: played.checked_from.unwrap_or(duration_s),
+        per_axis,
+        end_error,
+        violations,
+        files: ["samples.csv", "summary.json", "motion.svg"]
+            .map(str::to_owned)
+            .to_vec(),
+    };
+    let json_path = out.join("summary.json");
+    let json = serde_json::to_string_pretty(&summary)
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))?;
+    fs::write(&json_path, json + "\n")
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))?;
+    summary.files.sort();
+    Ok(summary)
+}
+
+/// The start of a new move: the sample last played, in the solver's format.
+fn from_sample<T: Scalar, R: Real, const D: usize>(s: &Sample<T, D>) -> [Kinematics<R>; D] {
+    core::array::from_fn(|i| {
+        Kinematics::new(
+            R::lit(s.position[i].to_f64()),
+            R::lit(s.velocity[i].to_f64()),
+            R::lit(s.acceleration[i].to_f64()),
+        )
+    })
+}
+
+/// Plays the first move and every event's, writing `samples.csv` and measuring.
+fn play<N, R, const D: usize>(job: &MoveJob, out: &FsPath) -> Result<Played<D>, RunError>
+where
+    N: Kernel,
+    N::Out: CsvCell,
+    R: Real,
+{
+    let csv_path = out.join("samples.csv");
+    let io = |e: std::io::Error| RunError::Io(format!("cannot write {}: {e}", csv_path.display()));
+    let mut csv = BufWriter::new(File::create(&csv_path).map_err(io)?);
+    writeln!(csv, "{}", csv_header(D)).map_err(io)?;
+    // Two paths: the one playing, and the one the next move is compiled into.
+    let mut paths = [boxed_path::<N, D>(), boxed_path::<N, D>()];
+    let start: [Kinematics<R>; D] = core::array::from_fn(|i| {
+        let [p, v, a] = job.start[i];
+        Kinematics::new(R::lit(p), R::lit(v), R::lit(a))
+    });
+    let first = solve::<N, R, D>(job, &start, &job.target, false, "target", &mut paths[0])?;
+    let mut moves = vec![report(&first, 0, "target", paths[0].pieces().len())];
+    let mut current = 0;
+    let mut last_target = job.target.clone();
+    let mut measure = Measure::<D>::new(job.rate_hz);
+    let mut recorder = Recorder::new(D, u64::from(paths[0].ticks()) + 1);
+    let (mut row, mut values) = (String::new(), Vec::with_capacity(4 * D + 3));
+    let mut events = job.events.iter().peekable();
+    let mut sampler = Sampler::new(&*paths[current]);
+    let mut k: u64 = 0;
+    let mut checked_from = None;
+    let mut last: Option<Sample<N::Out, D>> = None;
+    let ignored;
+    loop {
+        if let (Some(&&(tick, ref event)), Some(prev)) = (events.peek(), last.as_ref())
+            && tick == k
+        {
+            events.next();
+            let (target, stop, kind) = match event {
+                MoveEvent::Target(t) => (t.clone(), false, "target"),
+                MoveEvent::Stop => (
+                    MoveTarget {
+                        states: vec![[0.0; 3]; D],
+                        position: false,
+                    },
+                    true,
+                    "stop",
+                ),
+            };
+            let next = 1 - current;
+            let field = format!("events at tick {tick}");
+            let m = solve::<N, R, D>(
+                job,
+                &from_sample(prev),
+                &target,
+                stop,
+                &field,
+                &mut paths[next],
+            )?;
+            moves.push(report(&m, tick, kind, paths[next].pieces().len()));
+            last_target = target;
+            current = next;
+            sampler = Sampler::new(&*paths[current]);
+            // Its first sample is the one just played.
+            let _ = sampler.next();
+        }
+        // The end of the last move; or of a move that ends moving (a velocity target):
+        // a path ends there, so the events after it are not played.
+        let moving = last
+            .as_ref()
+            .is_some_and(|l| l.velocity.iter().any(|v| v.to_f64() != 0.0));
+        if sampler.is_finished() && (events.peek().is_none() || moving) {
+            ignored = events.count();
+            break;
+        }
+        let mut s = sampler.next();
+        s.tick = k;
+        let t = k as f64 / job.rate_hz;
+        write_row(&mut row, k, t, &s);
+        csv.write_all(row.as_bytes()).map_err(io)?;
+        let observed = Observed {
+            t,
+            position: to_f64(&s.position),
+            velocity: to_f64(&s.velocity),
+            acceleration: to_f64(&s.acceleration),
+            reference: to_f64(&s.position),
+            curve: to_f64(&s.position),
+            tangent: [0.0; D],
+        };
+        if checked_from.is_none() && settled(job, &observed) {
+            checked_from = Some(t);
+        }
+        // The limits are measured from the first settled sample on.
+        let jerk = if checked_from.is_some() {
+            measure.push(&observed)
+        } else {
+            None
+        };
+        values.clear();
+        values.extend_from_slice(&observed.position);
+        values.extend_from_slice(&observed.velocity);
+        values.push(norm(&observed.velocity));
+        values.extend_from_slice(&observed.acceleration);
+        values.push(norm(&observed.acceleration));
+        match jerk {
+            Some(j) => {
+                values.extend_from_slice(&j);
+                values.push(norm(&j));
+            }
+            None => values.extend(std::iter::repeat_n(f64::NAN, D + 1)),
+        }
+        recorder.push(t, &values);
+        last = Some(s);
+        k += 1;
+    }
+    csv.flush().map_err(io)?;
+    let last = last.ok_or_else(|| RunError::Io("no sample".to_owned()))?;
+    let last: [[f64; 3]; D] = core::array::from_fn(|i| {
+        [
+            last.position[i].to_f64(),
+            last.velocity[i].to_f64(),
+            last.acceleration[i].to_f64(),
+        ]
+    });
+    Ok(Played {
+        moves,
+        measure,
+        recorder,
+        samples: k,
+        checked_from,
+        last,
+        last_target,
+        ignored,
+    })
+}
