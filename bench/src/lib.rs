@@ -2,4 +2,5 @@
 //! generator of `BENCHMARKS.md` (`cargo run -p strak-bench --bin report`).
 
 pub mod fixture;
+pub mod online_cases;
 pub mod report;
