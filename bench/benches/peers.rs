@@ -17,6 +17,11 @@
 //!   an empty routine (`baseline`) to subtract.
 //! - `floor`: the forward-differencing step alone on a state kept in memory (what any
 //!   per-call tick must pay; no sampler around it), f32, f64 and Q40.
+//! - `online`: one time-synchronized 3-axis online move per element, over the same
+//!   [`ONLINE_CASES`] random moves for every solver: `strak_f64`, `strak_f32`
+//!   (`OnlineMove::solve_in_place`), `ruckig` (Ruckig's C++, `calculate`), `rsruckig`.
+//! - `online_case`: strak's median and slowest case of those (chosen by timing each case),
+//!   one solve per iteration.
 
 use std::hint::black_box;
 use std::ops::{Add, Div, Mul, Sub};
@@ -27,8 +32,11 @@ use strak_bench::fixture::{
     DEGREE, PIECES, SIZES, TABLE_LEN, clamped_knots, domain, even_params, helix_points,
     random_params, sampler_at, strak_curve, strak_paths, strak_power,
 };
+use strak_bench::online_cases::{OnlineCase, online_cases};
 use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar, ScalarOf};
-use strak_trajectory::{Kernel, Path, Sample, Sampler};
+use strak_trajectory::{
+    AxisLimits, Kernel, Kinematics, MoveOptions, OnlineMove, Path, Sample, Sampler,
+};
 
 /// A 3-D point for the peers (they take any type with `+` and `* scalar`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -594,8 +602,153 @@ fn flatness_one<N: Kernel>(c: &mut Criterion, path: &Path<N, 3, PIECES>) {
     g.finish();
 }
 
+/// The random moves of the `online` groups.
+const ONLINE_CASES: usize = 1_000;
+const ONLINE_SEED: u64 = 0x0B1E_C7ED_0011_1111;
+
+/// The `online` groups.
+fn online(c: &mut Criterion) {
+    let cases: Vec<OnlineCase<3>> = online_cases(ONLINE_CASES, ONLINE_SEED, false);
+    #[allow(clippy::cast_possible_truncation)]
+    let narrow = |k: &Kinematics<f64>| {
+        Kinematics::new(k.position as f32, k.velocity as f32, k.acceleration as f32)
+    };
+    #[allow(clippy::cast_possible_truncation)]
+    let cases32: Vec<_> = cases
+        .iter()
+        .map(|c| {
+            let l = c.limits.map(|l| {
+                AxisLimits::new(
+                    l.velocity_max() as f32,
+                    l.acceleration_max() as f32,
+                    l.jerk() as f32,
+                )
+                .expect("positive")
+            });
+            (
+                c.start.each_ref().map(narrow),
+                c.target.each_ref().map(narrow),
+                l,
+            )
+        })
+        .collect();
+    let options = MoveOptions::new();
+    let mut m64 = OnlineMove::solve(
+        &cases[0].start,
+        &cases[0].target,
+        &cases[0].limits,
+        &options,
+    )
+    .expect("solves");
+    let mut m32 =
+        OnlineMove::solve(&cases32[0].0, &cases32[0].1, &cases32[0].2, &options).expect("solves");
+    let mut ruckig = ruckig::Ruckig::new_offline(3, 0);
+    let mut trajectory = ruckig::Trajectory::new_direct(3);
+    let mut inputs: Vec<ruckig::InputParameter> = cases.iter().map(ruckig_input).collect();
+    let mut rs =
+        rsruckig::prelude::Ruckig::<3, rsruckig::prelude::ThrowErrorHandler>::new(None, 0.001);
+    let mut rs_trajectory = rsruckig::prelude::Trajectory::<3>::new(None);
+    let rs_inputs: Vec<rsruckig::prelude::InputParameter<3>> =
+        cases.iter().map(rsruckig_input).collect();
+    let mut g = c.benchmark_group("online");
+    configure(&mut g);
+    g.throughput(Throughput::Elements(cases.len() as u64));
+    g.bench_function("strak_f64", |b| {
+        b.iter(|| {
+            for c in &cases {
+                let _ = black_box(m64.solve_in_place(&c.start, &c.target, &c.limits, &options));
+            }
+        });
+    });
+    g.bench_function("strak_f32", |b| {
+        b.iter(|| {
+            for c in &cases32 {
+                let _ = black_box(m32.solve_in_place(&c.0, &c.1, &c.2, &options));
+            }
+        });
+    });
+    g.bench_function("ruckig", |b| {
+        b.iter(|| {
+            for input in &mut inputs {
+                black_box(ruckig.calculate(input, &mut trajectory));
+            }
+        });
+    });
+    g.bench_function("rsruckig", |b| {
+        b.iter(|| {
+            for input in &rs_inputs {
+                let _ = black_box(rs.calculate(input, &mut rs_trajectory));
+            }
+        });
+    });
+    g.finish();
+    // strak's median and slowest case: each case timed (the fastest of 30 solves).
+    let mut times: Vec<(f64, usize)> = cases
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let best = (0..30)
+                .map(|_| {
+                    let t = std::time::Instant::now();
+                    let _ = black_box(m64.solve_in_place(&c.start, &c.target, &c.limits, &options));
+                    t.elapsed().as_secs_f64()
+                })
+                .fold(f64::INFINITY, f64::min);
+            (best, i)
+        })
+        .collect();
+    times.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut g = c.benchmark_group("online_case");
+    configure(&mut g);
+    for (name, (_, i)) in [
+        ("median", times[times.len() / 2]),
+        ("worst", times[times.len() - 1]),
+    ] {
+        let c = &cases[i];
+        g.bench_function(name, |b| {
+            b.iter(|| black_box(m64.solve_in_place(&c.start, &c.target, &c.limits, &options)));
+        });
+    }
+    g.finish();
+}
+
+/// Ruckig's input for a case.
+fn ruckig_input(c: &OnlineCase<3>) -> ruckig::InputParameter {
+    let mut input = ruckig::InputParameter::new(3);
+    for i in 0..3 {
+        input.current_position[i] = c.start[i].position;
+        input.current_velocity[i] = c.start[i].velocity;
+        input.current_acceleration[i] = c.start[i].acceleration;
+        input.target_position[i] = c.target[i].position;
+        input.target_velocity[i] = c.target[i].velocity;
+        input.target_acceleration[i] = c.target[i].acceleration;
+        input.max_velocity[i] = c.limits[i].velocity_max();
+        input.max_acceleration[i] = c.limits[i].acceleration_max();
+        input.max_jerk[i] = c.limits[i].jerk();
+    }
+    input
+}
+
+/// rsruckig's input for a case.
+fn rsruckig_input(c: &OnlineCase<3>) -> rsruckig::prelude::InputParameter<3> {
+    let mut input = rsruckig::prelude::InputParameter::new(None);
+    for i in 0..3 {
+        input.current_position[i] = c.start[i].position;
+        input.current_velocity[i] = c.start[i].velocity;
+        input.current_acceleration[i] = c.start[i].acceleration;
+        input.target_position[i] = c.target[i].position;
+        input.target_velocity[i] = c.target[i].velocity;
+        input.target_acceleration[i] = c.target[i].acceleration;
+        input.max_velocity[i] = c.limits[i].velocity_max();
+        input.max_acceleration[i] = c.limits[i].acceleration_max();
+        input.max_jerk[i] = c.limits[i].jerk();
+    }
+    input
+}
+
 fn main() {
     let mut c = Criterion::default().without_plots().configure_from_args();
+    online(&mut c);
     evaluation(&mut c);
     playback(&mut c);
     fill(&mut c);
