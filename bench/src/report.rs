@@ -622,9 +622,8 @@ axis (both directions, five forms each: the closed form with a cruise, three qua
 quadratic, each root isolated on its interval and checked by integrating the seven phases), \
 of which 44 % is root finding; 28 % is the motion of the common duration for the two axes \
 that are not the slowest (the farthest motions in either direction, 17 %, and their blend, \
-10 %). Ruckig does the same search with closed-form quartic roots and stops at the first \
-profile in more cases; the search is at parity with it, not 5× faster. What would close the \
-gap: closed-form roots of the quartics (Ferrari) polished by one Newton step instead of \
+10 %). Ruckig does the same search, with closed-form quartic roots, and stops at the first \
+profile in more cases. What would close the gap: closed-form roots of the quartics (Ferrari) polished by one Newton step instead of \
 isolation, rejecting forms by the sign of their polynomial at the interval's ends before \
 any root is sought, and solving the common duration only where the slowest axis's gaps \
 allow.";
