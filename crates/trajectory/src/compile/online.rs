@@ -605,6 +605,71 @@ mod tests {
     }
 
     #[test]
+    fn a_new_target_takes_over_a_planned_path_without_a_jump() {
+        use crate::plan::{Limits, PathTiming, PlanOptions};
+        use strak_curves::BSpline;
+        let points = [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 20.0],
+            [50.0, 30.0, 20.0],
+            [50.0, 30.0, 0.0],
+        ];
+        let curve =
+            BSpline::<[f64; 3], 8, 16>::clamped_uniform(3, &points, 0.0, 1.0).expect("curve");
+        let (v, a, j) = (200.0, 2_000.0, 50_000.0);
+        let plan = PlanOptions::new().with_rate(RATE);
+        let timing = PathTiming::<_, 256, 64>::plan(
+            &curve,
+            &Limits::<3>::new(v, a, j).expect("limits"),
+            &plan,
+        )
+        .expect("plans");
+        let path: Box<Path<f64, 3, 512>> = Box::new(
+            timing
+                .compile(&crate::CompileOptions::new())
+                .expect("compiles"),
+        );
+        let before = play(&path);
+        // The machine's limits per axis: those of the path (each axis moves at most as fast as
+        // the path).
+        let limits = [AxisLimits::new(v, a, j).expect("limits"); 3];
+        let mut rng = Rng(0xC0FF_EE00_C0FF_EE00);
+        for n in 0..40 {
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let k = (rng.next() * (before.len() - 1) as f64) as usize;
+            let last = before[k];
+            let start: [Kinematics<f64>; 3] =
+                core::array::from_fn(|i| Kinematics::new(last[0][i], last[1][i], last[2][i]));
+            let targets: [Kinematics<f64>; 3] = core::array::from_fn(|i| {
+                let t = target(&mut rng, &limits[i]);
+                Kinematics::new(t.position * 10.0, t.velocity, t.acceleration)
+            });
+            let m = OnlineMove::solve(
+                &start,
+                &targets,
+                &limits,
+                &MoveOptions::new().with_rate(RATE),
+            )
+            .expect("solves");
+            let b: Box<Path<f64, 3, 512>> = Box::new(compile_move(&m).expect("compiles"));
+            let after = play(&b);
+            assert_eq!(after[0], last, "take-over {n} at tick {k}");
+            let mut joined = before[..=k].to_vec();
+            joined.extend_from_slice(&after[1..]);
+            let from = first_safe(&joined, &limits);
+            assert!(
+                from <= k + 1,
+                "take-over {n}: the path was outside the limits at tick {from}"
+            );
+            assert_differences_keep_limits(
+                &joined[from..],
+                &limits,
+                &std::format!("take-over {n} at tick {k}"),
+            );
+        }
+    }
+
+    #[test]
     fn moves_solved_in_f32_end_exactly_on_their_targets() {
         let mut rng = Rng(0x0F32_0F32_0F32_0F32);
         #[allow(clippy::cast_possible_truncation)]

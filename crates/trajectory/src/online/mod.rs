@@ -1,6 +1,7 @@
 //! Online motion: the time-optimal jerk-limited motion of an axis from any state (position,
 //! velocity, acceleration) to any target state, computed in bounded time on the device.
 //!
+//! * [`OnlineMove`]: 1 to 6 axes to their targets, synchronized ([`Synchronization`]).
 //! * [`solve_axis`]: one axis to a target position, velocity and acceleration.
 //! * [`solve_axis_velocity`]: one axis to a target velocity and acceleration, the position
 //!   free (jogging).
@@ -13,9 +14,9 @@
 //!
 //! # Bounded work
 //! Every solve evaluates a fixed set of closed forms and finds the roots of at most four
-//! polynomials of degree ≤ 4 per direction, each by root isolation with at most
-//! [`roots`] 80 bracketed Newton steps per root: no loop whose count depends on the data
-//! beyond that bound.
+//! polynomials of degree ≤ 4 per direction, each by root isolation with at most 80
+//! bracketed Newton steps per root: no loop whose count depends on the data beyond that
+//! bound.
 
 mod brake;
 mod form;
