@@ -712,37 +712,35 @@ fn online(c: &mut Criterion) {
     g.finish();
 }
 
+/// Writes a case into a Ruckig input (the C++ library's and rsruckig's have the same
+/// fields).
+macro_rules! fill_input {
+    ($input:expr, $c:expr) => {
+        for i in 0..3 {
+            $input.current_position[i] = $c.start[i].position;
+            $input.current_velocity[i] = $c.start[i].velocity;
+            $input.current_acceleration[i] = $c.start[i].acceleration;
+            $input.target_position[i] = $c.target[i].position;
+            $input.target_velocity[i] = $c.target[i].velocity;
+            $input.target_acceleration[i] = $c.target[i].acceleration;
+            $input.max_velocity[i] = $c.limits[i].velocity_max();
+            $input.max_acceleration[i] = $c.limits[i].acceleration_max();
+            $input.max_jerk[i] = $c.limits[i].jerk();
+        }
+    };
+}
+
 /// Ruckig's input for a case.
 fn ruckig_input(c: &OnlineCase<3>) -> ruckig::InputParameter {
     let mut input = ruckig::InputParameter::new(3);
-    for i in 0..3 {
-        input.current_position[i] = c.start[i].position;
-        input.current_velocity[i] = c.start[i].velocity;
-        input.current_acceleration[i] = c.start[i].acceleration;
-        input.target_position[i] = c.target[i].position;
-        input.target_velocity[i] = c.target[i].velocity;
-        input.target_acceleration[i] = c.target[i].acceleration;
-        input.max_velocity[i] = c.limits[i].velocity_max();
-        input.max_acceleration[i] = c.limits[i].acceleration_max();
-        input.max_jerk[i] = c.limits[i].jerk();
-    }
+    fill_input!(input, c);
     input
 }
 
 /// rsruckig's input for a case.
 fn rsruckig_input(c: &OnlineCase<3>) -> rsruckig::prelude::InputParameter<3> {
     let mut input = rsruckig::prelude::InputParameter::new(None);
-    for i in 0..3 {
-        input.current_position[i] = c.start[i].position;
-        input.current_velocity[i] = c.start[i].velocity;
-        input.current_acceleration[i] = c.start[i].acceleration;
-        input.target_position[i] = c.target[i].position;
-        input.target_velocity[i] = c.target[i].velocity;
-        input.target_acceleration[i] = c.target[i].acceleration;
-        input.max_velocity[i] = c.limits[i].velocity_max();
-        input.max_acceleration[i] = c.limits[i].acceleration_max();
-        input.max_jerk[i] = c.limits[i].jerk();
-    }
+    fill_input!(input, c);
     input
 }
 

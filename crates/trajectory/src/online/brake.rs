@@ -7,7 +7,7 @@
 //! States", *Robotics: Science and Systems* 2021, §IV-A, so that durations agree with
 //! Ruckig's for such starts.
 
-use super::profile::{AxisLimits, JerkPhase};
+use super::profile::{AxisLimits, JerkPhase, Kinematics};
 use super::real::Real;
 
 /// The velocity when the acceleration `a` has been brought to zero at jerk `j` (with the
@@ -58,6 +58,20 @@ pub(super) fn velocity_mode_brake<R: Real>(a: R, l: &AxisLimits<R>) -> [JerkPhas
         };
     }
     phases
+}
+
+/// The state at the end of the brake phases, and their duration.
+pub(super) fn after<R: Real>(
+    origin: &Kinematics<R>,
+    brake: &[JerkPhase<R>; 2],
+) -> (Kinematics<R>, R) {
+    let mut state = *origin;
+    let mut time = R::ZERO;
+    for p in brake {
+        state = state.advance(p.jerk, p.duration);
+        time += p.duration;
+    }
+    (state, time)
 }
 
 fn negated<R: Real>(mut phases: [JerkPhase<R>; 2]) -> [JerkPhase<R>; 2] {

@@ -98,6 +98,39 @@ impl<R: Real> Up<R> {
 }
 
 impl<R: Real> Up<R> {
+    /// The velocity held at `v_max` between the time-optimal velocity changes to and from
+    /// it: rising to `a₁` and falling to zero (`a₁² = a₀²/2 + J(v_max − v₀)`, held at
+    /// `a_max` beyond), then falling to `a₅` and rising to `a_f` (`a₅² = a_f²/2 + J(v_max −
+    /// v_f)`, held at `a_min` beyond). The cruise `t₄` is left zero for the caller. `None`
+    /// when `v_max` cannot be reached from the start or left towards the target that way.
+    pub(super) fn cruise_shape(&self) -> Option<Shape<R>> {
+        let (l, j, two) = (&self.l, self.l.jerk, R::TWO);
+        let peak = self.a0 * self.a0 * R::HALF + j * (l.v_max - self.v0);
+        let trough = self.af * self.af * R::HALF + j * (l.v_max - self.vf);
+        if peak.is_negative() || trough.is_negative() {
+            return None;
+        }
+        let mut s = Shape {
+            a1: peak.sqrt(),
+            t2: R::ZERO,
+            t4: R::ZERO,
+            a5: -trough.sqrt(),
+            t6: R::ZERO,
+            cruise: true,
+        };
+        if s.a1 > l.a_max {
+            s.a1 = l.a_max;
+            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j))
+                / l.a_max;
+        }
+        if s.a5 < l.a_min {
+            s.a5 = l.a_min;
+            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j))
+                / l.a_min;
+        }
+        Some(s)
+    }
+
     pub(super) fn jerks(&self) -> [R; 7] {
         let j = self.l.jerk;
         [j, R::ZERO, -j, R::ZERO, -j, R::ZERO, j]

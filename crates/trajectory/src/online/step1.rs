@@ -144,32 +144,10 @@ impl<R: Real> Up<R> {
     /// `(v_max, 0)` and from there to the target, and the cruise in between from the
     /// position.
     fn with_cruise(&self, out: &mut Found<R>) {
-        let (l, j) = (&self.l, self.l.jerk);
-        let two = R::TWO;
-        // Rising to a1 and falling to 0: a1² = a0²/2 + J(v_max − v0), held at a_max beyond.
-        let peak = self.a0 * self.a0 * R::HALF + j * (l.v_max - self.v0);
-        let trough = self.af * self.af * R::HALF + j * (l.v_max - self.vf);
-        if peak.is_negative() || trough.is_negative() {
+        let l = &self.l;
+        let Some(mut s) = self.cruise_shape() else {
             return;
-        }
-        let mut s = Shape {
-            a1: peak.sqrt(),
-            t2: R::ZERO,
-            t4: R::ZERO,
-            a5: -trough.sqrt(),
-            t6: R::ZERO,
-            cruise: true,
         };
-        if s.a1 > l.a_max {
-            s.a1 = l.a_max;
-            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j))
-                / l.a_max;
-        }
-        if s.a5 < l.a_min {
-            s.a5 = l.a_min;
-            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j))
-                / l.a_min;
-        }
         // The distance without cruise, then the cruise that covers the rest.
         let Some(t) = self.durations(&s) else { return };
         let mut k = Kinematics::new(R::ZERO, self.v0, self.a0);
@@ -393,12 +371,7 @@ pub(super) fn time_optimal<R: Real>(
     l: &AxisLimits<R>,
     out: &mut AxisProfile<R>,
 ) -> Option<Span<R>> {
-    let mut start = *origin;
-    let mut brake_time = R::ZERO;
-    for p in &brake {
-        start = start.advance(p.jerk, p.duration);
-        brake_time += p.duration;
-    }
+    let (start, brake_time) = super::brake::after(origin, &brake);
     let up = Up::new(&start, target, l);
     let down = up.mirrored();
     let empty = Candidate {

@@ -43,31 +43,7 @@ impl<R: Real> Up<R> {
     /// The velocity held at `v_max` between the time-optimal changes to and from it, for
     /// what remains of `tau`.
     fn cruise_within(&self, tau: R) -> Option<Shape<R>> {
-        let (l, j) = (&self.l, self.l.jerk);
-        let two = R::TWO;
-        let peak = self.a0 * self.a0 * R::HALF + j * (l.v_max - self.v0);
-        let trough = self.af * self.af * R::HALF + j * (l.v_max - self.vf);
-        if peak.is_negative() || trough.is_negative() {
-            return None;
-        }
-        let mut s = Shape {
-            a1: peak.sqrt(),
-            t2: R::ZERO,
-            t4: R::ZERO,
-            a5: -trough.sqrt(),
-            t6: R::ZERO,
-            cruise: true,
-        };
-        if s.a1 > l.a_max {
-            s.a1 = l.a_max;
-            s.t2 = (l.v_max - self.v0 - (two * l.a_max * l.a_max - self.a0 * self.a0) / (two * j))
-                / l.a_max;
-        }
-        if s.a5 < l.a_min {
-            s.a5 = l.a_min;
-            s.t6 = (self.vf - l.v_max - (self.af * self.af - two * l.a_min * l.a_min) / (two * j))
-                / l.a_min;
-        }
+        let mut s = self.cruise_shape()?;
         let t = self.durations(&s)?;
         let mut rest = tau;
         for x in &t {
@@ -143,12 +119,8 @@ pub(super) fn with_duration<R: Real>(
     duration: R,
     out: &mut AxisProfile<R>,
 ) -> bool {
-    let mut start = *origin;
-    let mut tau = duration;
-    for p in &brake {
-        start = start.advance(p.jerk, p.duration);
-        tau -= p.duration;
-    }
+    let (start, brake_time) = super::brake::after(origin, &brake);
+    let tau = duration - brake_time;
     let up = Up::new(&start, target, l);
     if tau < -up.tol.time {
         return false;

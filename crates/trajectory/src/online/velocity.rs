@@ -5,7 +5,7 @@
 //! Melchiorri, *Trajectory Planning for Automatic Machines and Robots*, §3.4, the
 //! acceleration phase of the double S generalized to non-zero end accelerations).
 
-use super::brake::velocity_mode_brake;
+use super::brake::{after, velocity_mode_brake};
 use super::profile::AxisProfile;
 use super::profile::{AxisLimits, Kinematics};
 use super::real::Real;
@@ -43,10 +43,7 @@ pub(super) fn time_optimal<R: Real>(
     out: &mut AxisProfile<R>,
 ) -> Option<Span<R>> {
     let brake = velocity_mode_brake(origin.acceleration, l);
-    let mut start = *origin;
-    for p in &brake {
-        start = start.advance(p.jerk, p.duration);
-    }
+    let (start, _) = after(origin, &brake);
     let (v0, a0, vf, af, j) = (
         start.velocity,
         start.acceleration,
@@ -115,12 +112,8 @@ pub(super) fn with_duration<R: Real>(
     out: &mut AxisProfile<R>,
 ) -> bool {
     let brake = velocity_mode_brake(origin.acceleration, l);
-    let mut start = *origin;
-    let mut tau = duration;
-    for p in &brake {
-        start = start.advance(p.jerk, p.duration);
-        tau -= p.duration;
-    }
+    let (start, brake_time) = after(origin, &brake);
+    let tau = duration - brake_time;
     let (v0, a0, vf, af, j) = (
         start.velocity,
         start.acceleration,
