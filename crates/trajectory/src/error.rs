@@ -95,6 +95,15 @@ pub enum Error {
         /// The quantity whose limit the target breaks.
         quantity: Quantity,
     },
+    /// An axis of an unsynchronized online move
+    /// ([`Synchronization::None`](crate::Synchronization::None)) arrives before the slowest
+    /// one with a target acceleration: going on at that acceleration until the move ends
+    /// would carry its velocity beyond its limit. Give such axes a target acceleration of
+    /// zero, or synchronize the axes.
+    AccelerationAfterArrival {
+        /// The axis (0 for the first).
+        axis: usize,
+    },
     /// The online solver found no profile that passes its checks: a numerical failure (for
     /// example limits and states many orders of magnitude apart, in `f32`).
     NoProfile,
@@ -269,6 +278,10 @@ impl fmt::Display for Error {
                 write!(f, "the target {quantity} is outside the axis's limits")
             }
             Error::NoProfile => f.write_str("no motion profile passed the solver's checks"),
+            Error::AccelerationAfterArrival { axis } => write!(
+                f,
+                "axis {axis} arrives early with a target acceleration (unsynchronized move)"
+            ),
             Error::PlaybackBoundExceeded { bound, tolerance } => write!(
                 f,
                 "playback in the path's number format may add an error of {bound} units, more \

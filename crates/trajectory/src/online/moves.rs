@@ -98,7 +98,10 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
     ///
     /// # Errors
     /// As [`solve_axis`](crate::solve_axis) for each axis; [`Error::NoProfile`] also when
-    /// an axis finds no motion of the common duration (a numerical failure).
+    /// an axis finds no motion of the common duration (a numerical failure);
+    /// [`Error::InvalidRate`] for a rate outside 100 Hz ..= 100 kHz;
+    /// [`Error::AccelerationAfterArrival`] for an unsynchronized move in which an axis
+    /// arrives early with a target acceleration.
     pub fn solve(
         start: &[Kinematics<R>; A],
         target: &[Kinematics<R>; A],
@@ -208,6 +211,13 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
         self.duration = R::ZERO;
         for d in &durations {
             self.duration = self.duration.max_of(*d);
+        }
+        // An axis that arrives early goes on at its target state until the move ends: only
+        // at constant velocity does that stay within its limits.
+        for (i, (d, t)) in durations.iter().zip(target).enumerate() {
+            if *d < self.duration && t.acceleration != R::ZERO {
+                return Err(Error::AccelerationAfterArrival { axis: i });
+            }
         }
         self.synchronization = used;
         Ok(())

@@ -161,8 +161,9 @@ impl<R: Real> AxisLimits<R> {
     }
 }
 
-/// The most phases of one axis's motion: two to brake into the limits, seven to reach the
-/// target.
+/// The most phases of one axis's motion: two to brake into the limits, then up to seven
+/// (the time-optimal motion) or fourteen (a motion of a given duration: two seven-phase
+/// motions blended, their switching times merged).
 pub const MAX_PHASES: usize = 16;
 
 /// A phase of constant jerk.
@@ -290,7 +291,7 @@ impl<R: Real> AxisProfile<R> {
 
     /// The state at time `t` in seconds from the start: the start state before it; from
     /// the end on, the end state continued without jerk (an axis of an unsynchronized
-    /// move that arrives early keeps its target velocity and acceleration).
+    /// move that arrives early goes on at its target velocity).
     pub fn at(&self, t: R) -> Kinematics<R> {
         match self.locate(t) {
             (MAX_PHASES, _) => self.end().advance(R::ZERO, t - self.duration),

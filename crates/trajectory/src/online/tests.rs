@@ -195,6 +195,25 @@ fn phase_synchronized_axes_move_on_a_line() {
 }
 
 #[test]
+fn an_unsynchronized_axis_arriving_early_with_an_acceleration_is_an_error() {
+    let l = [AxisLimits::new(1.0_f64, 1.0, 1.0).unwrap(); 2];
+    let start = [Kinematics::at_rest(0.0); 2];
+    // The second axis arrives first, still accelerating: going on would leave its limits.
+    let target = [Kinematics::at_rest(10.0), Kinematics::new(1.0, 0.5, 0.5)];
+    let none = MoveOptions::new().with_synchronization(Synchronization::None);
+    assert_eq!(
+        OnlineMove::solve(&start, &target, &l, &none),
+        Err(Error::AccelerationAfterArrival { axis: 1 })
+    );
+    // Synchronized, or arriving at constant velocity: a move.
+    assert!(OnlineMove::solve(&start, &target, &l, &MoveOptions::new()).is_ok());
+    let coasting = [Kinematics::at_rest(10.0), Kinematics::new(1.0, 0.5, 0.0)];
+    let m = OnlineMove::solve(&start, &coasting, &l, &none).unwrap();
+    let after = m.at(m.duration());
+    assert!((after[1].velocity - 0.5).abs() < 1e-12 && after[1].acceleration == 0.0);
+}
+
+#[test]
 fn velocity_mode_reaches_the_velocity() {
     let mut rng = Rng(42);
     for n in 0..2_000 {
