@@ -33,11 +33,11 @@
 //!   for it (the test would catch it).
 
 use strak_curves::{BSpline, Bezier, ParamCurveDeriv, Scalar};
-use strak_tests::{Unpromised, compile_boxed, compile_plan_boxed};
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Quantity, Sampler,
     Timing,
 };
+use strak_trajectory_tests::{Unpromised, compile_boxed, compile_plan_boxed};
 
 /// Relative `f64` rounding of the difference quotients.
 const ROUNDING: f64 = 1e-9;

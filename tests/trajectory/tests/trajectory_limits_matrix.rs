@@ -13,7 +13,7 @@
 //!   trapezoid (`v`, `a`; no jerk limit), at 1 kHz and 10 kHz, compiled with the default
 //!   options.
 //!
-//! Measured by [`strak_tests::limits_check`]: `‖v_k‖`, `‖x_{k+1} − x_k‖/T`, `‖a_k‖`,
+//! Measured by [`strak_trajectory_tests::limits_check`]: `‖v_k‖`, `‖x_{k+1} − x_k‖/T`, `‖a_k‖`,
 //! `‖v_{k+1} − v_k‖/T` and `‖a_{k+1} − a_k‖/T` over every tick, against the limits plus the
 //! playback-rounding allowance of the path's number format (finite differences of one tick
 //! add nothing above the motion's own peaks, see the module docs there for the derivation).
@@ -30,12 +30,12 @@ use strak_curves::{
     BSpline, Bezier, BezierChain, CubicSpline, HermiteSpline, I32F32, LagrangeCurve, Nurbs,
     ParabolicBlend, ParamCurveDeriv, Parameterization, Point, PowerSpline, Scalar, SplineBoundary,
 };
-use strak_tests::compile_boxed;
-use strak_tests::limits_check::measure;
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
     Quantity,
 };
+use strak_trajectory_tests::compile_boxed;
+use strak_trajectory_tests::limits_check::measure;
 
 /// Piece capacity of the compiled paths.
 const PIECES: usize = 4096;

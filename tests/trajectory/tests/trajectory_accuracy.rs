@@ -34,10 +34,10 @@
 #![allow(clippy::needless_range_loop)] // axis loops index several arrays at once
 
 use strak_curves::{BSpline, I32F32, Nurbs, ParamCurve, ParamCurveDeriv, Scalar};
-use strak_tests::{compile_boxed, compile_within_bound};
 use strak_trajectory::{
     Along, CompileOptions, Kernel, Limits, Number, Path, PathTiming, Q40, Sample, Sampler, Timing,
 };
+use strak_trajectory_tests::{compile_boxed, compile_within_bound};
 
 /// 100 kHz: 10⁶ ticks in 10 s.
 const RATE: f64 = 100_000.0;

@@ -2,7 +2,7 @@
 //! spline, Bézier chain — planned with the jerk-limited S-curve (`PathTiming::scurve`),
 //! compiled (`strak_trajectory::compile`) and played (`Sampler`) in `f64` and `f32`.
 //!
-//! Checked for each (see `strak_tests::check_playback`): `ticks + 1` samples; the last
+//! Checked for each (see `strak_trajectory_tests::check_playback`): `ticks + 1` samples; the last
 //! sample equals `Path::end_position` bit for bit (and, in `f64`, the curve's own end point);
 //! every sample within the path's documented bound `tolerance + playback_bound + output
 //! rounding` of the exact `f64` curve at the planned parameter, `c(u(t_k))` (the approach of
@@ -13,8 +13,8 @@ use strak_curves::{
     BSpline, BezierChain, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization,
     SplineBoundary,
 };
-use strak_tests::{Unpromised, check_playback, compile_boxed};
 use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler};
+use strak_trajectory_tests::{Unpromised, check_playback, compile_boxed};
 
 /// Control rate (Hz).
 const RATE: f64 = 10_000.0;

@@ -28,11 +28,11 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::Bezier;
-use strak_tests::{Unpromised, compile_boxed};
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Timing,
 };
+use strak_trajectory_tests::{Unpromised, compile_boxed};
 
 /// The planner's durations must match within 0.1 % (the requirement); they are
 /// computed by bisection to the last bits, so 10⁻⁹ is asserted as well.

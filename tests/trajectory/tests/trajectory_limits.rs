@@ -66,11 +66,11 @@ use strak_curves::{
     BSpline, Bezier, CubicSpline, Nurbs, ParamCurve, ParamCurveDeriv, Parameterization,
     SplineBoundary,
 };
-use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Limits, MotionProfile, ParameterTiming, Path, PathTiming, PlanOptions,
     ProfileShape, Sampler, Timing,
 };
+use strak_trajectory_tests::compile_boxed;
 
 /// Control rate of all tests here.
 const RATE: f64 = 10_000.0;

@@ -36,11 +36,11 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::{BSpline, ParamCurve, Scalar};
-use strak_tests::compile_boxed;
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, Q40, Quantity,
     Sample, Sampler, SamplerState, Timing,
 };
+use strak_trajectory_tests::compile_boxed;
 
 const RATE: f64 = 1_000.0;
 const PIECES: usize = 1024;
