@@ -32,11 +32,9 @@ use strak_bench::fixture::{
     DEGREE, PIECES, SIZES, TABLE_LEN, clamped_knots, domain, even_params, helix_points,
     random_params, sampler_at, strak_curve, strak_paths, strak_power,
 };
-use strak_bench::online_cases::{OnlineCase, online_cases};
+use strak_bench::online_cases::{BENCH_SEED, OnlineCase, online_cases};
 use strak_curves::{I16F16, I32F32, ParamCurve, Point, Scalar, ScalarOf};
-use strak_trajectory::{
-    AxisLimits, Kernel, Kinematics, MoveOptions, OnlineMove, Path, Sample, Sampler,
-};
+use strak_trajectory::{Kernel, MoveOptions, OnlineMove, Path, Sample, Sampler};
 
 /// A 3-D point for the peers (they take any type with `+` and `* scalar`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -604,33 +602,14 @@ fn flatness_one<N: Kernel>(c: &mut Criterion, path: &Path<N, 3, PIECES>) {
 
 /// The random moves of the `online` groups.
 const ONLINE_CASES: usize = 1_000;
-const ONLINE_SEED: u64 = 0x0B1E_C7ED_0011_1111;
 
 /// The `online` groups.
 fn online(c: &mut Criterion) {
-    let cases: Vec<OnlineCase<3>> = online_cases(ONLINE_CASES, ONLINE_SEED, false);
-    #[allow(clippy::cast_possible_truncation)]
-    let narrow = |k: &Kinematics<f64>| {
-        Kinematics::new(k.position as f32, k.velocity as f32, k.acceleration as f32)
-    };
-    #[allow(clippy::cast_possible_truncation)]
-    let cases32: Vec<_> = cases
+    let cases: Vec<OnlineCase<f64, 3>> =
+        online_cases(BENCH_SEED, false).take(ONLINE_CASES).collect();
+    let cases32: Vec<OnlineCase<f32, 3>> = cases
         .iter()
-        .map(|c| {
-            let l = c.limits.map(|l| {
-                AxisLimits::new(
-                    l.velocity_max() as f32,
-                    l.acceleration_max() as f32,
-                    l.jerk() as f32,
-                )
-                .expect("positive")
-            });
-            (
-                c.start.each_ref().map(narrow),
-                c.target.each_ref().map(narrow),
-                l,
-            )
-        })
+        .map(|c| c.in_f32().expect("the limits fit f32"))
         .collect();
     let options = MoveOptions::new();
     let mut m64 = OnlineMove::solve(
@@ -640,8 +619,13 @@ fn online(c: &mut Criterion) {
         &options,
     )
     .expect("solves");
-    let mut m32 =
-        OnlineMove::solve(&cases32[0].0, &cases32[0].1, &cases32[0].2, &options).expect("solves");
+    let mut m32 = OnlineMove::solve(
+        &cases32[0].start,
+        &cases32[0].target,
+        &cases32[0].limits,
+        &options,
+    )
+    .expect("solves");
     let mut ruckig = ruckig::Ruckig::new_offline(3, 0);
     let mut trajectory = ruckig::Trajectory::new_direct(3);
     let mut inputs: Vec<ruckig::InputParameter> = cases.iter().map(ruckig_input).collect();
@@ -663,7 +647,7 @@ fn online(c: &mut Criterion) {
     g.bench_function("strak_f32", |b| {
         b.iter(|| {
             for c in &cases32 {
-                let _ = black_box(m32.solve_in_place(&c.0, &c.1, &c.2, &options));
+                let _ = black_box(m32.solve_in_place(&c.start, &c.target, &c.limits, &options));
             }
         });
     });
@@ -731,14 +715,14 @@ macro_rules! fill_input {
 }
 
 /// Ruckig's input for a case.
-fn ruckig_input(c: &OnlineCase<3>) -> ruckig::InputParameter {
+fn ruckig_input(c: &OnlineCase<f64, 3>) -> ruckig::InputParameter {
     let mut input = ruckig::InputParameter::new(3);
     fill_input!(input, c);
     input
 }
 
 /// rsruckig's input for a case.
-fn rsruckig_input(c: &OnlineCase<3>) -> rsruckig::prelude::InputParameter<3> {
+fn rsruckig_input(c: &OnlineCase<f64, 3>) -> rsruckig::prelude::InputParameter<3> {
     let mut input = rsruckig::prelude::InputParameter::new(None);
     fill_input!(input, c);
     input

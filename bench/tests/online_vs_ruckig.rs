@@ -15,7 +15,7 @@ use strak_ref::{
 use strak_trajectory::{Kinematics, MoveOptions, OnlineMove};
 
 /// The reference's synchronized duration of a case.
-fn reference<const A: usize>(c: &OnlineCase<A>) -> f64 {
+fn reference<const A: usize>(c: &OnlineCase<f64, A>) -> f64 {
     let state = |k: &Kinematics<f64>| OnlineState::new(k.position, k.velocity, k.acceleration);
     let axes: Vec<OnlineDurations> = (0..A)
         .map(|i| {
@@ -36,8 +36,10 @@ fn compare<const A: usize>(seed: u64) {
     let mut input = InputParameter::new(A);
     let (mut disagree, mut strak_fails, mut ruckig_fails) = (Vec::new(), Vec::new(), Vec::new());
     let mut refuted = Vec::new();
-    let inside: Vec<OnlineCase<A>> = online_cases(CASES * 2 / 3, seed, false);
-    let outside: Vec<OnlineCase<A>> = online_cases(CASES - inside.len(), seed ^ 0xFFFF, true);
+    let inside: Vec<OnlineCase<f64, A>> = online_cases(seed, false).take(CASES * 2 / 3).collect();
+    let outside: Vec<OnlineCase<f64, A>> = online_cases(seed ^ 0xFFFF, true)
+        .take(CASES - inside.len())
+        .collect();
     for (n, c) in inside.iter().chain(&outside).enumerate() {
         for i in 0..A {
             input.current_position[i] = c.start[i].position;

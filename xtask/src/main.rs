@@ -26,6 +26,7 @@ mod budget;
 mod compare;
 mod fuzz;
 mod icount;
+mod online;
 mod qemu;
 mod size;
 mod stack;

@@ -27,7 +27,9 @@
 //! 7. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per
 //!    tick (instruction counts, not cycles); checks them and the instructions of planning
 //!    and compiling against `firmware-sim/qemu/icount-budgets.txt` (`--bless` rewrites it),
-//!    written to `target/qemu/counts.json` (see [`crate::icount`]).
+//!    written to `target/qemu/counts.json` (see [`crate::icount`]); and the online
+//!    solves of random moves, whose durations must equal the host's bit for bit (see
+//!    [`crate::online`]).
 
 use std::env;
 use std::fs;
@@ -44,6 +46,7 @@ use strak_trajectory::{Event, NumberFormat, TimedEvent};
 
 use crate::compare::{self, StreamKey};
 use crate::icount;
+use crate::online;
 use crate::size::{self, Expected};
 use crate::stack;
 
@@ -835,6 +838,14 @@ fn check_icount(
             icount::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
         let agreed = icount::sampler_checked(&text).map_err(|e| format!("{}: {e}", fw.label))?;
         println!("    the sampler's entry points agree bit for bit over {agreed} ticks");
+        let solved = online::parse(&text).map_err(|e| format!("{}: {e}", fw.label))?;
+        online::check(&solved).map_err(|e| format!("{}: {e}", fw.label))?;
+        for s in &solved {
+            println!(
+                "    {}: the device's {} solves equal the host's, bit for bit",
+                s.name, s.moves
+            );
+        }
         print_counts(&cases);
         measured.extend(cases);
     }

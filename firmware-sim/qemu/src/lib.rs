@@ -3,8 +3,8 @@
 //! protocol, the panic handler and the exit to QEMU; for the measuring firmware the
 //! instruction counter ([`counter`]), the check of the tick kernels against the portable
 //! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
-//! confines a firmware to the memories of a real part ([`mpu`]) and the planning job
-//! ([`planning`]).
+//! confines a firmware to the memories of a real part ([`mpu`]), the planning job
+//! ([`planning`]) and the online solves ([`online`]).
 //!
 //! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
 //! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a
@@ -35,6 +35,7 @@ pub mod jobs;
 pub mod kernel_check;
 #[allow(unsafe_code)]
 pub mod mpu;
+pub mod online;
 pub mod planning;
 pub mod play;
 pub mod sampler_check;

@@ -10,6 +10,9 @@
 //! B-spline of 10 de Boor points under a quintic rest-to-rest time law, 0.25 s at 10 kHz
 //! (2 501 samples, several pieces each).
 //!
+//! Then the online solver: the host benchmark's random 3-axis moves, each solved in place
+//! (`strak_qemu::online`), in `f32` and `f64`.
+//!
 //! Before measuring, it checks every tick kernel entry point against the portable kernel, bit
 //! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`), and the sampler's
 //! entry points against each other over the measured paths, in RAM and from blobs
@@ -24,6 +27,8 @@
 //!                                                measured again, in instructions
 //! I <case> <min> <median> <max> <calls> <worst>  instructions per call over <calls> calls;
 //!                                                <worst>: the index of the first call at max
+//! O <case> <moves> <sum>                         an online case: <moves> moves solved, the
+//!                                                sum of their durations' bits (wrapping)
 //! DONE <cases>
 //! ```
 
@@ -36,7 +41,8 @@ use core::hint::black_box;
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::basis::MonomialCurve;
 use strak_curves::{BSpline, ParamCurve, Point, Scalar};
-use strak_qemu::counter::{Calibration, Counter};
+use strak_qemu::counter::{Calibration, Counter, WideCounter};
+use strak_qemu::online::{self, cases::OnlineCase};
 use strak_qemu::{exit_failure, exit_success, sampler_check};
 use strak_trajectory::{
     AlignedBlob, Along, CompileOptions, Kernel, Path, PathBlob, Sample, Sampler, Timing, compile,
@@ -52,6 +58,11 @@ const MAX_CALLS: usize = 4_096;
 const PIECES: usize = 128;
 /// Direct evaluations per case (at `k / EVALS`, `k = 0 ..= EVALS`).
 const EVALS: usize = 1_000;
+/// Online moves solved for the gated case (`f32` on the Cortex-M4F).
+const ONLINE_CASES: usize = 10_000;
+/// Online moves solved for the reported cases (`f64`, and every format on the Cortex-M3,
+/// in software floating point): fewer, to keep the QEMU run short.
+const ONLINE_OTHER: usize = 2_000;
 /// Room for the blob of a measured path (at most [`PIECES`] pieces of 6 axes in `Q40`).
 const BLOB_BYTES: usize = 64 * 1024;
 
@@ -389,8 +400,44 @@ fn main() -> ! {
         direct_cases::<I32F32>(["deboor-i32f32-3d", "horner-i32f32-3d"], &counter, &cal);
         cases += 2;
     }
+    let counter = WideCounter::start(counter.stop());
+    let cal = counter.calibrate();
+    #[cfg(target_abi = "eabihf")]
+    let solves = [
+        ("online-f32-3axis", ONLINE_CASES),
+        ("online-f64-3axis", ONLINE_OTHER),
+    ];
+    #[cfg(not(target_abi = "eabihf"))]
+    let solves = [
+        ("online-f32-3axis", ONLINE_OTHER),
+        ("online-f64-3axis", ONLINE_OTHER),
+    ];
+    let mut counts = [0_u32; ONLINE_CASES];
+    for (name, n) in solves {
+        let counts = counts.get_mut(..n).unwrap_or(&mut []);
+        let solved = if name.contains("f32") {
+            online::count_solves::<f32>(&counter, &cal, OnlineCase::in_f32, counts)
+        } else {
+            online::count_solves::<f64>(&counter, &cal, |c| Some(*c), counts)
+        };
+        match solved {
+            Ok(bits) => defmt::println!("O {=str} {=usize} {=u64}", name, n, bits),
+            Err(i) => {
+                defmt::error!("{=str}: move {=usize} did not solve", name, i);
+                exit_failure()
+            }
+        }
+        report(name, counts);
+        cases += 1;
+    }
     defmt::println!("DONE {=u32}", cases);
     exit_success()
+}
+
+/// Counts SysTick's wraps for [`WideCounter`] (the online solves).
+#[exception]
+fn SysTick() {
+    WideCounter::on_wrap();
 }
 
 /// A fault is logged and fails the run.
