@@ -30,19 +30,15 @@ pub fn count_solves<R: Real>(
     counts: &mut [u32],
 ) -> Result<u64, usize> {
     let options = MoveOptions::new();
-    let mut generated = cases::online_cases::<3>(BENCH_SEED, false);
-    let mut m: Option<OnlineMove<R, 3>> = None;
+    let moves = || cases::online_cases::<3>(BENCH_SEED, false).map(|c| narrow(&c));
+    // the move the solves write into: the first one, solved once before the counting
+    let first = moves().next().flatten().ok_or(0_usize)?;
+    let mut m = OnlineMove::solve(&first.start, &first.target, &first.limits, &options)
+        .map_err(|_| 0_usize)?;
     let mut bits = 0_u64;
-    for (i, slot) in counts.iter_mut().enumerate() {
-        let c = generated.next().and_then(|c| narrow(&c)).ok_or(i)?;
-        let m = match &mut m {
-            Some(m) => m,
-            empty => empty.insert(
-                OnlineMove::solve(&c.start, &c.target, &c.limits, &options).map_err(|_| i)?,
-            ),
-        };
-        let c = black_box(c);
-        let (n, solved) = counter.counts(|| solve(black_box(&mut *m), &c, &options));
+    for ((i, slot), c) in counts.iter_mut().enumerate().zip(moves()) {
+        let c = black_box(c.ok_or(i)?);
+        let (n, solved) = counter.counts(|| solve(black_box(&mut m), &c, &options));
         if !solved {
             return Err(i);
         }
