@@ -43,14 +43,15 @@ use std::path::Path as FsPath;
 use serde::{Deserialize, Serialize};
 use strak_curves::Scalar;
 use strak_trajectory::{
-    AxisLimits, Interface, Kernel, Kinematics, MoveOptions, OnlineMove, Path, Q40, Real, Sample,
-    Sampler, Synchronization, compile_move_into,
+    AxisLimits, Interface, Kernel, Kinematics, MoveOptions, OnlineMove, Q40, Real, Sample, Sampler,
+    Synchronization, compile_move_into, take_over_into,
 };
 
+use crate::export::OutBits;
 use crate::job::JobError;
 use crate::measure::{Measure, Observed, norm, to_f64};
 use crate::number::{self, NumberFormat};
-use crate::pipeline::{PIECES, boxed_path};
+use crate::pipeline::boxed_path;
 use crate::plot::{self, PlotLimits, Recorder};
 use crate::run::{CsvCell, RunError, RunOptions, csv_header, write_row};
 use crate::summary::{Checked, num};
@@ -422,42 +423,61 @@ pub fn run_move(job: &MoveJob, options: &RunOptions) -> Result<MoveSummary, RunE
     }
 }
 
-/// Solves a move from `start` to `target` on the job's grid and compiles it into `path`.
-fn solve<N: Kernel, R: Real, const D: usize>(
-    job: &MoveJob,
-    start: &[Kinematics<R>; D],
-    target: &MoveTarget,
-    stop: bool,
-    field: &str,
-    path: &mut Path<N, D, PIECES>,
-) -> Result<OnlineMove<R, D>, RunError> {
-    let limits: [AxisLimits<R>; D] = core::array::from_fn(|i| {
+/// Every sample's raw bits ([`OutBits`]; `3 · axes` per tick: positions, velocities,
+/// accelerations) of the job's moves played in `playback`, whatever the job's `number`, with
+/// the solver `strak-sim move` pairs with it (`f32` for `f32`, `f64` otherwise). The
+/// firmware under QEMU plays the same moves and must produce the same bits.
+///
+/// # Errors
+/// As [`run_move`] (no files are written).
+pub fn move_bits(job: &MoveJob, playback: NumberFormat) -> Result<Vec<u64>, RunError> {
+    fn bits<N: Kernel, R: Real, const D: usize>(job: &MoveJob) -> Result<Vec<u64>, RunError>
+    where
+        N::Out: OutBits,
+    {
+        let mut out = Vec::new();
+        play_moves::<N, R, D>(job, &mut |s| {
+            let values = s.position.iter().chain(&s.velocity).chain(&s.acceleration);
+            out.extend(values.map(|v| v.out_bits()));
+            Ok(())
+        })?;
+        Ok(out)
+    }
+    let axes = || -> RunError { JobError::new("limits.velocity", "1 to 6 axes").into() };
+    match playback {
+        NumberFormat::F64 => crate::with_axes!(job.axes(), bits::<f64, f64>(job), Err(axes())),
+        NumberFormat::F32 => crate::with_axes!(job.axes(), bits::<f32, f32>(job), Err(axes())),
+        NumberFormat::Q40 => crate::with_axes!(job.axes(), bits::<Q40, f64>(job), Err(axes())),
+    }
+}
+
+/// Each axis's limits in the solver's format.
+fn axis_limits<R: Real, const D: usize>(job: &MoveJob) -> [AxisLimits<R>; D] {
+    core::array::from_fn(|i| {
         let [v, a, j] = job.limits[i];
         AxisLimits::new(R::lit(v), R::lit(a), R::lit(j))
             .unwrap_or_else(|_| unreachable!("checked by the parse"))
-    });
-    let targets: [Kinematics<R>; D] = core::array::from_fn(|i| {
-        let [p, v, a] = target.states[i];
+    })
+}
+
+/// Per axis `(position, velocity, acceleration)` in the solver's format.
+fn states<R: Real, const D: usize>(states: &[[f64; 3]]) -> [Kinematics<R>; D] {
+    core::array::from_fn(|i| {
+        let [p, v, a] = states[i];
         Kinematics::new(R::lit(p), R::lit(v), R::lit(a))
-    });
-    let interface = if target.position && !stop {
-        Interface::Position
-    } else {
-        Interface::Velocity
-    };
-    let sync = if stop {
-        Synchronization::Phase
-    } else {
-        job.sync
-    };
+    })
+}
+
+/// The solver's options for a move to `target` (a quick stop for `stop`).
+fn move_options(job: &MoveJob, target: &MoveTarget, stop: bool) -> MoveOptions {
     let options = MoveOptions::new()
         .with_rate(job.rate_hz)
-        .with_synchronization(sync)
-        .with_interface(interface);
-    let error = |e: strak_trajectory::Error| RunError::Job(JobError::new(field, e.to_string()));
-    let m = OnlineMove::solve(start, &targets, &limits, &options).map_err(error)?;
-    compile_move_into(&m, path).map_err(error)?;
-    Ok(m)
+        .with_synchronization(job.sync);
+    match (stop, target.position) {
+        (true, _) => options.quick_stop(),
+        (false, true) => options.with_interface(Interface::Position),
+        (false, false) => options.with_interface(Interface::Velocity),
+    }
 }
 
 fn sync_name(s: Synchronization) -> String {
@@ -616,47 +636,62 @@ where
     Ok(summary)
 }
 
-/// The start of a new move: the sample last played, in the solver's format.
-fn from_sample<T: Scalar, R: Real, const D: usize>(s: &Sample<T, D>) -> [Kinematics<R>; D] {
-    core::array::from_fn(|i| {
-        Kinematics::new(
-            R::lit(s.position[i].to_f64()),
-            R::lit(s.velocity[i].to_f64()),
-            R::lit(s.acceleration[i].to_f64()),
-        )
-    })
+/// The moves of a run: each one solved, the last target, the events not played.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moves {
+    /// The moves solved: the first, and one per event played.
+    pub moves: Vec<SolvedMove>,
+    /// The target of the last move.
+    pub last_target: MoveTarget,
+    /// Events not played: after a move that ends moving (a path ends there).
+    pub ignored: usize,
 }
 
-/// Plays the first move and every event's, writing `samples.csv` and measuring.
-fn play<N, R, const D: usize>(job: &MoveJob, out: &FsPath) -> Result<Played<D>, RunError>
+/// What [`play_moves`] hands each sample to.
+pub type SampleSink<'a, T, const D: usize> = dyn FnMut(&Sample<T, D>) -> Result<(), RunError> + 'a;
+
+/// The error of a move the solver or the compiler rejects, naming `field`.
+fn failed(field: &str, e: strak_trajectory::Error) -> RunError {
+    RunError::Job(JobError::new(field, e.to_string()))
+}
+
+/// Plays the job's first move and every event's through the sampler, handing each sample
+/// to `sink` (its `tick` counted from the run's start). An event at tick `k` takes over
+/// from the sample of tick `k − 1` ([`take_over_into`]). The firmware under QEMU plays
+/// the same moves alike (`firmware-sim/qemu/src/moves.rs`).
+///
+/// # Errors
+/// [`RunError::Job`] for a move the solver or the compiler rejects (naming the target or
+/// the event); the sink's error.
+pub fn play_moves<N, R, const D: usize>(
+    job: &MoveJob,
+    sink: &mut SampleSink<'_, N::Out, D>,
+) -> Result<Moves, RunError>
 where
     N: Kernel,
-    N::Out: CsvCell,
     R: Real,
 {
-    let csv_path = out.join("samples.csv");
-    let io = |e: std::io::Error| RunError::Io(format!("cannot write {}: {e}", csv_path.display()));
-    let mut csv = BufWriter::new(File::create(&csv_path).map_err(io)?);
-    writeln!(csv, "{}", csv_header(D)).map_err(io)?;
+    let limits = axis_limits::<R, D>(job);
+
     // Two paths: the one playing, and the one the next move is compiled into.
     let mut paths = [boxed_path::<N, D>(), boxed_path::<N, D>()];
-    let start: [Kinematics<R>; D] = core::array::from_fn(|i| {
-        let [p, v, a] = job.start[i];
-        Kinematics::new(R::lit(p), R::lit(v), R::lit(a))
-    });
-    let first = solve::<N, R, D>(job, &start, &job.target, false, "target", &mut paths[0])?;
-    let mut moves = vec![report(&first, 0, "target", paths[0].pieces().len())];
+    let mut m = Box::new(OnlineMove::<R, D>::new());
+    let options = move_options(job, &job.target, false);
+    m.solve_in_place(
+        &states(&job.start),
+        &states(&job.target.states),
+        &limits,
+        &options,
+    )
+    .map_err(|e| failed("target", e))?;
+    compile_move_into(&*m, &mut *paths[0]).map_err(|e| failed("target", e))?;
+    let mut moves = vec![report(&m, 0, "target", paths[0].pieces().len())];
     let mut current = 0;
     let mut last_target = job.target.clone();
-    let mut measure = Measure::<D>::new(job.rate_hz);
-    let mut recorder = Recorder::new(D, u64::from(paths[0].ticks()) + 1);
-    let (mut row, mut values) = (String::new(), Vec::with_capacity(4 * D + 3));
     let mut events = job.events.iter().peekable();
     let mut sampler = Sampler::new(&*paths[current]);
     let mut k: u64 = 0;
-    let mut checked_from = None;
     let mut last: Option<Sample<N::Out, D>> = None;
-    let ignored;
     loop {
         if let (Some(&&(tick, ref event)), Some(prev)) = (events.peek(), last.as_ref())
             && tick == k
@@ -675,14 +710,15 @@ where
             };
             let next = 1 - current;
             let field = format!("events at tick {tick}");
-            let m = solve::<N, R, D>(
-                job,
-                &from_sample(prev),
-                &target,
-                stop,
-                &field,
+            take_over_into(
+                prev,
+                &states(&target.states),
+                &limits,
+                &move_options(job, &target, stop),
+                &mut m,
                 &mut paths[next],
-            )?;
+            )
+            .map_err(|e| failed(&field, e))?;
             moves.push(report(&m, tick, kind, paths[next].pieces().len()));
             last_target = target;
             current = next;
@@ -696,13 +732,43 @@ where
             .as_ref()
             .is_some_and(|l| l.velocity.iter().any(|v| v.to_f64() != 0.0));
         if sampler.is_finished() && (events.peek().is_none() || moving) {
-            ignored = events.count();
             break;
         }
         let mut s = sampler.next();
         s.tick = k;
+        sink(&s)?;
+        last = Some(s);
+        k += 1;
+    }
+    Ok(Moves {
+        moves,
+        last_target,
+        ignored: events.count(),
+    })
+}
+
+/// Plays the moves ([`play_moves`]), writing `samples.csv` and measuring.
+fn play<N, R, const D: usize>(job: &MoveJob, out: &FsPath) -> Result<Played<D>, RunError>
+where
+    N: Kernel,
+    N::Out: CsvCell,
+    R: Real,
+{
+    let csv_path = out.join("samples.csv");
+    let io = |e: std::io::Error| RunError::Io(format!("cannot write {}: {e}", csv_path.display()));
+    let mut csv = BufWriter::new(File::create(&csv_path).map_err(io)?);
+    writeln!(csv, "{}", csv_header(D)).map_err(io)?;
+    let mut measure = Measure::<D>::new(job.rate_hz);
+    // Every sample's time and plot channels, recorded once their count is known.
+    let mut traces: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut row = String::new();
+    let mut checked_from = None;
+    let mut samples = 0_u64;
+    let mut last = [[0.0; 3]; D];
+    let played = play_moves::<N, R, D>(job, &mut |s| {
+        let k = s.tick;
         let t = k as f64 / job.rate_hz;
-        write_row(&mut row, k, t, &s);
+        write_row(&mut row, k, t, s);
         csv.write_all(row.as_bytes()).map_err(io)?;
         let observed = Observed {
             t,
@@ -722,7 +788,7 @@ where
         } else {
             None
         };
-        values.clear();
+        let mut values = Vec::with_capacity(4 * D + 3);
         values.extend_from_slice(&observed.position);
         values.extend_from_slice(&observed.velocity);
         values.push(norm(&observed.velocity));
@@ -735,27 +801,33 @@ where
             }
             None => values.extend(std::iter::repeat_n(f64::NAN, D + 1)),
         }
-        recorder.push(t, &values);
-        last = Some(s);
-        k += 1;
-    }
+        traces.push((t, values));
+        last = core::array::from_fn(|i| {
+            [
+                observed.position[i],
+                observed.velocity[i],
+                observed.acceleration[i],
+            ]
+        });
+        samples = k + 1;
+        Ok(())
+    })?;
     csv.flush().map_err(io)?;
-    let last = last.ok_or_else(|| RunError::Io("no sample".to_owned()))?;
-    let last: [[f64; 3]; D] = core::array::from_fn(|i| {
-        [
-            last.position[i].to_f64(),
-            last.velocity[i].to_f64(),
-            last.acceleration[i].to_f64(),
-        ]
-    });
+    if samples == 0 {
+        return Err(RunError::Io("no sample".to_owned()));
+    }
+    let mut recorder = Recorder::new(D, samples);
+    for (t, values) in &traces {
+        recorder.push(*t, values);
+    }
     Ok(Played {
-        moves,
+        moves: played.moves,
         measure,
         recorder,
-        samples: k,
+        samples,
         checked_from,
         last,
-        last_target,
-        ignored,
+        last_target: played.last_target,
+        ignored: played.ignored,
     })
 }

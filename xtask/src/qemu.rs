@@ -42,7 +42,8 @@ use std::time::{Duration, Instant};
 
 use strak_sim::export::{DeviceRecipe, Export, export};
 use strak_sim::job::Job;
-use strak_trajectory::{Event, NumberFormat, TimedEvent};
+use strak_sim::online_move::{MoveEvent, MoveJob, MoveTarget, move_bits};
+use strak_trajectory::{Event, NumberFormat, Synchronization, TimedEvent};
 
 use crate::compare::{self, StreamKey};
 use crate::icount;
@@ -119,6 +120,21 @@ struct HostJob {
     blob_path: PathBuf,
 }
 
+/// An online move played on the host in one format, as the firmware plays it.
+struct HostMove {
+    name: String,
+    job: MoveJob,
+    playback: NumberFormat,
+    /// Every sample's bits ([`move_bits`]).
+    bits: Vec<u64>,
+}
+
+/// The folder of the move files the firmware plays (relative to the workspace root).
+const MOVES_DIR: &str = "firmware-sim/examples/moves";
+
+/// The axes of the firmware's online moves (`strak_qemu::jobs::MoveJob<3>`).
+const MOVE_AXES: usize = 3;
+
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
@@ -140,9 +156,10 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
     let blob_dir = root.join("target").join("qemu").join("blobs");
     let jobs = export_jobs(&root.join("firmware-sim/examples/jobs"), &blob_dir)?;
     let flash = flash_job(&root.join(FLASH_JOB_FILE), &blob_dir)?;
+    let moves = export_moves(&root.join(MOVES_DIR))?;
     write_if_changed(
         &blob_dir.join("jobs.rs"),
-        jobs_source(&jobs, &flash).as_bytes(),
+        jobs_source(&jobs, &flash, &moves).as_bytes(),
     )?;
     println!(
         "<== host: {} jobs × formats, {} samples ({:.1} s)",
@@ -164,7 +181,7 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
         let t = Instant::now();
         let text = run_firmware(&qemu, &defmt_print, fw, &elf, &[])?;
         let secs = t.elapsed().as_secs_f64();
-        let n = check_output(fw, &jobs, &text)?;
+        let n = check_output(fw, &jobs, &moves, &text)?;
         compared += n;
         println!(
             "<== QEMU {}: {n} samples equal the host's bit for bit ({secs:.1} s)",
@@ -214,14 +231,20 @@ fn build_firmware(fw_dir: &Path, blob_dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Exports every job file of `dir` in both formats, writing the blobs into `blob_dir`.
-fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
+/// The `.toml` files of `dir`, sorted.
+fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     let mut files: Vec<PathBuf> = fs::read_dir(dir)
         .map_err(|e| format!("cannot read {}: {e}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     files.sort();
+    Ok(files)
+}
+
+/// Exports every job file of `dir` in both formats, writing the blobs into `blob_dir`.
+fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
+    let files = toml_files(dir)?;
     if files.is_empty() {
         return Err(format!("no job files in {}", dir.display()));
     }
@@ -271,6 +294,44 @@ fn export_file(
             export,
             blob_path,
         });
+    }
+    Ok(out)
+}
+
+/// Plays every move file of `dir` on the host in each firmware format ([`move_bits`]).
+fn export_moves(dir: &Path) -> Result<Vec<HostMove>, String> {
+    let files = toml_files(dir)?;
+    let mut out = Vec::new();
+    for file in files {
+        let name = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let text = fs::read_to_string(&file)
+            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        let job = MoveJob::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+        if job.axes() != MOVE_AXES {
+            return Err(format!(
+                "{}: the firmware plays online moves of {MOVE_AXES} axes, this one has {}",
+                file.display(),
+                job.axes()
+            ));
+        }
+        for playback in FIRMWARE_FORMATS {
+            let bits = move_bits(&job, playback)
+                .map_err(|e| format!("{} ({playback}): {e}", file.display()))?;
+            println!(
+                "    {name} {playback}: online move, {} events, {} samples",
+                job.events.len(),
+                bits.len() / (3 * MOVE_AXES)
+            );
+            out.push(HostMove {
+                name: name.clone(),
+                job: job.clone(),
+                playback,
+                bits,
+            });
+        }
     }
     Ok(out)
 }
@@ -357,10 +418,10 @@ fn device_jobs(jobs: &[HostJob]) -> Vec<(&HostJob, &HostJob)> {
 
 /// The firmware's `jobs.rs`: the blobs (`include_bytes!`) and their events, the device
 /// jobs, and the blob of the flash-playback firmware (`flash`).
-fn jobs_source(jobs: &[HostJob], flash: &HostJob) -> String {
+fn jobs_source(jobs: &[HostJob], flash: &HostJob, moves: &[HostMove]) -> String {
     let mut s = String::from(
-        "// @generated by `cargo xtask qemu` from firmware-sim/examples/jobs and \
-         firmware-sim/qemu/flash-256.toml: do not edit.\n\n\
+        "// @generated by `cargo xtask qemu` from firmware-sim/examples/jobs, \
+         firmware-sim/examples/moves and firmware-sim/qemu/flash-256.toml: do not edit.\n\n\
          /// The jobs compiled on the host, as blobs in flash.\npub static BLOB_JOBS: &[BlobJob] = &[\n",
     );
     for j in jobs {
@@ -377,7 +438,51 @@ fn jobs_source(jobs: &[HostJob], flash: &HostJob) -> String {
         "pub static FLASH_BLOB: BlobJob = {};\n",
         blob_job_src(flash)
     );
+    s += "\n/// The online moves the device solves and plays (3 axes).\npub static MOVE_JOBS: &[MoveJob<3>] = &[\n";
+    for m in moves.iter().filter(|m| m.playback == FIRMWARE_FORMATS[0]) {
+        s += &format!("    {},\n", move_job_src(&m.name, &m.job));
+    }
+    s += "];\n";
     s
+}
+
+/// A `MoveJob` literal for the move file `name`.
+fn move_job_src(name: &str, job: &MoveJob) -> String {
+    let states = |v: &[[f64; 3]]| {
+        let rows: Vec<String> = v
+            .iter()
+            .map(|r| format!("[{}]", r.map(f64_src).join(", ")))
+            .collect();
+        format!("[{}]", rows.join(", "))
+    };
+    let target = |t: &MoveTarget| {
+        format!(
+            "MoveTarget {{ states: {}, position: {} }}",
+            states(&t.states),
+            t.position
+        )
+    };
+    let events: Vec<String> = job
+        .events
+        .iter()
+        .map(|(tick, e)| match e {
+            MoveEvent::Target(t) => format!("({tick}, MoveEvent::Target({}))", target(t)),
+            MoveEvent::Stop => format!("({tick}, MoveEvent::Stop)"),
+        })
+        .collect();
+    let sync = match job.sync {
+        Synchronization::Time => "Time",
+        Synchronization::Phase => "Phase",
+        Synchronization::None => "None",
+    };
+    format!(
+        "MoveJob {{ name: {name:?}, rate_hz: {}, sync: Synchronization::{sync}, limits: {}, start: {}, target: {}, events: &[{}] }}",
+        f64_src(job.rate_hz),
+        states(&job.limits),
+        states(&job.start),
+        target(&job.target),
+        events.join(", ")
+    )
 }
 
 /// A `BlobJob` literal for `j`, its blob included from its file.
@@ -654,7 +759,12 @@ fn run_firmware(
 }
 
 /// Compares the firmware's output with the host's streams; returns the samples compared.
-fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, String> {
+fn check_output(
+    fw: &Firmware,
+    jobs: &[HostJob],
+    moves: &[HostMove],
+    text: &str,
+) -> Result<usize, String> {
     let out = compare::parse(text)?;
     if !out.other.is_empty() {
         return Err(format!(
@@ -663,13 +773,14 @@ fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, St
             out.other.join("\n")
         ));
     }
-    let mut expected: Vec<(StreamKey, &HostJob)> = Vec::new();
+    // Each stream the firmware must play: its key, axes and the host's bits.
+    let mut expected: Vec<(StreamKey, usize, &[u64])> = Vec::new();
     for j in jobs
         .iter()
         .filter(|j| fw.formats.contains(&j.export.playback))
     {
         let key = (j.name.clone(), j.export.playback, "blob".to_owned());
-        expected.push((key, j));
+        expected.push((key, j.export.axes, &j.export.bits));
     }
     for (f, x) in device_jobs(jobs) {
         for j in [f, x] {
@@ -685,23 +796,28 @@ fn check_output(fw: &Firmware, jobs: &[HostJob], text: &str) -> Result<usize, St
                         ));
                     }
                 }
-                expected.push(((j.name.clone(), format, "device".to_owned()), j));
+                let key = (j.name.clone(), format, "device".to_owned());
+                expected.push((key, j.export.axes, &j.export.bits));
             }
         }
     }
+    for m in moves.iter().filter(|m| fw.formats.contains(&m.playback)) {
+        let key = (m.name.clone(), m.playback, "online".to_owned());
+        expected.push((key, MOVE_AXES, &m.bits));
+    }
     let mut samples = 0;
-    for (key, job) in &expected {
+    for &(ref key, axes, bits) in &expected {
         let label = format!("{}: {} {} ({})", fw.label, key.0, key.1, key.2);
         let stream = out
             .stream(key)
             .ok_or_else(|| format!("{label}: the firmware did not play this stream"))?;
-        if stream.axes != job.export.axes {
+        if stream.axes != axes {
             return Err(format!(
-                "{label}: {} axes, the host has {}",
-                stream.axes, job.export.axes
+                "{label}: {} axes, the host has {axes}",
+                stream.axes
             ));
         }
-        let n = compare::compare(&job.export.bits, &stream.bits, stream.axes, key.1)
+        let n = compare::compare(bits, &stream.bits, stream.axes, key.1)
             .map_err(|m| format!("{label}: the firmware differs from the host: {m}"))?;
         if stream.ended != u32::try_from(n).ok() {
             return Err(format!(

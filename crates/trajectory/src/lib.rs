@@ -15,6 +15,7 @@ mod play;
 
 pub use compile::{
     CompileOptions, Tolerance, compile, compile_into, compile_move, compile_move_into,
+    take_over_into,
 };
 pub use error::{BlobFormat, Error, Quantity, Units};
 pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};

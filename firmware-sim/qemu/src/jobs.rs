@@ -2,7 +2,7 @@
 //! crate docs), as the types of this module and the library's events and number formats.
 
 use strak_trajectory::{CompileOptions, PlanOptions};
-pub use strak_trajectory::{Event, NumberFormat, TimedEvent};
+pub use strak_trajectory::{Event, NumberFormat, Synchronization, TimedEvent};
 
 /// Whether this firmware plays `format`: `Q40` everywhere, `f32` only on a target with a
 /// floating-point unit (the jobs are bundled in these two formats).
@@ -58,6 +58,45 @@ pub struct DeviceJob<const D: usize> {
     pub host_blob_f32: &'static [u8],
     /// The host's blob of the same job in fixed-point, compared byte for byte.
     pub host_blob_fixed: &'static [u8],
+}
+
+/// A target of an online move: per axis `(position, velocity, acceleration)`; the positions
+/// count for a position move, not for a velocity move.
+#[derive(Clone, Copy, Debug)]
+pub struct MoveTarget<const D: usize> {
+    /// Per axis `(position, velocity, acceleration)`.
+    pub states: [[f64; 3]; D],
+    /// A position move (`false`: a velocity move, the positions free).
+    pub position: bool,
+}
+
+/// What happens at a tick of an online move.
+#[derive(Clone, Copy, Debug)]
+pub enum MoveEvent<const D: usize> {
+    /// A new target.
+    Target(MoveTarget<D>),
+    /// A quick stop.
+    Stop,
+}
+
+/// An online move the device solves, compiles and plays with its events: a move file of
+/// `firmware-sim/examples/moves` as `strak-sim move` reads it.
+#[derive(Clone, Copy, Debug)]
+pub struct MoveJob<const D: usize> {
+    /// The job's name (its file name).
+    pub name: &'static str,
+    /// Control rate in Hz.
+    pub rate_hz: f64,
+    /// How the axes are timed together.
+    pub sync: Synchronization,
+    /// Per axis `(velocity, acceleration, jerk)` limits.
+    pub limits: [[f64; 3]; D],
+    /// Per axis start `(position, velocity, acceleration)`.
+    pub start: [[f64; 3]; D],
+    /// The first target.
+    pub target: MoveTarget<D>,
+    /// New targets and quick stops by tick (increasing).
+    pub events: &'static [(u64, MoveEvent<D>)],
 }
 
 /// The pieces of [`FLASH_BLOB`]: the firmware's capacity ([`crate::PIECES`]).

@@ -1,5 +1,6 @@
 //! strak's example firmware, shared by its binaries: the jobs embedded in flash, the
-//! tick handler that plays a path through [`Sampler`], on-device compiling, the output
+//! tick handler that plays a path through [`Sampler`], on-device compiling, online moves
+//! with new targets and quick stops ([`moves`]), the output
 //! protocol, the panic handler and the exit to QEMU; for the measuring firmware the
 //! instruction counter ([`counter`]), the check of the tick kernels against the portable
 //! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
@@ -13,7 +14,7 @@
 //!
 //! # Output protocol (defmt, decoded by `defmt-print`)
 //! ```text
-//! J <job> <format> <source> <axes>      a stream starts (source: blob | device)
+//! J <job> <format> <source> <axes>      a stream starts (source: blob | device | online)
 //! C <job> <format> <bytes> <pieces>     the device compiled the job; its blob equals the host's
 //! S <tick> [<bits>, …]                  one sample: positions, velocities, accelerations
 //! E <job> <format> <source> <samples>   the stream ends
@@ -33,6 +34,7 @@ pub mod counter;
 pub mod device;
 pub mod jobs;
 pub mod kernel_check;
+pub mod moves;
 #[allow(unsafe_code)]
 pub mod mpu;
 pub mod online;

@@ -1,6 +1,7 @@
 //! strak's example firmware: plays every bundled job through the sampler — from the blobs the
-//! host compiled, and from paths compiled on the device at start-up — and logs every sample
-//! through defmt for `cargo xtask qemu` to compare with the host bit for bit.
+//! host compiled, from paths compiled on the device at start-up, and online moves solved on
+//! the device with their new targets and quick stops — and logs every sample through defmt
+//! for `cargo xtask qemu` to compare with the host bit for bit.
 //!
 //! On the Cortex-M4F (`thumbv7em-none-eabihf`, QEMU `mps2-an386`) it plays `f32` and
 //! fixed-point; on the Cortex-M3 (`thumbv7m-none-eabi`, `mps2-an385`) fixed-point only.
@@ -15,10 +16,13 @@
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::{I32F32, Point, Scalar};
 use strak_qemu::device::{compile_job, first_difference};
-use strak_qemu::jobs::{BLOB_JOBS, BlobJob, DEVICE_JOBS, DeviceJob, NumberFormat, played_here};
+use strak_qemu::jobs::{
+    BLOB_JOBS, BlobJob, DEVICE_JOBS, DeviceJob, MOVE_JOBS, MoveJob, NumberFormat, played_here,
+};
+use strak_qemu::moves::play_move;
 use strak_qemu::play::{OutBits, play_and_log};
 use strak_qemu::{PIECES, counter::Counter, exit_failure, exit_success};
-use strak_trajectory::{Kernel, PathBlob, Q40};
+use strak_trajectory::{Kernel, OnlineMove, Path, PathBlob, Q40, Real};
 
 /// The largest blob the device compiles (`PIECES` pieces of 3 axes in `f64`-sized values, and
 /// the header).
@@ -41,6 +45,18 @@ fn main() -> ! {
                 match format {
                     NumberFormat::F32 => device::<f32, f32>(job, format, job.host_blob_f32),
                     _ => device::<Q40, I32F32>(job, format, job.host_blob_fixed),
+                }
+                streams += 1;
+            }
+        }
+    }
+    for job in MOVE_JOBS {
+        for format in [NumberFormat::F32, NumberFormat::Q40] {
+            if played_here(format) {
+                // The solver `strak-sim move` pairs with the playback format.
+                match format {
+                    NumberFormat::F32 => online::<f32, f32>(job, format),
+                    _ => online::<Q40, f64>(job, format),
                 }
                 streams += 1;
             }
@@ -139,6 +155,28 @@ where
         path.pieces().len()
     );
     play_and_log(job.name, format, "device", &path, job.events);
+}
+
+/// Plays the online move `job` in `N` with the solver in `R` ([`play_move`]); the move and
+/// both paths live in this call's frame only while it runs.
+#[inline(never)]
+fn online<N, R>(job: &MoveJob<3>, format: NumberFormat)
+where
+    N: Kernel,
+    N::Out: OutBits,
+    R: Real,
+{
+    let mut m = OnlineMove::<R, 3>::new();
+    let mut paths = [Path::<N, 3, PIECES>::new(), Path::new()];
+    if let Err(e) = play_move(job, format, &mut m, &mut paths) {
+        defmt::error!(
+            "{=str} {=str}: the online move failed on the device: {}",
+            job.name,
+            format.name(),
+            e
+        );
+        exit_failure()
+    }
 }
 
 /// A fault (a stack overflow runs into unmapped memory below RAM) is logged and fails the run

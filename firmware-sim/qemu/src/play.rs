@@ -3,7 +3,9 @@
 //! guard ends a hold without resume), and the output of every sample.
 
 use strak_curves::I32F32;
-use strak_trajectory::{Error, EventPlayer, Kernel, NumberFormat, PathBlob, PathView, Sampler};
+use strak_trajectory::{
+    Error, EventPlayer, Kernel, NumberFormat, PathBlob, PathView, Sample, Sampler,
+};
 
 use crate::jobs::TimedEvent;
 use crate::mix;
@@ -50,16 +52,8 @@ where
     let mut player = EventPlayer::new(events, path.ticks());
     let mut sampler = Sampler::new(path);
     let mut count: u32 = 0;
-    let mut bits = [0_u64; 12];
     while let Some(s) = player.step(&mut sampler) {
-        for (b, v) in bits
-            .iter_mut()
-            .zip(s.position.iter().chain(&s.velocity).chain(&s.acceleration))
-        {
-            *b = v.out_bits();
-        }
-        let n = (3 * A).min(bits.len());
-        defmt::println!("S {=u32} {=[?]}", count, bits.get(..n).unwrap_or(&[]));
+        log_sample(count, &s);
         count = count.wrapping_add(1);
     }
     defmt::println!(
@@ -70,6 +64,19 @@ where
         count
     );
     count
+}
+
+/// Logs sample `count` as an `S` line: every position's, velocity's and acceleration's bits.
+pub fn log_sample<T: OutBits, const A: usize>(count: u32, s: &Sample<T, A>) {
+    let mut bits = [0_u64; 18];
+    for (b, v) in bits
+        .iter_mut()
+        .zip(s.position.iter().chain(&s.velocity).chain(&s.acceleration))
+    {
+        *b = v.out_bits();
+    }
+    let n = (3 * A).min(bits.len());
+    defmt::println!("S {=u32} {=[?]}", count, bits.get(..n).unwrap_or(&[]));
 }
 
 /// What [`play_blob`] played: the number of samples and a hash of every sample's bits.

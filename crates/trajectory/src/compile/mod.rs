@@ -11,7 +11,7 @@ mod tangential;
 #[cfg(test)]
 pub(crate) mod testing;
 
-pub use online::{compile_move, compile_move_into};
+pub use online::{compile_move, compile_move_into, take_over_into};
 pub use options::{CompileOptions, Tolerance};
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};

@@ -61,6 +61,32 @@ impl MoveOptions {
     pub const fn with_interface(self, interface: Interface) -> Self {
         MoveOptions { interface, ..self }
     }
+
+    /// The options of a quick stop: to the targets' velocities and accelerations (rest, for
+    /// targets at rest), the positions free ([`Interface::Velocity`]), every axis on the
+    /// line it moves along when the axes move along one ([`Synchronization::Phase`]), all
+    /// ending together; the rate is kept.
+    ///
+    /// ```
+    /// use strak_trajectory::{AxisLimits, Kinematics, MoveOptions, OnlineMove};
+    /// let limits = [AxisLimits::new(500.0_f64, 5_000.0, 100_000.0)?; 2];
+    /// let moving = [Kinematics::new(3.0, 300.0, 1_000.0), Kinematics::new(1.0, 100.0, 0.0)];
+    /// let rest = [Kinematics::at_rest(0.0); 2];
+    /// let options = MoveOptions::new().with_rate(1_000.0).quick_stop();
+    /// let m = OnlineMove::solve(&moving, &rest, &limits, &options)?;
+    /// for p in m.profiles() {
+    ///     assert!(p.end().velocity.abs() < 1e-9 && p.end().acceleration.abs() < 1e-9);
+    /// }
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    #[must_use]
+    pub const fn quick_stop(self) -> Self {
+        MoveOptions {
+            synchronization: Synchronization::Phase,
+            interface: Interface::Velocity,
+            ..self
+        }
+    }
 }
 
 /// A jerk-limited move of `A` axes from any state to target states, solved in bounded time
@@ -93,7 +119,42 @@ pub struct OnlineMove<R, const A: usize> {
     limits: [AxisLimits<R>; A],
 }
 
+impl<R: Real, const A: usize> Default for OnlineMove<R, A> {
+    /// [`OnlineMove::new`].
+    fn default() -> Self {
+        OnlineMove::new()
+    }
+}
+
 impl<R: Real, const A: usize> OnlineMove<R, A> {
+    /// A move of no duration at position zero (its limits 1), to solve into with
+    /// [`OnlineMove::solve_in_place`]: a `const fn`, so that firmware can keep the move in a
+    /// `static` and never move it by value.
+    ///
+    /// ```
+    /// use strak_trajectory::{AxisLimits, Kinematics, MoveOptions, OnlineMove};
+    /// static IDLE: OnlineMove<f32, 3> = OnlineMove::new(); // a `static` initializer
+    /// let mut m = OnlineMove::<f32, 3>::new();
+    /// assert_eq!(m.duration(), 0.0);
+    /// let limits = [AxisLimits::new(500.0_f32, 5_000.0, 100_000.0)?; 3];
+    /// let target = [Kinematics::at_rest(10.0_f32); 3];
+    /// m.solve_in_place(&[Kinematics::at_rest(0.0); 3], &target, &limits, &MoveOptions::new())?;
+    /// assert!(m.duration() > 0.0);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub const fn new() -> Self {
+        OnlineMove {
+            profiles: [AxisProfile::still(R::ZERO); A],
+            min_durations: [R::ZERO; A],
+            targets: [Kinematics::at_rest(R::ZERO); A],
+            duration: R::ZERO,
+            synchronization: Synchronization::Time,
+            interface: Interface::Position,
+            rate_hz: None,
+            limits: [AxisLimits::UNIT; A],
+        }
+    }
+
     /// The move from `start` to `target` within `limits` (one of each per axis).
     ///
     /// # Errors
@@ -108,16 +169,7 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
         limits: &[AxisLimits<R>; A],
         options: &MoveOptions,
     ) -> Result<Self, Error> {
-        let mut m = OnlineMove {
-            profiles: core::array::from_fn(|i| AxisProfile::still(start[i].position)),
-            min_durations: [R::ZERO; A],
-            targets: *target,
-            duration: R::ZERO,
-            synchronization: options.synchronization,
-            interface: options.interface,
-            rate_hz: options.rate_hz,
-            limits: *limits,
-        };
+        let mut m = OnlineMove::new();
         m.solve_in_place(start, target, limits, options)?;
         Ok(m)
     }

@@ -33,7 +33,7 @@ impl<R: Real> Kinematics<R> {
     }
 
     /// At rest at `position`.
-    pub fn at_rest(position: R) -> Self {
+    pub const fn at_rest(position: R) -> Self {
         Kinematics::new(position, R::ZERO, R::ZERO)
     }
 
@@ -81,6 +81,16 @@ pub struct AxisLimits<R> {
 }
 
 impl<R: Real> AxisLimits<R> {
+    /// Velocity, acceleration and jerk limited to 1 (the limits of a move not yet solved,
+    /// [`OnlineMove::new`](crate::OnlineMove::new)).
+    pub(super) const UNIT: Self = AxisLimits {
+        v_max: R::ONE,
+        v_min: R::MINUS_ONE,
+        a_max: R::ONE,
+        a_min: R::MINUS_ONE,
+        jerk: R::ONE,
+    };
+
     /// Symmetric limits: `|v| ≤ velocity`, `|a| ≤ acceleration`, `|j| ≤ jerk`.
     ///
     /// # Errors
@@ -222,10 +232,14 @@ impl<R: Real> AxisProfile<R> {
     }
 
     /// At rest at `position`, duration 0.
-    pub(super) fn still(position: R) -> Self {
+    pub(super) const fn still(position: R) -> Self {
         let start = Kinematics::at_rest(position);
+        let none = JerkPhase {
+            jerk: R::ZERO,
+            duration: R::ZERO,
+        };
         AxisProfile {
-            phases: [JerkPhase::default(); MAX_PHASES],
+            phases: [none; MAX_PHASES],
             states: [start; MAX_PHASES + 1],
             duration: R::ZERO,
         }

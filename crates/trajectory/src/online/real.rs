@@ -22,6 +22,8 @@ pub trait Real: Scalar + sealed::Sealed {
     const EPS: Self;
     /// The largest finite value.
     const MAX: Self;
+    /// −1.
+    const MINUS_ONE: Self;
 
     /// `x` rounded to this format (a literal of the solver's formulas).
     fn lit(x: f64) -> Self;
@@ -36,6 +38,7 @@ pub trait Real: Scalar + sealed::Sealed {
 impl Real for f32 {
     const EPS: Self = f32::EPSILON;
     const MAX: Self = f32::MAX;
+    const MINUS_ONE: Self = -1.0;
 
     #[inline]
     fn lit(x: f64) -> Self {
@@ -48,6 +51,7 @@ impl Real for f32 {
 impl Real for f64 {
     const EPS: Self = f64::EPSILON;
     const MAX: Self = f64::MAX;
+    const MINUS_ONE: Self = -1.0;
 
     #[inline]
     fn lit(x: f64) -> Self {

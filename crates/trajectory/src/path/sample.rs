@@ -1,5 +1,9 @@
 //! The sample type: one setpoint of every axis.
 
+use strak_curves::Scalar;
+
+use crate::online::{Kinematics, Real};
+
 /// One setpoint: position (units), velocity (units/s) and acceleration (units/s²) of every
 /// axis at wall-clock tick `tick` (counted from the sampler's start, including ticks held).
 ///
@@ -38,5 +42,28 @@ impl<T: Copy, const A: usize> Sample<T, A> {
             velocity: [v; A],
             acceleration: [v; A],
         }
+    }
+}
+
+impl<T: Scalar, const A: usize> Sample<T, A> {
+    /// Every axis's state in the solver's format `R`: the start of a move that takes over
+    /// from this sample ([`take_over_into`](crate::take_over_into)). Exact from `f32` into
+    /// `f32` or `f64` and from `f64` into `f64`; from `I32F32` through `f64`, exact below
+    /// 2²¹ units.
+    ///
+    /// ```
+    /// use strak_trajectory::Sample;
+    /// let s = Sample { tick: 7, position: [1.5_f32], velocity: [-2.0], acceleration: [0.25] };
+    /// let [k] = s.kinematics::<f64>();
+    /// assert_eq!((k.position, k.velocity, k.acceleration), (1.5, -2.0, 0.25));
+    /// ```
+    pub fn kinematics<R: Real>(&self) -> [Kinematics<R>; A] {
+        core::array::from_fn(|i| {
+            Kinematics::new(
+                R::lit(self.position[i].to_f64()),
+                R::lit(self.velocity[i].to_f64()),
+                R::lit(self.acceleration[i].to_f64()),
+            )
+        })
     }
 }

@@ -9,7 +9,11 @@
 //!   on the Cortex-M4F;
 //! - planning ([`planning::plan`]) and compiling ([`planning::compile_plan`]) the
 //!   16-control-point cubic B-spline job into a `Path<_, 3, 256>`: `f32` on the Cortex-M4F,
-//!   the `I32F32` curve into a `Q40` path on the Cortex-M3.
+//!   the `I32F32` curve into a `Q40` path on the Cortex-M3;
+//! - solving online moves ([`OnlineMove::solve_in_place`], the benchmark's random 3-axis
+//!   moves on a 1 kHz grid) and compiling them ([`compile_move_into`]) into a
+//!   `Path<_, 3, 256>`: the `f32` solver and `f32` path on the Cortex-M4F, the `f64`
+//!   solver and `Q40` path on the Cortex-M3 (the pairs `strak-sim move` plays).
 //!
 //! This firmware keeps the large RAM of `memory/boards.x` (4 MiB) and reports the RAM each
 //! operation needs.
@@ -34,11 +38,19 @@ use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::{BSpline, I32F32, Point, Scalar};
 use strak_qemu::counter::{Calibration, WideCounter};
 use strak_qemu::jobs::{NumberFormat, find_blob};
+use strak_qemu::online::cases::{BENCH_SEED, OnlineCase, online_cases};
 use strak_qemu::planning::{self, Curve, Plan};
 use strak_qemu::play::{OutBits, Played, play_blob};
-use strak_qemu::stack;
+use strak_qemu::stack::{self, Usage};
 use strak_qemu::{PIECES, STACK_JOB, exit_failure, exit_success};
-use strak_trajectory::{Kernel, Number, Path, PathBlob, PathTiming, Q40, Sampler};
+use strak_trajectory::{
+    Kernel, MoveOptions, Number, OnlineMove, Path, PathBlob, PathTiming, Q40, Real, Sampler,
+    compile_move_into,
+};
+
+/// The online moves whose solve and compile the stack is measured over (each measurement
+/// paints the whole stack below it).
+const STACK_MOVES: usize = 32;
 
 /// Counts of the report lines.
 #[derive(Default)]
@@ -76,6 +88,18 @@ fn main() -> ! {
     }
     #[cfg(not(target_abi = "eabihf"))]
     plan_compile::<Q40, I32F32>(names, &mut lines);
+    #[cfg(target_abi = "eabihf")]
+    online::<f32, f32>(
+        ["solve-online-f32-3axis", "compile-move-f32-3axis"],
+        OnlineCase::in_f32,
+        &mut lines,
+    );
+    #[cfg(not(target_abi = "eabihf"))]
+    online::<Q40, f64>(
+        ["solve-online-f64-3axis", "compile-move-q40-3axis"],
+        |c| Some(*c),
+        &mut lines,
+    );
     defmt::println!("STACKS {=u32}", lines.stacks);
 
     let counter = WideCounter::start(p.SYST);
@@ -108,6 +132,8 @@ fn sizes() {
     size::<Sampler<'static, f32, 3>>("Sampler<f32,3>");
     size::<Sampler<'static, Q40, 3>>("Sampler<Q40,3>");
     size::<BSpline<[f64; 3], 16, 24>>("BSpline<[f64;3],16,24>");
+    size::<OnlineMove<f32, 3>>("OnlineMove<f32,3>");
+    size::<OnlineMove<f64, 3>>("OnlineMove<f64,3>");
 }
 
 /// Validates and plays the bundled blob of [`STACK_JOB`] in `N` from flash, logging its stack
@@ -169,6 +195,43 @@ where
         path.pieces().len(),
         path.ticks()
     );
+}
+
+/// Solves the first [`STACK_MOVES`] of the benchmark's random 3-axis moves in `R` (`narrow`
+/// makes them from the `f64` moves) on a 1 kHz grid, each in place into one move of this
+/// frame, and compiles each into one path of this frame in `N`, measuring every solve and
+/// every compile; logs the deepest of each (`names`: solve, compile).
+#[inline(never)]
+fn online<N: Number, R: Real>(
+    names: [&str; 2],
+    narrow: impl Fn(&OnlineCase<f64, 3>) -> Option<OnlineCase<R, 3>>,
+    lines: &mut Lines,
+) {
+    let options = MoveOptions::new().with_rate(1_000.0);
+    let mut m = OnlineMove::<R, 3>::new();
+    let mut path = Path::<N, 3, PIECES>::new();
+    let deepest =
+        |a: Option<Usage>, b: Usage| Some(a.map_or(b, |a| if b.stack > a.stack { b } else { a }));
+    let (mut solve, mut compile) = (None, None);
+    for c in online_cases::<3>(BENCH_SEED, false).take(STACK_MOVES) {
+        let Some(c) = narrow(&c) else {
+            defmt::error!("{=str}: a move does not convert", names[0]);
+            exit_failure()
+        };
+        let (solved, used) =
+            stack::usage(|| m.solve_in_place(&c.start, &c.target, &c.limits, &options));
+        ok_or_fail(names[0], solved);
+        solve = deepest(solve, used);
+        let (compiled, used) = stack::usage(|| compile_move_into(&m, &mut path));
+        ok_or_fail(names[1], compiled);
+        compile = deepest(compile, used);
+    }
+    for (name, used) in names.iter().zip([solve, compile]) {
+        if let Some(used) = used {
+            stack::log(name, used);
+            lines.stacks += 1;
+        }
+    }
 }
 
 /// Counts the instructions of planning and of compiling the job, and of both (`names`: plan,
