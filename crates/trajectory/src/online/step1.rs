@@ -242,8 +242,13 @@ impl<R: Real> Up<R> {
             -c(24.0) * a,
             c(12.0),
         ];
-        let hi = af.min_of(a);
-        for &a5 in roots_in(&coeffs, l.a_min, hi).as_slice() {
+        // `t₂ ≥ 0` (within the time tolerance) needs `a₅² ≥ q`: below `−√q` or above `√q`.
+        let q = a * a - j * (vf - v0) - (a0s - afs) * R::HALF - a * j * self.tol.time;
+        let (lo, mut hi) = (l.a_min, af.min_of(a));
+        if q > R::ZERO && hi < q.sqrt() {
+            hi = hi.min_of(-q.sqrt());
+        }
+        for &a5 in roots_in(&coeffs, lo, hi).as_slice() {
             let t2 = (-c(2.0) * a * a + c(2.0) * j * (vf - v0) + a0s - afs + c(2.0) * a5 * a5)
                 / (c(2.0) * a * j);
             self.add(
@@ -281,7 +286,12 @@ impl<R: Real> Up<R> {
             c(24.0) * am,
             -c(12.0),
         ];
-        let lo = a0.max_of(am);
+        // `t₆ ≥ 0` (within the time tolerance) needs `a₁² ≥ q`: below `−√q` or above `√q`.
+        let q = am * am - j * (v0 - vf) + (a0s - afs) * R::HALF + am * j * self.tol.time;
+        let mut lo = a0.max_of(am);
+        if q > R::ZERO && lo > -q.sqrt() {
+            lo = lo.max_of(q.sqrt());
+        }
         for &a1 in roots_in(&coeffs, lo, l.a_max).as_slice() {
             let t6 = -(-c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs + c(2.0) * a1 * a1)
                 / (c(2.0) * am * j);
@@ -303,7 +313,7 @@ impl<R: Real> Up<R> {
     /// `a₁² − a₅² = K = J(v_f − v₀) + (a₀² − a_f²)/2`. At `u = 0` (then `K = 0`) the motion
     /// is one phase of rising acceleration.
     fn no_limit(&self, out: &mut Found<R>) {
-        let (l, j) = (&self.l, self.l.jerk);
+        let j = self.l.jerk;
         let (a0, v0, af, vf, dp) = (self.a0, self.v0, self.af, self.vf, self.dp);
         let c = R::lit;
         let (a0s, afs) = (a0 * a0, af * af);
@@ -316,7 +326,10 @@ impl<R: Real> Up<R> {
             R::ZERO,
             c(12.0),
         ];
-        for &u in roots_in(&coeffs, R::ZERO, l.a_max - l.a_min).as_slice() {
+        let Some((lo, hi)) = self.no_limit_range(kk) else {
+            return;
+        };
+        for &u in roots_in(&coeffs, lo, hi).as_slice() {
             let (a1, a5) = if u > R::ZERO {
                 ((u + kk / u) * R::HALF, (kk / u - u) * R::HALF)
             } else {
@@ -334,6 +347,33 @@ impl<R: Real> Up<R> {
                 out,
             );
         }
+    }
+}
+
+impl<R: Real> Up<R> {
+    /// The `u = a₁ − a₅` of [`Up::no_limit`] whose peak and trough keep the acceleration
+    /// limits (within the tolerance): `a₁ = (u + K/u)/2 ≤ a_max` and `a₅ = (K/u − u)/2 ≥
+    /// a_min` hold between the roots of `u² − 2a_max·u + K` and of `u² + 2a_min·u − K`,
+    /// here widened by their discriminants' rounding; `None` when no `u ∈ [0, a_max − a_min]`
+    /// can keep both.
+    fn no_limit_range(&self, kk: R) -> Option<(R, R)> {
+        let l = &self.l;
+        let slack = self.tol.acceleration;
+        let between = |m: R, sign: R| -> Option<(R, R)> {
+            // u² − 2·m·u + sign·K ≤ 0 with m = a_max (sign +1) or m = −a_min (sign −1).
+            let d = m * m - sign * kk;
+            let e = R::lit(8.0) * R::EPS * (m * m + kk.abs());
+            if (d + e).is_negative() {
+                return None;
+            }
+            let r = (d + e).sqrt() + R::lit(8.0) * R::EPS * m;
+            Some((m - r, m + r))
+        };
+        let (lo1, hi1) = between(l.a_max + slack, R::ONE)?;
+        let (lo2, hi2) = between(-l.a_min + slack, R::MINUS_ONE)?;
+        let lo = lo1.max_of(lo2).max_of(R::ZERO);
+        let hi = hi1.min_of(hi2).min_of(l.a_max - l.a_min);
+        (lo <= hi).then_some((lo, hi))
     }
 }
 
