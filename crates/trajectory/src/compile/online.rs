@@ -24,38 +24,56 @@ use crate::online::{
 };
 use crate::path::{AxisState, Path, PathMeta, Sample};
 
-/// An axis's motion in `f64` with its phases' start times.
-struct Axis {
-    profile: AxisProfile<f64>,
+/// An axis's motion with its phases' start times, read in `f64` (every value converted
+/// exactly where it is used: the profile is not copied).
+struct Axis<'a, R> {
+    profile: &'a AxisProfile<R>,
     starts: [f64; MAX_PHASES + 1],
 }
 
-impl Axis {
-    fn new<R: Real>(p: &AxisProfile<R>) -> Self {
-        let profile = p.to_f64();
+impl<'a, R: Real> Axis<'a, R> {
+    fn new(profile: &'a AxisProfile<R>) -> Self {
         let mut starts = [0.0; MAX_PHASES + 1];
         for i in 0..MAX_PHASES {
-            starts[i + 1] = starts[i] + profile.phases()[i].duration;
+            starts[i + 1] = starts[i] + profile.phases()[i].duration.to_f64();
         }
         Axis { profile, starts }
+    }
+
+    /// Phase `i`'s jerk and duration (`None` past the last phase).
+    fn jerk_phase(&self, i: usize) -> Option<(f64, f64)> {
+        let p = self.profile.phases().get(i)?;
+        Some((p.jerk.to_f64(), p.duration.to_f64()))
+    }
+
+    /// The state at the start of phase `i` (the end state for `i = MAX_PHASES`).
+    fn state(&self, i: usize) -> Option<Kinematics<f64>> {
+        self.profile.states().get(i).map(in_f64)
+    }
+
+    /// The state at the end.
+    fn end(&self) -> Kinematics<f64> {
+        in_f64(&self.profile.end())
+    }
+
+    /// The duration in seconds.
+    fn duration(&self) -> f64 {
+        self.profile.duration().to_f64()
     }
 
     /// The phase that holds time `t` (`MAX_PHASES` from the end on).
     fn phase(&self, t: f64) -> usize {
         (0..MAX_PHASES)
-            .find(|&i| t < self.starts[i + 1] && self.profile.phases()[i].duration > 0.0)
+            .find(|&i| t < self.starts[i + 1] && self.profile.phases()[i].duration > R::ZERO)
             .unwrap_or(MAX_PHASES)
     }
 
     /// The state and jerk at `t` on the polynomial of phase `i` (after the end: the end
     /// state continued without jerk).
     fn eval(&self, i: usize, t: f64) -> (Kinematics<f64>, f64) {
-        match (self.profile.states().get(i), self.profile.phases().get(i)) {
-            (Some(s), Some(p)) => (s.advance(p.jerk, t - self.starts[i]), p.jerk),
-            _ => (
-                self.profile.end().advance(0.0, t - self.starts[MAX_PHASES]),
-                0.0,
-            ),
+        match (self.state(i), self.jerk_phase(i)) {
+            (Some(s), Some((jerk, _))) => (s.advance(jerk, t - self.starts[i]), jerk),
+            _ => (self.end().advance(0.0, t - self.starts[MAX_PHASES]), 0.0),
         }
     }
 
@@ -72,7 +90,7 @@ impl Axis {
             .zip(self.profile.phases())
             .any(|(&s, p)| {
                 let x = s * rate;
-                p.duration > 0.0 && x > lo + SNAP && x < hi - SNAP
+                p.duration > R::ZERO && x > lo + SNAP && x < hi - SNAP
             })
     }
 
@@ -80,7 +98,7 @@ impl Axis {
     fn next_boundary(&self, k: u32, rate: f64, ticks: u32) -> u32 {
         let mut next = ticks;
         for (&s, p) in self.starts[1..].iter().zip(self.profile.phases()) {
-            if p.duration <= 0.0 {
+            if p.duration <= R::ZERO {
                 continue;
             }
             let x = s * rate;
@@ -94,6 +112,15 @@ impl Axis {
         }
         next
     }
+}
+
+/// A state in `f64` (exactly).
+fn in_f64<R: Real>(k: &Kinematics<R>) -> Kinematics<f64> {
+    Kinematics::new(
+        k.position.to_f64(),
+        k.velocity.to_f64(),
+        k.acceleration.to_f64(),
+    )
 }
 
 /// A switching time within this many ticks of a tick is on it.
@@ -247,7 +274,7 @@ where
     }
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let ticks = ticks as u32;
-    let axes: [Axis; A] = core::array::from_fn(|i| Axis::new(&m.profiles()[i]));
+    let axes: [Axis<'_, R>; A] = core::array::from_fn(|i| Axis::new(&m.profiles()[i]));
     let end_time = f64::from(ticks) / rate;
     let ends: [Kinematics<f64>; A] =
         core::array::from_fn(|i| end_state(m, &axes[i], i, end_time, rate));
@@ -260,8 +287,8 @@ where
 
 /// The pieces between the boundaries (every switch's neighbouring ticks, at most
 /// `max_piece_ticks` apart).
-fn write_pieces<N: Number, const A: usize, const P: usize>(
-    axes: &[Axis; A],
+fn write_pieces<N: Number, R: Real, const A: usize, const P: usize>(
+    axes: &[Axis<'_, R>; A],
     ends: &[Kinematics<f64>; A],
     rate: f64,
     ticks: u32,
@@ -308,7 +335,7 @@ fn write_pieces<N: Number, const A: usize, const P: usize>(
 
 /// The forward-difference state of the axis's cubic on ticks `k ..= next` (no switch
 /// inside): its Taylor polynomial at tick `k` in the tick index.
-fn cubic_state(axis: &Axis, k: u32, next: u32, period: f64) -> AxisState<f64> {
+fn cubic_state<R: Real>(axis: &Axis<'_, R>, k: u32, next: u32, period: f64) -> AxisState<f64> {
     let t0 = f64::from(k) * period;
     let mid = (f64::from(k) + f64::from(next)) * 0.5 * period;
     // The state of the phase that holds `t0`, the jerk of the one that holds the piece (they
@@ -361,7 +388,7 @@ fn chord_state(s: &Kinematics<f64>, e: &Kinematics<f64>, n: u32, period: f64) ->
 /// extent that playback's rounding must stay within.
 fn meta<R: Real, const A: usize>(
     m: &OnlineMove<R, A>,
-    axes: &[Axis; A],
+    axes: &[Axis<'_, R>; A],
     rate: f64,
 ) -> Result<PathMeta, Error> {
     let (mut v, mut a, mut j, mut a_lim, mut j_lim) = (0.0, 0.0, 0.0, 0.0, 0.0);
@@ -369,24 +396,27 @@ fn meta<R: Real, const A: usize>(
     for (axis, l) in axes.iter().zip(m.limits()) {
         let (mut vm, mut am, mut jm) = (0.0_f64, 0.0_f64, 0.0_f64);
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for (s, p) in axis.profile.states().iter().zip(axis.profile.phases()) {
+        for i in 0..MAX_PHASES {
+            let (Some(s), Some((jerk, duration))) = (axis.state(i), axis.jerk_phase(i)) else {
+                break;
+            };
             vm = vm.max(s.velocity.abs());
             am = am.max(s.acceleration.abs());
-            jm = jm.max(p.jerk.abs());
+            jm = jm.max(jerk.abs());
             lo = lo.min(s.position);
             hi = hi.max(s.position);
             // The velocity's extreme inside the phase.
-            if p.jerk != 0.0 {
-                let tz = -s.acceleration / p.jerk;
-                if tz > 0.0 && tz < p.duration {
-                    let x = s.advance(p.jerk, tz);
+            if jerk != 0.0 {
+                let tz = -s.acceleration / jerk;
+                if tz > 0.0 && tz < duration {
+                    let x = s.advance(jerk, tz);
                     vm = vm.max(x.velocity.abs());
                     lo = lo.min(x.position);
                     hi = hi.max(x.position);
                 }
             }
         }
-        let e = axis.profile.end();
+        let e = axis.end();
         vm = vm.max(e.velocity.abs());
         am = am.max(e.acceleration.abs());
         extent = extent.max(hi.max(e.position) - lo.min(e.position));
@@ -420,14 +450,14 @@ fn meta<R: Real, const A: usize>(
 /// a velocity move, or an axis that arrived early and moves on, the state at the end).
 fn end_state<R: Real, const A: usize>(
     m: &OnlineMove<R, A>,
-    axis: &Axis,
+    axis: &Axis<'_, R>,
     i: usize,
     end: f64,
     rate: f64,
 ) -> Kinematics<f64> {
     let s = axis.at(end);
     // Durations are whole ticks: an axis that arrives early does so by a tick at least.
-    let arrives = (end - axis.profile.duration()) * rate < 0.5;
+    let arrives = (end - axis.duration()) * rate < 0.5;
     let position_move = m.interface() == crate::online::Interface::Position;
     match m.targets().get(i) {
         Some(t) if arrives => Kinematics::new(
