@@ -402,6 +402,20 @@ impl fmt::Display for MoveSummary {
     }
 }
 
+/// Calls `f::<N, R, D>(args)` with the playback format `N` of `playback`, the solver's
+/// format `R` that `strak-sim move` pairs with it (`f32` for `f32`, `f64` otherwise) and
+/// the job's axis count `D`.
+macro_rules! by_format {
+    ($job:expr, $playback:expr, $f:ident($($arg:expr),*)) => {{
+        let axes = || -> RunError { JobError::new("limits.velocity", "1 to 6 axes").into() };
+        match $playback {
+            NumberFormat::F64 => crate::with_axes!($job.axes(), $f::<f64, f64>($($arg),*), Err(axes())),
+            NumberFormat::F32 => crate::with_axes!($job.axes(), $f::<f32, f32>($($arg),*), Err(axes())),
+            NumberFormat::Q40 => crate::with_axes!($job.axes(), $f::<Q40, f64>($($arg),*), Err(axes())),
+        }
+    }};
+}
+
 /// Runs a move file: solves, compiles and plays it with its events, writes `samples.csv`,
 /// `summary.json` and `motion.svg` into `options.out_dir`, and returns the summary.
 ///
@@ -409,18 +423,7 @@ impl fmt::Display for MoveSummary {
 /// [`RunError::Job`] naming the field (a target outside the limits, an event the solver
 /// cannot take); [`RunError::Io`] when the output cannot be written.
 pub fn run_move(job: &MoveJob, options: &RunOptions) -> Result<MoveSummary, RunError> {
-    let axes = || -> RunError { JobError::new("limits.velocity", "1 to 6 axes").into() };
-    match job.number {
-        NumberFormat::F64 => {
-            crate::with_axes!(job.axes(), run_typed::<f64, f64>(job, options), Err(axes()))
-        }
-        NumberFormat::F32 => {
-            crate::with_axes!(job.axes(), run_typed::<f32, f32>(job, options), Err(axes()))
-        }
-        NumberFormat::Q40 => {
-            crate::with_axes!(job.axes(), run_typed::<Q40, f64>(job, options), Err(axes()))
-        }
-    }
+    by_format!(job, job.number, run_typed(job, options))
 }
 
 /// Every sample's raw bits ([`OutBits`]; `3 · axes` per tick: positions, velocities,
@@ -443,12 +446,7 @@ pub fn move_bits(job: &MoveJob, playback: NumberFormat) -> Result<Vec<u64>, RunE
         })?;
         Ok(out)
     }
-    let axes = || -> RunError { JobError::new("limits.velocity", "1 to 6 axes").into() };
-    match playback {
-        NumberFormat::F64 => crate::with_axes!(job.axes(), bits::<f64, f64>(job), Err(axes())),
-        NumberFormat::F32 => crate::with_axes!(job.axes(), bits::<f32, f32>(job), Err(axes())),
-        NumberFormat::Q40 => crate::with_axes!(job.axes(), bits::<Q40, f64>(job), Err(axes())),
-    }
+    by_format!(job, playback, bits(job))
 }
 
 /// Each axis's limits in the solver's format.
