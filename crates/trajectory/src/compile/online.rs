@@ -48,12 +48,12 @@ impl<'a, R: Real> Axis<'a, R> {
 
     /// The state at the start of phase `i` (the end state for `i = MAX_PHASES`).
     fn state(&self, i: usize) -> Option<Kinematics<f64>> {
-        self.profile.states().get(i).map(in_f64)
+        self.profile.states().get(i).map(|k| k.to_f64())
     }
 
     /// The state at the end.
     fn end(&self) -> Kinematics<f64> {
-        in_f64(&self.profile.end())
+        self.profile.end().to_f64()
     }
 
     /// The duration in seconds.
@@ -112,15 +112,6 @@ impl<'a, R: Real> Axis<'a, R> {
         }
         next
     }
-}
-
-/// A state in `f64` (exactly).
-fn in_f64<R: Real>(k: &Kinematics<R>) -> Kinematics<f64> {
-    Kinematics::new(
-        k.position.to_f64(),
-        k.velocity.to_f64(),
-        k.acceleration.to_f64(),
-    )
 }
 
 /// A switching time within this many ticks of a tick is on it.

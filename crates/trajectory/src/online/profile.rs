@@ -51,6 +51,15 @@ impl<R: Real> Kinematics<R> {
         }
     }
 
+    /// The state in `f64` (exactly).
+    pub(crate) fn to_f64(self) -> Kinematics<f64> {
+        Kinematics::new(
+            self.position.to_f64(),
+            self.velocity.to_f64(),
+            self.acceleration.to_f64(),
+        )
+    }
+
     /// Every value finite.
     pub(super) fn is_finite(&self) -> bool {
         self.position.is_finite() && self.velocity.is_finite() && self.acceleration.is_finite()
@@ -252,19 +261,12 @@ impl<R: Real> AxisProfile<R> {
 
     /// The profile with every value converted to `f64` (exactly).
     pub fn to_f64(&self) -> AxisProfile<f64> {
-        let k = |s: &Kinematics<R>| {
-            Kinematics::new(
-                s.position.to_f64(),
-                s.velocity.to_f64(),
-                s.acceleration.to_f64(),
-            )
-        };
         AxisProfile {
             phases: self.phases.map(|p| JerkPhase {
                 jerk: p.jerk.to_f64(),
                 duration: p.duration.to_f64(),
             }),
-            states: self.states.map(|s| k(&s)),
+            states: self.states.map(|s| s.to_f64()),
             duration: self.duration.to_f64(),
         }
     }
