@@ -48,24 +48,28 @@ impl<const A: usize> OnlineCase<f64, A> {
     }
 }
 
-/// A small deterministic generator (xorshift64).
+/// A small deterministic generator (Marsaglia's xorshift64, *Xorshift RNGs*, J. Stat.
+/// Softw. 8(14), 2003: shifts 13, 7, 17); the state must not be 0.
 #[derive(Debug)]
-struct Rng(u64);
+pub struct Rng(pub u64);
 
 impl Rng {
-    fn next(&mut self) -> f64 {
+    /// The next value in `[0, 1)`.
+    pub fn unit(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
         (self.0 >> 11) as f64 / (1_u64 << 53) as f64
     }
 
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
+    /// A value in `[lo, hi)`.
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
     }
 
-    fn value(&mut self, limit: f64) -> f64 {
-        if self.next() < 0.3 {
+    /// 0 with probability 0.3, else a value in `[-limit, limit)`.
+    pub fn value(&mut self, limit: f64) -> f64 {
+        if self.unit() < 0.3 {
             0.0
         } else {
             self.range(-limit, limit)

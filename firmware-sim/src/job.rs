@@ -30,6 +30,7 @@
 //! tolerance = 0.001           # position tolerance in units (default 1e-4 of the extent)
 //! max_piece_ticks = 256       # longest polynomial piece in ticks
 //! feed_share = 0.25           # share of acceleration and jerk reserved for feed changes
+//!                             # (not for a straight line: see `crate::line`)
 //!
 //! [[events]]                  # optional, any number; one action each
 //! tick = 300

@@ -9,6 +9,7 @@ pub mod curve_file;
 pub mod dyn_curve;
 pub mod export;
 pub mod job;
+pub mod line;
 pub mod measure;
 pub mod number;
 pub mod online_move;

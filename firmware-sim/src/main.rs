@@ -18,6 +18,7 @@ use clap::{Parser, Subcommand};
 use strak_sim::curve_file::CurveFile;
 use strak_sim::export::export;
 use strak_sim::job::Job;
+use strak_sim::line::line_move;
 use strak_sim::number::{self, NumberFormat};
 use strak_sim::online_move::{MoveJob, run_move};
 use strak_sim::run::{
@@ -185,6 +186,14 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
         progress: true,
         velocity_factor: None,
     };
+    if let Some(line) = line_move(&job) {
+        let line = line.map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        println!(
+            "a straight line with an S-curve profile: the time-optimal online move along it, \
+             at the full limits"
+        );
+        return move_outcome(&line, &options, &label);
+    }
     let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     println!("{summary}");
     if !summary.finished {
@@ -210,7 +219,12 @@ fn move_command(file: &FsPath, out: Option<PathBuf>) -> anyhow::Result<Outcome> 
         progress: false,
         velocity_factor: None,
     };
-    let summary = run_move(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    move_outcome(&job, &options, &label)
+}
+
+/// Runs a move and prints its summary; the violations, if any, for the exit.
+fn move_outcome(job: &MoveJob, options: &RunOptions, label: &str) -> anyhow::Result<Outcome> {
+    let summary = run_move(job, options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     println!("{summary}");
     if summary.violations.is_empty() {
         Ok(Outcome::Done)

@@ -22,7 +22,7 @@
 //! [[events]]                     # optional: a new target, or a quick stop, at a tick
 //! tick = 300
 //! target = { position = [100, 100, 0] }
-//! # or: tick = 300, stop = true
+//! # or: stop = true | feed = 0.5 (0, or 0.01 ..= 1) | hold = true | resume = true | abort = true
 //! ```
 //!
 //! The move is solved in the format the firmware would solve it in (`f32` for `number =
@@ -33,7 +33,15 @@
 //! sample of tick `k`. The summary measures every sample like `strak-sim run`: the sampled
 //! velocity and acceleration and the jerk from finite differences of the accelerations, per
 //! axis against its limits, from the first sample at which every axis is within its limits
-//! and can stay there (a start outside them brakes into them first).
+//! and can stay there (a start outside them brakes into them first). The checks allow the
+//! playback's rounding of the paths played (the sampled values their channel's bound, a
+//! finite difference twice that per tick: [`Path::playback_bound`] and
+//! [`Path::channel_bounds`]; at least the samples' resolution) and, for the jerk, the
+//! solver's rounding of the acceleration at a switching time (twice `64 ε` of the
+//! acceleration limit per tick for the `f32` solver, `1024 ε` for `f64`).
+//!
+//! [`Path::playback_bound`]: strak_trajectory::PathHeader::playback_bound
+//! [`Path::channel_bounds`]: strak_trajectory::Path::channel_bounds
 
 use std::fmt;
 use std::fs::{self, File};
@@ -48,7 +56,7 @@ use strak_trajectory::{
 };
 
 use crate::export::OutBits;
-use crate::job::JobError;
+use crate::job::{Action, JobError};
 use crate::measure::{Measure, Observed, norm, to_f64};
 use crate::number::{self, NumberFormat};
 use crate::pipeline::boxed_path;
@@ -91,6 +99,10 @@ struct EventFile {
     tick: u64,
     target: Option<StateFile>,
     stop: Option<bool>,
+    feed: Option<f64>,
+    hold: Option<bool>,
+    resume: Option<bool>,
+    abort: Option<bool>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -123,9 +135,15 @@ pub struct MoveTarget {
 pub enum MoveEvent {
     /// A new target.
     Target(MoveTarget),
-    /// Come to rest as fast as the limits allow.
+    /// Come to rest as fast as the limits allow; the target becomes rest.
     Stop,
+    /// The operator: feed override, hold, resume, abort ([`Control`]).
+    Operator(Action),
 }
+
+/// The smallest feed override other than 0: the rest of a move is re-timed with the velocity
+/// limits times the feed, so a smaller one would make it last more than 100 times as long.
+pub const MIN_FEED: f64 = 0.01;
 
 /// A checked move file.
 #[derive(Clone, Debug, PartialEq)]
@@ -231,13 +249,33 @@ impl MoveJob {
                 ));
             }
             last = Some(e.tick);
-            let event = match (&e.target, e.stop) {
-                (Some(t), None) => {
+            let flag = |f: Option<bool>| f == Some(true);
+            let event = match (
+                &e.target,
+                flag(e.stop),
+                e.feed,
+                flag(e.hold),
+                flag(e.resume),
+                flag(e.abort),
+            ) {
+                (Some(t), false, None, false, false, false) => {
                     let (states, position) = state(&format!("{field}.target"), t, false)?;
                     MoveEvent::Target(MoveTarget { states, position })
                 }
-                (None, Some(true)) => MoveEvent::Stop,
-                _ => return Err(JobError::new(field, "one of `target` or `stop = true`")),
+                (None, true, None, false, false, false) => MoveEvent::Stop,
+                (None, false, Some(f), false, false, false) => {
+                    MoveEvent::Operator(Action::Feed(check_feed(&format!("{field}.feed"), f)?))
+                }
+                (None, false, None, true, false, false) => MoveEvent::Operator(Action::Hold),
+                (None, false, None, false, true, false) => MoveEvent::Operator(Action::Resume),
+                (None, false, None, false, false, true) => MoveEvent::Operator(Action::Abort),
+                _ => {
+                    return Err(JobError::new(
+                        field,
+                        "one of `target`, `stop = true`, `feed`, `hold = true`, `resume = true` \
+                         or `abort = true`",
+                    ));
+                }
             };
             events.push((e.tick, event));
         }
@@ -449,12 +487,27 @@ pub fn move_bits(job: &MoveJob, playback: NumberFormat) -> Result<Vec<u64>, RunE
     by_format!(job, playback, bits(job))
 }
 
-/// Each axis's limits in the solver's format.
-fn axis_limits<R: Real, const D: usize>(job: &MoveJob) -> [AxisLimits<R>; D] {
+/// `feed` if it is 0 or in `[MIN_FEED, 1]`.
+///
+/// # Errors
+/// A [`JobError`] on `field` otherwise.
+pub fn check_feed(field: &str, feed: f64) -> Result<f64, JobError> {
+    if feed == 0.0 || (MIN_FEED..=1.0).contains(&feed) {
+        Ok(feed)
+    } else {
+        Err(JobError::new(
+            field,
+            format!("the feed override must be 0 or between {MIN_FEED} and 1, not {feed}"),
+        ))
+    }
+}
+
+/// Each axis's limits in the solver's format, the velocity limits times `feed` (> 0).
+fn axis_limits<R: Real, const D: usize>(job: &MoveJob, feed: f64) -> [AxisLimits<R>; D] {
     core::array::from_fn(|i| {
         let [v, a, j] = job.limits[i];
-        AxisLimits::new(R::lit(v), R::lit(a), R::lit(j))
-            .unwrap_or_else(|_| unreachable!("checked by the parse"))
+        AxisLimits::new(R::lit(v * feed), R::lit(a), R::lit(j))
+            .unwrap_or_else(|_| unreachable!("checked by the parse, and feed > 0"))
     })
 }
 
@@ -524,6 +577,7 @@ struct Played<const D: usize> {
     last: [[f64; 3]; D],
     last_target: MoveTarget,
     ignored: usize,
+    rounding: [f64; 3],
 }
 
 fn run_typed<N, R, const D: usize>(
@@ -541,7 +595,20 @@ where
     let played = play::<N, R, D>(job, out)?;
     let names = crate::axes::names(D);
     let m = &played.measure;
-    let slack = |magnitude: f64| m.slack(job.number, magnitude, false);
+    // A finite difference moves by twice a channel's playback rounding (or the samples'
+    // resolution); the jerk also by the solver's rounding of the acceleration at switching
+    // times (see the module docs).
+    let [e_x, e_v, e_a] = played.rounding;
+    let slack = |magnitude: f64, rounding: f64| {
+        m.slack(job.number, magnitude, false)
+            .max(2.0 * rounding * job.rate_hz)
+    };
+    let solver_ulps = R::EPS.to_f64()
+        * if R::EPS.to_f64() > 1e-10 {
+            64.0
+        } else {
+            1024.0
+        };
     let per_axis: Vec<AxisMaxima> = (0..D)
         .map(|i| {
             let [v, a, j] = job.limits[i];
@@ -550,13 +617,18 @@ where
                     .allowing(extra)
                     .enforce(true)
             };
+            let snap = 2.0 * solver_ulps * a * job.rate_hz;
             AxisMaxima {
                 name: names[i].to_owned(),
-                velocity: check(m.velocity.axes[i], v, 0.0),
-                acceleration: check(m.acceleration.axes[i], a, 0.0),
-                jerk: check(m.jerk.axes[i], j, slack(m.acceleration.magnitude)),
-                dx: check(m.dx.axes[i], v, slack(m.position.magnitude)),
-                dv: check(m.dv.axes[i], a, slack(m.velocity.magnitude)),
+                velocity: check(m.velocity.axes[i], v, e_v),
+                acceleration: check(m.acceleration.axes[i], a, e_a),
+                jerk: check(
+                    m.jerk.axes[i],
+                    j,
+                    slack(m.acceleration.magnitude, e_a) + snap,
+                ),
+                dx: check(m.dx.axes[i], v, slack(m.position.magnitude, e_x)),
+                dv: check(m.dv.axes[i], a, slack(m.velocity.magnitude, e_v)),
             }
         })
         .collect();
@@ -641,8 +713,26 @@ pub struct Moves {
     pub moves: Vec<SolvedMove>,
     /// The target of the last move.
     pub last_target: MoveTarget,
-    /// Events not played: after a move that ends moving (a path ends there).
+    /// Events not played: after a move that ends moving (a path ends there), or after an
+    /// abort.
     pub ignored: usize,
+    /// The largest playback rounding of the paths played: position
+    /// ([`playback_bound`](strak_trajectory::PathHeader::playback_bound)), velocity and
+    /// acceleration ([`channel_bounds`](strak_trajectory::Path::channel_bounds)).
+    pub rounding: [f64; 3],
+}
+
+/// The larger of two roundings, quantity by quantity, with the path's.
+fn with_rounding<N: Kernel, const D: usize, const P: usize>(
+    r: [f64; 3],
+    path: &strak_trajectory::Path<N, D, P>,
+) -> [f64; 3] {
+    let (e_v, e_a) = path.channel_bounds();
+    [
+        r[0].max(path.playback_bound()),
+        r[1].max(e_v),
+        r[2].max(e_a),
+    ]
 }
 
 /// What [`play_moves`] hands each sample to.
@@ -653,10 +743,128 @@ fn failed(field: &str, e: strak_trajectory::Error) -> RunError {
     RunError::Job(JobError::new(field, e.to_string()))
 }
 
+/// The operator's side of a run: where the motion goes when it may, the feed override,
+/// and whether it is held or aborted. Each event changes it and says which move to take
+/// over with.
+///
+/// A feed override `φ` re-times the rest of the motion from the current state: the move
+/// to the goal is solved again with every velocity limit, and the goal's velocities and
+/// accelerations, times `φ` (a start above the new velocity limit brakes into it first,
+/// within the acceleration and jerk limits, which stay whole). A hold is a quick stop that
+/// keeps the goal; resume solves the move to it again. Feed 0 stops like a hold until the
+/// feed rises. An abort is a quick stop after which every event is ignored.
+#[derive(Clone, Debug)]
+struct Control {
+    goal: MoveTarget,
+    feed: f64,
+    held: bool,
+    aborted: bool,
+}
+
+/// The move an event asks for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Order {
+    /// To the goal at the feed override.
+    Go,
+    /// A quick stop.
+    Stop,
+}
+
+impl Control {
+    fn new(goal: &MoveTarget) -> Self {
+        Control {
+            goal: goal.clone(),
+            feed: 1.0,
+            held: false,
+            aborted: false,
+        }
+    }
+
+    /// Applies `event`; the move to take over with (`None`: the motion goes on as it is).
+    fn apply(&mut self, event: &MoveEvent) -> Option<Order> {
+        match event {
+            _ if self.aborted => return None,
+            MoveEvent::Target(t) => self.goal = t.clone(),
+            MoveEvent::Stop => {
+                self.goal = rest(self.goal.states.len());
+                return Some(Order::Stop);
+            }
+            MoveEvent::Operator(Action::Feed(f)) => self.feed = *f,
+            MoveEvent::Operator(Action::Hold) => {
+                self.held = true;
+                return Some(Order::Stop);
+            }
+            MoveEvent::Operator(Action::Resume) if !self.held => return None,
+            MoveEvent::Operator(Action::Resume) => self.held = false,
+            MoveEvent::Operator(Action::Abort) => {
+                self.aborted = true;
+                return Some(Order::Stop);
+            }
+        }
+        self.order()
+    }
+
+    /// What the state asks for: nothing new while held, a quick stop at feed 0, else the
+    /// move to the goal.
+    fn order(&self) -> Option<Order> {
+        match (self.held, self.feed == 0.0) {
+            (true, _) => None,
+            (false, true) => Some(Order::Stop),
+            (false, false) => Some(Order::Go),
+        }
+    }
+
+    /// The target, limits and options the solver is given for `order`.
+    fn request<R: Real, const D: usize>(
+        &self,
+        job: &MoveJob,
+        order: Order,
+    ) -> (MoveTarget, [AxisLimits<R>; D], MoveOptions) {
+        match order {
+            Order::Stop => {
+                let target = rest(D);
+                let options = move_options(job, &target, true);
+                (target, axis_limits(job, 1.0), options)
+            }
+            Order::Go => {
+                let phi = self.feed;
+                let states = self.goal.states.iter();
+                let target = MoveTarget {
+                    states: states.map(|&[p, v, a]| [p, v * phi, a * phi]).collect(),
+                    position: self.goal.position,
+                };
+                let options = move_options(job, &target, false);
+                (target, axis_limits(job, phi), options)
+            }
+        }
+    }
+}
+
+/// Rest, position free (the target of a quick stop).
+fn rest(axes: usize) -> MoveTarget {
+    MoveTarget {
+        states: vec![[0.0; 3]; axes],
+        position: false,
+    }
+}
+
+/// The name of an event in the summary.
+fn event_name(event: &MoveEvent) -> &'static str {
+    match event {
+        MoveEvent::Target(_) => "target",
+        MoveEvent::Stop => "stop",
+        MoveEvent::Operator(Action::Feed(_)) => "feed",
+        MoveEvent::Operator(Action::Hold) => "hold",
+        MoveEvent::Operator(Action::Resume) => "resume",
+        MoveEvent::Operator(Action::Abort) => "abort",
+    }
+}
+
 /// Plays the job's first move and every event's through the sampler, handing each sample
-/// to `sink` (its `tick` counted from the run's start). An event at tick `k` takes over
-/// from the sample of tick `k − 1` ([`take_over_into`]). The firmware under QEMU plays
-/// the same moves alike (`firmware-sim/qemu/src/moves.rs`).
+/// to `sink` (its `tick` counted from the run's start). An event at tick `k > 0` takes over
+/// from the sample of tick `k − 1` ([`take_over_into`]); events at tick 0 shape the first
+/// move. Feed override, hold, resume and abort re-time the motion ([`Control`]). The
+/// firmware under QEMU plays targets and stops alike (`firmware-sim/qemu/src/moves.rs`).
 ///
 /// # Errors
 /// [`RunError::Job`] for a move the solver or the compiler rejects (naming the target or
@@ -669,67 +877,76 @@ where
     N: Kernel,
     R: Real,
 {
-    let limits = axis_limits::<R, D>(job);
-
+    let mut control = Control::new(&job.target);
+    let mut events = job.events.iter().peekable();
+    let mut ignored = 0;
+    while let Some((_, event)) = events.next_if(|(tick, _)| *tick == 0) {
+        ignored += usize::from(control.aborted);
+        control.apply(event);
+    }
     // Two paths: the one playing, and the one the next move is compiled into.
     let mut paths = [boxed_path::<N, D>(), boxed_path::<N, D>()];
     let mut m = Box::new(OnlineMove::<R, D>::new());
-    let options = move_options(job, &job.target, false);
+    let (mut last_target, limits, options) =
+        control.request::<R, D>(job, control.order().unwrap_or(Order::Stop));
     m.solve_in_place(
         &states(&job.start),
-        &states(&job.target.states),
+        &states(&last_target.states),
         &limits,
         &options,
     )
     .map_err(|e| failed("target", e))?;
     compile_move_into(&*m, &mut *paths[0]).map_err(|e| failed("target", e))?;
+    let mut rounding = with_rounding([0.0; 3], &paths[0]);
     let mut moves = vec![report(&m, 0, "target", paths[0].pieces().len())];
     let mut current = 0;
-    let mut last_target = job.target.clone();
-    let mut events = job.events.iter().peekable();
     let mut sampler = Sampler::new(&*paths[current]);
     let mut k: u64 = 0;
     let mut last: Option<Sample<N::Out, D>> = None;
     loop {
-        if let (Some(&&(tick, ref event)), Some(prev)) = (events.peek(), last.as_ref())
-            && tick == k
+        while let (Some(prev), Some((tick, event))) =
+            (last.as_ref(), events.next_if(|(tick, _)| *tick == k))
         {
-            events.next();
-            let (target, stop, kind) = match event {
-                MoveEvent::Target(t) => (t.clone(), false, "target"),
-                MoveEvent::Stop => (
-                    MoveTarget {
-                        states: vec![[0.0; 3]; D],
-                        position: false,
-                    },
-                    true,
-                    "stop",
-                ),
+            ignored += usize::from(control.aborted);
+            let Some(order) = control.apply(event) else {
+                continue;
             };
+            let (target, limits, options) = control.request::<R, D>(job, order);
+            // The playback rounding of the sample taken over.
+            let playing = &paths[current];
+            let (e_v, e_a) = playing.channel_bounds();
+            let options =
+                options.with_start_rounding(0.0, playing.playback_bound().max(e_v).max(e_a));
             let next = 1 - current;
             let field = format!("events at tick {tick}");
             take_over_into(
                 prev,
                 &states(&target.states),
                 &limits,
-                &move_options(job, &target, stop),
+                &options,
                 &mut m,
                 &mut paths[next],
             )
             .map_err(|e| failed(&field, e))?;
-            moves.push(report(&m, tick, kind, paths[next].pieces().len()));
+            moves.push(report(
+                &m,
+                *tick,
+                event_name(event),
+                paths[next].pieces().len(),
+            ));
+            rounding = with_rounding(rounding, &paths[next]);
             last_target = target;
             current = next;
             sampler = Sampler::new(&*paths[current]);
             // Its first sample is the one just played.
             let _ = sampler.next();
         }
-        // The end of the last move; or of a move that ends moving (a velocity target):
-        // a path ends there, so the events after it are not played.
+        // The end of the last move, or of an abort; or of a move that ends moving (a
+        // velocity target): a path ends there, so the events after it are not played.
         let moving = last
             .as_ref()
             .is_some_and(|l| l.velocity.iter().any(|v| v.to_f64() != 0.0));
-        if sampler.is_finished() && (events.peek().is_none() || moving) {
+        if sampler.is_finished() && (events.peek().is_none() || moving || control.aborted) {
             break;
         }
         let mut s = sampler.next();
@@ -741,7 +958,8 @@ where
     Ok(Moves {
         moves,
         last_target,
-        ignored: events.count(),
+        ignored: ignored + events.count(),
+        rounding,
     })
 }
 
@@ -827,5 +1045,6 @@ where
         last,
         last_target: played.last_target,
         ignored: played.ignored,
+        rounding: played.rounding,
     })
 }

@@ -317,6 +317,17 @@ fn export_moves(dir: &Path) -> Result<Vec<HostMove>, String> {
                 job.axes()
             ));
         }
+        if let Some((tick, _)) = job
+            .events
+            .iter()
+            .find(|(_, e)| matches!(e, MoveEvent::Operator(_)))
+        {
+            return Err(format!(
+                "{}: the event at tick {tick}: the firmware plays new targets and stops, not \
+                 feed override, hold, resume or abort",
+                file.display()
+            ));
+        }
         for playback in FIRMWARE_FORMATS {
             let bits = move_bits(&job, playback)
                 .map_err(|e| format!("{} ({playback}): {e}", file.display()))?;
@@ -468,6 +479,7 @@ fn move_job_src(name: &str, job: &MoveJob) -> String {
         .map(|(tick, e)| match e {
             MoveEvent::Target(t) => format!("({tick}, MoveEvent::Target({}))", target(t)),
             MoveEvent::Stop => format!("({tick}, MoveEvent::Stop)"),
+            MoveEvent::Operator(_) => unreachable!("rejected by export_moves"),
         })
         .collect();
     let sync = match job.sync {

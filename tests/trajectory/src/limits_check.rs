@@ -56,7 +56,7 @@
 //! mean over that tick as well; the last sample is the path's end, the spline's end.
 
 use strak_curves::Scalar;
-use strak_trajectory::{AxisState, Kernel, Path, Sampler};
+use strak_trajectory::{Kernel, Path, Sampler};
 
 /// Relative allowance for the `f64` arithmetic of the difference quotients.
 pub const F64_ROUNDING: f64 = 1e-9;
@@ -113,37 +113,10 @@ pub struct Allowance {
     pub jerk_fd: f64,
 }
 
-/// `C(n, 2)`.
-fn pairs(n: f64) -> f64 {
-    0.5 * n * (n - 1.0).max(0.0)
-}
-
-/// The playback error bounds `(e_v, e_a)` of the velocity and acceleration channels of one
-/// axis of one piece of `n` ticks.
-fn channel_errors<N: Kernel>(s: &AxisState<N>, n: u32) -> (f64, f64) {
-    let n = f64::from(n);
-    let (r, add) = (N::rounding_error, N::addition_error);
-    let v2 = s.velocity_delta2.to_f64().abs();
-    let v1 = s.velocity_delta1.to_f64().abs() + n * v2;
-    let v0 = s.velocity.to_f64().abs() + n * s.velocity_delta1.to_f64().abs() + pairs(n) * v2;
-    let a1 = s.acceleration_delta.to_f64().abs();
-    let a0 = s.acceleration.to_f64().abs() + n * a1;
-    let e_v = r(v0) + n * (r(v1) + add(v0)) + pairs(n) * (r(v2) + add(v1)) + N::OUT_ERROR;
-    let e_a = r(a0) + n * (r(a1) + add(a0)) + N::OUT_ERROR;
-    (e_v, e_a)
-}
-
 impl Allowance {
     /// The allowances of `path` (see the module docs).
     pub fn of<N: Kernel, const A: usize, const P: usize>(path: &Path<N, A, P>) -> Self {
-        let (mut e_v, mut e_a) = (N::OUT_ERROR, N::OUT_ERROR);
-        for piece in path.pieces() {
-            for axis in piece.axes() {
-                let (v, a) = channel_errors(axis, piece.ticks());
-                e_v = e_v.max(v);
-                e_a = e_a.max(a);
-            }
-        }
+        let (e_v, e_a) = path.channel_bounds();
         #[allow(clippy::cast_precision_loss)]
         let root = (A as f64).sqrt();
         let rate = path.rate();

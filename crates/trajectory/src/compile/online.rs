@@ -173,7 +173,7 @@ where
     R: Real,
 {
     path.clear();
-    let result = write_move(m, path);
+    let result = write_move(m, path, false);
     if result.is_err() {
         path.clear();
     }
@@ -189,11 +189,21 @@ where
 /// [`MoveOptions::quick_stop`].
 ///
 /// `last` is converted into `R` as [`Sample::kinematics`] does; `options` needs the
-/// sampler's rate ([`MoveOptions::with_rate`]).
+/// sampler's rate ([`MoveOptions::with_rate`]). When `last` already is the target (a quick
+/// stop or a hold at rest), the move takes no time and the path stands on it for one tick.
+///
+/// A sample carries the playback's rounding, which [`Synchronization::Phase`] must allow
+/// for to keep a motion along a line on it: about one rounding of each value per tick of
+/// a piece is assumed; where the running path's rounding is larger (`Q40` positions in
+/// long pieces), give its bounds with [`MoveOptions::with_start_rounding`]
+/// (`absolute` at least the largest of [`playback_bound`](crate::PathHeader::playback_bound)
+/// and [`channel_bounds`](Path::channel_bounds)).
+///
+/// [`Synchronization::Phase`]: crate::Synchronization::Phase
 ///
 /// # Errors
 /// As [`OnlineMove::solve_in_place`] (a target outside the limits, …) and
-/// [`compile_move`]; on an error `path` is empty.
+/// [`compile_move`] (but not [`Error::EmptyPath`]); on an error `path` is empty.
 ///
 /// ```
 /// use strak_trajectory::{AxisLimits, Kinematics, MoveOptions, OnlineMove, Path, Sampler, take_over_into};
@@ -233,16 +243,29 @@ where
     N: Number,
     R: Real,
 {
-    if let Err(e) = m.solve_in_place(&last.kinematics(), target, limits, options) {
+    path.clear();
+    // The sample carries the playback's rounding: within a piece of at most 256 ticks,
+    // about one rounding of each value per tick (relative in a float, absolute in `Q40`),
+    // and its conversion into `N::Out`.
+    let (at_one, at_zero) = (N::rounding_error(1.0), N::rounding_error(0.0));
+    let (relative, absolute) = options.start_rounding;
+    let options = options.with_start_rounding(
+        relative.max(256.0 * (at_one - at_zero)),
+        absolute.max(256.0 * at_zero + 2.0 * N::OUT_ERROR),
+    );
+    let result = m
+        .solve_in_place(&last.kinematics(), target, limits, &options)
+        .and_then(|()| write_move(m, path, true));
+    if result.is_err() {
         path.clear();
-        return Err(e);
     }
-    compile_move_into(m, path)
+    result
 }
 
 fn write_move<N, R, const A: usize, const P: usize>(
     m: &OnlineMove<R, A>,
     path: &mut Path<N, A, P>,
+    stand: bool,
 ) -> Result<(), Error>
 where
     N: Number,
@@ -254,12 +277,14 @@ where
     }
     let exact = m.duration().to_f64() * rate;
     let ticks = libm::round(exact);
-    if ticks.is_nan() || ticks < 1.0 {
+    if ticks.is_nan() || ticks < 0.0 || (ticks == 0.0 && !stand) {
         return Err(Error::EmptyPath);
     }
     if (ticks - exact).abs() > 1e-6 * ticks {
         return Err(Error::InvalidRate);
     }
+    // A move that takes no time (the start is the target) stands for one tick.
+    let ticks = ticks.max(1.0);
     if ticks > f64::from(u32::MAX - 1) {
         return Err(Error::TooLong);
     }
@@ -269,8 +294,16 @@ where
     let end_time = f64::from(ticks) / rate;
     let ends: [Kinematics<f64>; A] =
         core::array::from_fn(|i| end_state(m, &axes[i], i, end_time, rate));
-    write_pieces(&axes, &ends, rate, ticks, path)?;
-    path.header.meta = meta(m, &axes, rate)?;
+    let (meta, largest) = meta::<N, R, A>(m, &axes, rate);
+    write_pieces(
+        &axes,
+        &ends,
+        rate,
+        ticks,
+        longest::<N>(&meta, largest),
+        path,
+    )?;
+    path.header.meta = meta;
     write_end(&ends, path)?;
     path.seal()?;
     check_playback_bound(&path.header)
@@ -283,10 +316,10 @@ fn write_pieces<N: Number, R: Real, const A: usize, const P: usize>(
     ends: &[Kinematics<f64>; A],
     rate: f64,
     ticks: u32,
+    longest: u32,
     path: &mut Path<N, A, P>,
 ) -> Result<(), Error> {
     let period = 1.0 / rate;
-    let longest = CompileOptions::DEFAULT_MAX_PIECE_TICKS;
     let mut k = 0;
     while k < ticks {
         let mut next = ticks.min(k.saturating_add(longest));
@@ -374,14 +407,33 @@ fn chord_state(s: &Kinematics<f64>, e: &Kinematics<f64>, n: u32, period: f64) ->
     }
 }
 
-/// The path's description: the move's peaks (Euclidean bounds from each axis's largest
-/// values), its axes' limits as the feed ramps' limits, and the tolerance `10⁻⁴` of its
-/// extent that playback's rounding must stay within.
-fn meta<R: Real, const A: usize>(
+/// The longest piece whose position additions (one per tick, each rounded at the largest
+/// position `largest`) round by at most half the path's tolerance: at most
+/// [`CompileOptions::DEFAULT_MAX_PIECE_TICKS`] (all of them in `Q40`, whose additions are
+/// exact), at least one.
+fn longest<N: Number>(meta: &PathMeta, largest: f64) -> u32 {
+    let per_tick = N::addition_error(largest);
+    let cap = f64::from(CompileOptions::DEFAULT_MAX_PIECE_TICKS);
+    let n = if per_tick > 0.0 {
+        libm::floor(0.5 * meta.tolerance / per_tick).clamp(1.0, cap)
+    } else {
+        cap
+    };
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let n = n as u32;
+    n
+}
+
+/// The path's description, and the largest position of any axis: the move's peaks
+/// (Euclidean bounds from each axis's largest values), its axes' limits as the feed ramps'
+/// limits, and the tolerance that playback's rounding must stay within: `10⁻⁴` of the
+/// motion's extent, and at least 16 times the rounding of a value of `N` at the largest
+/// position (a smaller one could not be met: a short move far from the origin in `f32`).
+fn meta<N: Number, R: Real, const A: usize>(
     m: &OnlineMove<R, A>,
     axes: &[Axis<'_, R>; A],
     rate: f64,
-) -> Result<PathMeta, Error> {
+) -> (PathMeta, f64) {
     let (mut v, mut a, mut j, mut a_lim, mut j_lim) = (0.0, 0.0, 0.0, 0.0, 0.0);
     let (mut extent, mut big) = (0.0_f64, 0.0_f64);
     for (axis, l) in axes.iter().zip(m.limits()) {
@@ -424,17 +476,22 @@ fn meta<R: Real, const A: usize>(
         a_lim += al * al;
         j_lim += jl * jl;
     }
-    Ok(PathMeta {
+    let tolerance = (CompileOptions::DEFAULT_RELATIVE_TOLERANCE * extent)
+        .max(1e-12 * (1.0 + big))
+        .max(16.0 * (N::rounding_error(big) + N::OUT_ERROR));
+    let meta = PathMeta {
         rate,
-        plan_duration: m.duration().to_f64(),
-        tolerance: (CompileOptions::DEFAULT_RELATIVE_TOLERANCE * extent).max(1e-12 * (1.0 + big)),
+        // Whole ticks, at least the one a move that takes no time stands for.
+        plan_duration: m.duration().to_f64().max(1.0 / rate),
+        tolerance,
         peak_velocity: libm::sqrt(v),
         peak_acceleration: libm::sqrt(a),
         peak_jerk: libm::sqrt(j),
         acceleration_limit: libm::sqrt(a_lim).max(libm::sqrt(a)),
         jerk_limit: libm::sqrt(j_lim).max(libm::sqrt(j)),
         feed_share: CompileOptions::DEFAULT_FEED_SHARE,
-    })
+    };
+    (meta, big)
 }
 
 /// Where axis `i` ends: its target (for a position move its position exactly as given; for

@@ -45,11 +45,14 @@ impl<R: Real> Tolerance<R> {
         );
         let v = big(big(l.v_max, l.v_min), big(start.velocity, target.velocity));
         let t = a / l.jerk + v / a;
-        let p = big(target.position - start.position, v * t);
+        // The displacement's own scale, and its rounding from the positions: not the
+        // limits' (a short move would count as reached without moving).
+        let dp = (target.position - start.position).abs();
+        let positions = start.position.abs() + target.position.abs();
         Tolerance {
             ulps,
             time: ulps * t,
-            position: ulps * p,
+            position: ulps * dp + R::lit(4.0) * R::EPS * positions,
             velocity: ulps * v,
             acceleration: ulps * a,
         }

@@ -25,6 +25,12 @@ pub struct MoveOptions {
     /// a whole number of ticks, so that the compiled path ends on the target exactly at a
     /// tick (default: none, the durations as solved).
     pub rate_hz: Option<f64>,
+    /// How far the start state may lie from the exact one, `(relative, absolute)`: each
+    /// value within `relative·|x| + absolute` (a start read from a sample carries the
+    /// rounding of its number format). [`Synchronization::Phase`] takes values that lie on
+    /// one line within it as on one line, so that a take-over of a motion along a line
+    /// stays on it (default `(0, 0)`: only the solver's own rounding).
+    pub start_rounding: (f64, f64),
 }
 
 impl MoveOptions {
@@ -34,6 +40,22 @@ impl MoveOptions {
             synchronization: Synchronization::Time,
             interface: Interface::Position,
             rate_hz: None,
+            start_rounding: (0.0, 0.0),
+        }
+    }
+
+    /// With the given rounding of the start state ([`MoveOptions::start_rounding`]).
+    ///
+    /// ```
+    /// use strak_trajectory::MoveOptions;
+    /// let o = MoveOptions::new().with_start_rounding(1e-7, 0.0);
+    /// assert_eq!(o.start_rounding, (1e-7, 0.0));
+    /// ```
+    #[must_use]
+    pub const fn with_start_rounding(self, relative: f64, absolute: f64) -> Self {
+        MoveOptions {
+            start_rounding: (relative, absolute),
+            ..self
         }
     }
 
@@ -231,7 +253,18 @@ impl<R: Real, const A: usize> OnlineMove<R, A> {
         let mut used = options.synchronization;
         let mut durations = self.min_durations;
         if used == Synchronization::Phase {
-            if sync::phase_profiles(start, target, limits, interface, grid, &mut self.profiles)? {
+            let (relative, absolute) = options.start_rounding;
+            let rounding = (R::lit(relative), R::lit(absolute));
+            let phase = sync::phase_profiles(
+                start,
+                target,
+                limits,
+                interface,
+                grid,
+                rounding,
+                &mut self.profiles,
+            )?;
+            if phase {
                 durations = [self.profiles[0].duration(); A];
             } else {
                 used = Synchronization::Time;

@@ -77,10 +77,10 @@ pub(super) fn roots_in<R: Real>(c: &[R], lo: R, hi: R) -> Roots<R> {
     while n > 0 && c[n - 1] == R::ZERO {
         n -= 1;
     }
-    let c = &c[..n];
     if n < 2 || lo.partial_cmp(&hi).is_none_or(core::cmp::Ordering::is_gt) {
         return out;
     }
+    let c = &c[..n];
     if n == 3 {
         return quadratic_in(c[0], c[1], c[2], lo, hi);
     }
@@ -125,6 +125,28 @@ pub(super) fn roots_in<R: Real>(c: &[R], lo: R, hi: R) -> Roots<R> {
     out
 }
 
+/// The coefficients scaled by a power of two (exactly: the roots are unchanged) so that
+/// the largest magnitude lies in `[1, 2)`. The forms' coefficients grow with powers of the
+/// jerk (`J²·a_max²` and more): unscaled, the `f32` discriminant of a quadratic (the only
+/// product of two coefficients) overflows for jerks of a few `10⁵`.
+fn normalized<R: Real>(c: &[R]) -> [R; MAX_DEGREE + 1] {
+    let mut out = [R::ZERO; MAX_DEGREE + 1];
+    let largest = c.iter().fold(R::ZERO, |m, &x| m.max_of(x.abs())).to_f64();
+    // 2^−e for the binary exponent e of `largest` (its bits: no logarithm on the device).
+    let exponent = i64::try_from((largest.to_bits() >> 52) & 0x7ff).unwrap_or(1023) - 1023;
+    let scale = if largest > 0.0 && largest.is_finite() && exponent.abs() < 1000 {
+        #[allow(clippy::cast_sign_loss)]
+        let bits = ((1023 - exponent) as u64) << 52;
+        R::lit(f64::from_bits(bits))
+    } else {
+        R::ONE
+    };
+    for (o, &x) in out.iter_mut().zip(c) {
+        *o = x * scale;
+    }
+    out
+}
+
 /// Whether the polynomial keeps its sign on `[lo, hi]` for a reason seen at once: at `lo`
 /// it is farther from zero than a bound of `|p'|` (from `Σ i·|cᵢ|·rⁱ⁻¹`, `r = max(|lo|,
 /// |hi|)`) times the interval's length allows it to travel.
@@ -146,6 +168,7 @@ fn cannot_vanish<R: Real>(c: &[R], lo: R, hi: R) -> bool {
 /// quadratic formula; a double root reported once), in increasing order.
 fn quadratic_in<R: Real>(c0: R, c1: R, c2: R, lo: R, hi: R) -> Roots<R> {
     let mut out = Roots::new();
+    let [c0, c1, c2, ..] = normalized(&[c0, c1, c2]);
     let disc = c1 * c1 - R::lit(4.0) * c2 * c0;
     let (mut x1, mut x2);
     if disc.is_negative() {

@@ -128,50 +128,70 @@ fn scaled<R: Real>(x0: R, r: R, line0: R, k: &Kinematics<R>) -> Kinematics<R> {
     )
 }
 
-/// The values that must lie on one line for a phase-synchronized move: displacement,
-/// start and target velocity and acceleration.
+/// The values that must lie on one line for a phase-synchronized move (displacement,
+/// start and target velocity and acceleration), and the magnitudes their rounding scales
+/// with (the positions', for the displacement).
 fn line_values<R: Real>(
     start: &Kinematics<R>,
     target: &Kinematics<R>,
     interface: Interface,
-) -> [R; 5] {
-    let dp = match interface {
-        Interface::Position => target.position - start.position,
-        Interface::Velocity => R::ZERO,
+) -> ([R; 5], [R; 5]) {
+    let (dp, dp_scale) = match interface {
+        Interface::Position => (
+            target.position - start.position,
+            target.position.abs() + start.position.abs(),
+        ),
+        Interface::Velocity => (R::ZERO, R::ZERO),
     };
-    [
+    let values = [
         dp,
         start.velocity,
         start.acceleration,
         target.velocity,
         target.acceleration,
-    ]
+    ];
+    let mut scales = values.map(|x| x.abs());
+    scales[0] = dp_scale;
+    (values, scales)
 }
 
 /// The share `r_i` of every axis in a line through the reference axis's values, if the
-/// axes' values lie on one (within rounding), with the reference axis.
-fn line_shares<R: Real, const A: usize>(values: &[[R; 5]; A]) -> Option<([R; A], usize)> {
-    // The reference: the axis with the largest value in the first component any axis has.
+/// axes' values lie on one, with the reference axis. "On one line" allows twice what the
+/// values' rounding explains: each value's (the solver's, `64 ε` of the value's magnitude,
+/// or the start's, [`MoveOptions::start_rounding`](super::MoveOptions::start_rounding):
+/// `relative` of the magnitude plus `absolute`), the reference's share of it, and the
+/// uncertainty of the share itself (a ratio of two rounded values: a short displacement
+/// far from the origin is known to few digits).
+fn line_shares<R: Real, const A: usize>(
+    values: &[[R; 5]; A],
+    scales: &[[R; 5]; A],
+    (relative, absolute): (R, R),
+) -> Option<([R; A], usize)> {
+    let relative = relative.max_of(R::lit(64.0) * R::EPS);
+    let tol = |i: usize, m: usize| relative * scales[i][m] + absolute;
+    // The reference: the value known to the most digits (largest against its rounding), so
+    // that the shares are as certain as the values allow.
     let mut reference = None;
-    for c in 0..5 {
-        let mut best = R::ZERO;
-        for (i, w) in values.iter().enumerate() {
-            if w[c].abs() > best {
-                best = w[c].abs();
-                reference = Some((i, c));
+    let mut best = R::ZERO;
+    for (i, w) in values.iter().enumerate() {
+        for (m, x) in w.iter().enumerate() {
+            let t = tol(i, m);
+            if x.abs() > best * t {
+                best = x.abs() / t;
+                reference = Some((i, m));
             }
-        }
-        if reference.is_some() {
-            break;
         }
     }
     let (k, c) = reference?;
     let mut shares = [R::ZERO; A];
+    let reference = values[k];
     for (i, w) in values.iter().enumerate() {
-        let r = w[c] / values[k][c];
+        let r = w[c] / reference[c];
+        // The share is as uncertain as the values it is the ratio of.
+        let dr = (tol(i, c) + r.abs() * tol(k, c)) / reference[c].abs();
         for m in 0..5 {
-            let scale = w[m].abs().max_of(values[k][m].abs() * r.abs());
-            if (w[m] - r * values[k][m]).abs() > R::lit(64.0) * R::EPS * scale {
+            let allowed = tol(i, m) + r.abs() * tol(k, m) + dr * reference[m].abs();
+            if (w[m] - r * reference[m]).abs() > R::TWO * allowed {
                 return None;
             }
         }
@@ -211,13 +231,15 @@ pub(super) fn phase_profiles<R: Real, const A: usize>(
     limits: &[AxisLimits<R>; A],
     interface: Interface,
     grid: Grid,
+    rounding: (R, R),
     out: &mut [AxisProfile<R>; A],
 ) -> Result<bool, Error> {
     let mut values = [[R::ZERO; 5]; A];
+    let mut scales = [[R::ZERO; 5]; A];
     for i in 0..A {
-        values[i] = line_values(&start[i], &target[i], interface);
+        (values[i], scales[i]) = line_values(&start[i], &target[i], interface);
     }
-    let Some((shares, k)) = line_shares(&values) else {
+    let Some((shares, k)) = line_shares(&values, &scales, rounding) else {
         return Ok(false);
     };
     let line_limits = line_limits(&shares, limits)?;

@@ -308,3 +308,72 @@ fn f32_agrees_with_f64() {
     }
     assert!(worst < 1.0, "{worst}");
 }
+
+/// High jerks against the acceleration (short jerk phases) make the forms' polynomial
+/// coefficients large (`J²·a_max²` and beyond): `f32` solves them as `f64` does, to its
+/// rounding, with jerks up to `10⁸` (the coefficients are scaled before their roots are
+/// sought; unscaled, the discriminant overflowed `f32` from a jerk of about `5·10⁵` here).
+#[test]
+fn f32_solves_moves_with_high_jerk() {
+    use super::sync::{self, Interface};
+    for j in [1e3, 1e5, 5e5, 6.487e5, 5e6, 1e8] {
+        for (p0, p1) in [(0.0, 32.38), (-149.007_59, -181.387_93), (0.0, -1e-3)] {
+            let solve = |r: &mut AxisProfile<f64>, single: bool| -> f64 {
+                let (v, a) = (433.18, 5_164.67);
+                if single {
+                    let l = AxisLimits::new(v as f32, a as f32, j as f32).unwrap();
+                    let (s, t) = (
+                        Kinematics::at_rest(p0 as f32),
+                        Kinematics::at_rest(p1 as f32),
+                    );
+                    let mut p = AxisProfile::still(0.0_f32);
+                    let span = sync::axis_span(&s, &t, &l, Interface::Position, &mut p);
+                    f64::from(span.unwrap_or_else(|e| panic!("f32, j {j}: {e:?}")).t_min)
+                } else {
+                    let l = AxisLimits::new(v, a, j).unwrap();
+                    let (s, t) = (Kinematics::at_rest(p0), Kinematics::at_rest(p1));
+                    sync::axis_span(&s, &t, &l, Interface::Position, r)
+                        .unwrap()
+                        .t_min
+                }
+            };
+            let mut p = AxisProfile::still(0.0);
+            let (t32, t64) = (solve(&mut p, true), solve(&mut p, false));
+            assert!((t32 - t64).abs() <= 1e-5 * t64, "j {j}: {t32} vs {t64}");
+        }
+    }
+}
+
+/// A quick stop from a sample of an earlier quick stop: the state lies on its braking curve
+/// (full jerk brings the acceleration and the velocity to zero together, after exactly 3
+/// ticks), within rounding on either side. On the tick grid, and in every synchronization,
+/// the stop takes those 3 ticks: the fixed-duration change accepts the double root its
+/// quadratic has there.
+#[test]
+fn a_quick_stop_on_its_braking_curve_takes_its_ticks() {
+    let l = [
+        AxisLimits::new(40.47157985694891_f64, 332.4618566754005, 43304.52910547757).unwrap(),
+        AxisLimits::new(5.124668755963456, 19.881156491218718, 2589.602694678804).unwrap(),
+        AxisLimits::new(53.48040870029315, 207.47728784374232, 27024.77312736395).unwrap(),
+    ];
+    let s = [
+        Kinematics::new(175.68422161034854, 0.19487038097464895, -129.91358731643268),
+        Kinematics::new(-114.33383275814259, 0.01165321212605461, -7.768808084036408),
+        Kinematics::new(12.051128817003796, 0.12161147907313771, -81.07431938209184),
+    ];
+    let rest = [Kinematics::at_rest(0.0); 3];
+    let stop = MoveOptions::new().with_rate(1_000.0).quick_stop();
+    for sync in [
+        Synchronization::Phase,
+        Synchronization::Time,
+        Synchronization::None,
+    ] {
+        let m = OnlineMove::solve(&s, &rest, &l, &stop.with_synchronization(sync))
+            .unwrap_or_else(|e| panic!("{sync:?}: {e:?}"));
+        assert!(
+            (m.duration() - 0.003).abs() < 1e-15,
+            "{sync:?}: {}",
+            m.duration()
+        );
+    }
+}

@@ -10,7 +10,6 @@ use super::profile::AxisProfile;
 use super::profile::{AxisLimits, Kinematics};
 use super::real::Real;
 use super::step1::{Span, with_brake};
-use super::step2::Phases;
 
 /// The three phases (rise, hold, fall) in the frame where the first phase has positive jerk,
 /// if they are a motion: every duration non-negative.
@@ -78,32 +77,112 @@ pub(super) fn time_optimal<R: Real>(
     Some(Span::from(out.duration))
 }
 
-/// The velocity change of duration `tau` that ends fastest in the positive direction
-/// (rise to a peak, held at `a_max` if it would pass it, fall to `a_f`), with its phases
-/// and end velocity; `None` if `tau` is too short to bring the acceleration to `a_f`.
-fn fastest<R: Real>(v0: R, a0: R, af: R, a_max: R, j: R, tau: R) -> Option<([R; 3], R)> {
-    let mut peak = (j * tau + a0 + af) * R::HALF;
-    let mut hold = R::ZERO;
-    if peak > a_max {
-        peak = a_max;
-        hold = tau - (R::TWO * a_max - a0 - af) / j;
-    }
-    let t = [(peak - a0) / j, hold, (peak - af) / j];
-    let slack = R::lit(64.0) * R::EPS * (a_max / j + tau);
-    if !t.iter().all(|&x| x >= -slack) {
+/// A velocity change of exactly `tau` seconds from `(v0, a0)` to `(vf, af)` as a ramp of
+/// jerk `j1`, a hold at `a1` and a ramp of jerk `j3` (each `±J`): its phases and `a1`, if
+/// the durations are non-negative (within rounding) and `a1` within `[a_min, a_max]`.
+///
+/// With `t₁ = (a₁ − a₀)/j₁`, `t₃ = (a_f − a₁)/j₃`, `t₂ = τ − t₁ − t₃`, the velocity
+/// gained, `(a₁² − a₀²)/2j₁ + a₁t₂ + (a_f² − a₁²)/2j₃ = v_f − v₀`, is
+/// `c₂a₁² + c₁a₁ + c₀ = 0` with `c₂ = 1/2j₃ − 1/2j₁`, `c₁ = τ + a₀/j₁ − a_f/j₃`,
+/// `c₀ = a_f²/2j₃ − a₀²/2j₁ − (v_f − v₀)`: linear when both ramps have the same jerk.
+#[allow(clippy::too_many_arguments)]
+fn ramp_hold_ramp<R: Real>(
+    (v0, a0): (R, R),
+    (vf, af): (R, R),
+    (j1, j3): (R, R),
+    tau: R,
+    l: &AxisLimits<R>,
+    root: bool,
+) -> Option<([R; 3], R)> {
+    let two = R::TWO;
+    let c2 = R::ONE / (two * j3) - R::ONE / (two * j1);
+    let c1 = tau + a0 / j1 - af / j3;
+    let c0 = af * af / (two * j3) - a0 * a0 / (two * j1) - (vf - v0);
+    let a1 = if c2 == R::ZERO {
+        if root || c1 == R::ZERO {
+            return None;
+        }
+        -c0 / c1
+    } else {
+        let mut disc = c1 * c1 - R::lit(4.0) * c2 * c0;
+        // A double root (the time-optimal change itself, at its duration) rounds either way:
+        // `c₀` is a difference of velocities of the scale below.
+        let c0_rounding = R::lit(64.0)
+            * R::EPS
+            * (a0 * a0 / (two * j1.abs()) + af * af / (two * j3.abs()) + v0.abs() + vf.abs());
+        if disc.is_negative() && -disc <= R::lit(4.0) * c2.abs() * c0_rounding {
+            disc = R::ZERO;
+        }
+        if disc.is_negative() {
+            return None;
+        }
+        // The root without cancellation, and its partner from the product of the roots.
+        let root_disc = if c1.is_negative() {
+            -disc.sqrt()
+        } else {
+            disc.sqrt()
+        };
+        let q = -(c1 + root_disc) * R::HALF;
+        match (root, q == R::ZERO) {
+            (_, true) => return None,
+            (false, false) => q / c2,
+            (true, false) => c0 / q,
+        }
+    };
+    let (t1, t3) = ((a1 - a0) / j1, (af - a1) / j3);
+    let scale = l.a_max.max_of(-l.a_min);
+    let slack = R::lit(64.0) * R::EPS * (scale / l.jerk + tau);
+    let a_slack = R::lit(64.0) * R::EPS * scale;
+    let fits = a1 <= l.a_max + a_slack && a1 >= l.a_min - a_slack;
+    if !fits || t1 < -slack || t3 < -slack || tau - t1 - t3 < -slack {
         return None;
     }
-    let t = t.map(|x| x.max_of(R::ZERO));
-    let v = v0
-        + (peak * peak - a0 * a0) / (R::TWO * j)
-        + peak * t[1]
-        + (peak * peak - af * af) / (R::TWO * j);
-    Some((t, v))
+    // Durations that add up to `tau` (a duration on the tick grid stays on it): what
+    // rounding left negative is taken from the longer ramp.
+    let mut t = [t1.max_of(R::ZERO), R::ZERO, t3.max_of(R::ZERO)];
+    t[1] = tau - t[0] - t[2];
+    if t[1].is_negative() {
+        let longer = if t[0] >= t[2] { 0 } else { 2 };
+        t[longer] = (t[longer] + t[1]).max_of(R::ZERO);
+        t[1] = R::ZERO;
+    }
+    Some((t, a1))
+}
+
+/// Whether the velocity of the phases stays within the limits, or within the least
+/// excursion any motion from `(v0, a0)` must make beyond them (the velocity at which full
+/// jerk brings `a0` to zero).
+fn keeps_velocity<R: Real>(
+    v0: R,
+    a0: R,
+    t: &[R; 3],
+    jerks: [R; 2],
+    a1: R,
+    l: &AxisLimits<R>,
+) -> bool {
+    let forced = v0 + a0 * a0.abs() / (R::TWO * l.jerk);
+    let tol = R::lit(64.0) * R::EPS * (l.v_max.max_of(-l.v_min) + forced.abs());
+    let (hi, lo) = (l.v_max.max_of(forced) + tol, l.v_min.min_of(forced) - tol);
+    // The velocity is extreme where the acceleration passes zero inside a ramp.
+    let v1 = v0 + (a1 * a1 - a0 * a0) / (R::TWO * jerks[0]);
+    let v2 = v1 + a1 * t[1];
+    let mut ok = true;
+    if a0 * a1 < R::ZERO {
+        let v = v0 - a0 * a0 / (R::TWO * jerks[0]);
+        ok &= v <= hi && v >= lo;
+    }
+    if a1 * (a1 + jerks[1] * t[2]) < R::ZERO {
+        let v = v2 - a1 * a1 / (R::TWO * jerks[1]);
+        ok &= v <= hi && v >= lo;
+    }
+    ok
 }
 
 /// The velocity change from `origin` to `target`'s velocity and acceleration that takes
-/// exactly `duration` seconds: the convex combination of the fastest changes in either
-/// direction that ends on the target velocity (see the fixed-duration position motions).
+/// exactly `duration` seconds: after the brake into the acceleration limits, a ramp at full
+/// jerk, a hold and a ramp at full jerk (the time-optimal change's form with a lower peak
+/// acceleration, or with both ramps the same way), whose velocity stays within the limits
+/// wherever the start allows it.
 pub(super) fn with_duration<R: Real>(
     origin: &Kinematics<R>,
     target: &Kinematics<R>,
@@ -113,7 +192,7 @@ pub(super) fn with_duration<R: Real>(
 ) -> bool {
     let brake = velocity_mode_brake(origin.acceleration, l);
     let (start, brake_time) = after(origin, &brake);
-    let tau = duration - brake_time;
+    let tau = (duration - brake_time).max_of(R::ZERO);
     let (v0, a0, vf, af, j) = (
         start.velocity,
         start.acceleration,
@@ -121,39 +200,23 @@ pub(super) fn with_duration<R: Real>(
         target.acceleration,
         l.jerk,
     );
-    let tau = tau.max_of(R::ZERO);
-    let (Some((t_hi, v_hi)), Some((t_lo, v_lo))) = (
-        fastest(v0, a0, af, l.a_max, j, tau),
-        fastest(-v0, -a0, -af, -l.a_min, j, tau),
-    ) else {
-        return false;
-    };
-    let v_lo = -v_lo;
-    let scale = v0.abs().max_of(vf.abs()).max_of(l.a_max * tau) + l.a_max * l.a_max / j;
-    let tol = R::lit(1024.0) * R::EPS * scale;
-    if vf > v_hi + tol || vf < v_lo - tol {
-        return false;
+    for (j1, j3) in [(j, -j), (-j, j), (j, j), (-j, -j)] {
+        for root in [false, true] {
+            let Some((t, a1)) = ramp_hold_ramp((v0, a0), (vf, af), (j1, j3), tau, l, root) else {
+                continue;
+            };
+            if keeps_velocity(v0, a0, &t, [j1, j3], a1, l) {
+                with_brake(
+                    origin,
+                    brake,
+                    &t,
+                    &[j1, R::ZERO, j3],
+                    &[a0, a1, a1, af],
+                    out,
+                );
+                return true;
+            }
+        }
     }
-    let width = v_hi - v_lo;
-    let lambda = if width > tol {
-        ((vf - v_lo) / width).clamp_to(R::ZERO, R::ONE)
-    } else {
-        R::ONE
-    };
-    let peak_hi = a0 + j * t_hi[0];
-    let peak_lo = a0 - j * t_lo[0];
-    let (jerks_hi, jerks_lo) = ([j, R::ZERO, -j], [-j, R::ZERO, j]);
-    let (accs_hi, accs_lo) = ([a0, peak_hi, peak_hi, af], [a0, peak_lo, peak_lo, af]);
-    let hi = Phases {
-        t: &t_hi,
-        jerks: &jerks_hi,
-        accelerations: &accs_hi,
-    };
-    let lo = Phases {
-        t: &t_lo,
-        jerks: &jerks_lo,
-        accelerations: &accs_lo,
-    };
-    super::step2::blend(origin, brake, &hi, &lo, lambda, out);
-    true
+    false
 }

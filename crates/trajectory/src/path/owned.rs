@@ -136,6 +136,53 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
         &self.pieces
     }
 
+    /// Bounds `(e_v, e_a)` on the error that playback in the number format adds to the
+    /// velocity and acceleration channels of any sample at feed 1, as
+    /// [`playback_bound`](PathHeader::playback_bound) bounds the position's: per piece of
+    /// `n` ticks and axis, with the stored values `v, Δv¹, Δv²` and `a, Δa` (magnitudes
+    /// with their growth over the piece), `e_v = r(v) + n·(r(Δv¹) + add(v)) +
+    /// C(n,2)·(r(Δv²) + add(Δv¹)) + out` and `e_a = r(a) + n·(r(Δa) + add(a)) + out`
+    /// (`r`, `add`: [`Number::rounding_error`], [`Number::addition_error`]; `out`:
+    /// [`Number::OUT_ERROR`]), the largest over the pieces. A check of the limits from the
+    /// samples' finite differences allows twice these per tick: in `f32` the velocity
+    /// channel drifts by up to about `n·½ε·|v|` over a piece and steps back at its end.
+    ///
+    /// ```
+    /// use strak_trajectory::{AxisLimits, Kinematics, MoveOptions, OnlineMove, Path, Q40, compile_move};
+    /// let l = [AxisLimits::new(500.0_f64, 5_000.0, 100_000.0)?];
+    /// let options = MoveOptions::new().with_rate(1_000.0);
+    /// let m = OnlineMove::solve(&[Kinematics::at_rest(0.0)], &[Kinematics::at_rest(300.0)], &l, &options)?;
+    /// let (f32_path, q40_path): (Path<f32, 1, 64>, Path<Q40, 1, 64>) = (compile_move(&m)?, compile_move(&m)?);
+    /// let (e_v, e_a) = f32_path.channel_bounds();
+    /// // f32: about 10⁻⁵ of the velocity and acceleration limits
+    /// assert!(e_v < 1e-4 * 500.0 && e_a < 1e-4 * 5_000.0, "{e_v} {e_a}");
+    /// // Q40: exact additions; the stored differences rounded to 2⁻⁴⁰
+    /// let (q_v, q_a) = q40_path.channel_bounds();
+    /// assert!(q_v < 1e-6 && q_a < 1e-6, "{q_v} {q_a}");
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn channel_bounds(&self) -> (f64, f64) {
+        let (r, add) = (N::rounding_error, N::addition_error);
+        let (mut e_v, mut e_a) = (N::OUT_ERROR, N::OUT_ERROR);
+        for piece in &self.pieces {
+            let n = f64::from(piece.ticks);
+            let pairs = 0.5 * n * (n - 1.0).max(0.0);
+            for s in &piece.axes {
+                let v2 = s.velocity_delta2.to_f64().abs();
+                let v1 = s.velocity_delta1.to_f64().abs() + n * v2;
+                let v0 =
+                    s.velocity.to_f64().abs() + n * s.velocity_delta1.to_f64().abs() + pairs * v2;
+                let a1 = s.acceleration_delta.to_f64().abs();
+                let a0 = s.acceleration.to_f64().abs() + n * a1;
+                let v = r(v0) + n * (r(v1) + add(v0)) + pairs * (r(v2) + add(v1)) + N::OUT_ERROR;
+                let a = r(a0) + n * (r(a1) + add(a0)) + N::OUT_ERROR;
+                e_v = e_v.max(v);
+                e_a = e_a.max(a);
+            }
+        }
+        (e_v, e_a)
+    }
+
     /// The path as the capacity-free view that [`Sampler`](crate::Sampler) plays.
     ///
     /// ```
