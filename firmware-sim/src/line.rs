@@ -39,7 +39,8 @@ fn segment(path: &CurveFile) -> Option<(&[f64], &[f64])> {
     }
 }
 
-/// The move along the job's path when it is a straight segment ([`segment`]) with an
+/// The move along the job's path when it is a straight segment (a `bezier`, open `bspline`
+/// or `lagrange` path of two distinct points) with an
 /// S-curve profile (`None` otherwise: the job is planned along its curve).
 ///
 /// # Errors

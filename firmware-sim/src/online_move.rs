@@ -137,7 +137,7 @@ pub enum MoveEvent {
     Target(MoveTarget),
     /// Come to rest as fast as the limits allow; the target becomes rest.
     Stop,
-    /// The operator: feed override, hold, resume, abort ([`Control`]).
+    /// The operator: feed override, hold, resume, abort (see [`play_moves`]).
     Operator(Action),
 }
 
@@ -863,7 +863,11 @@ fn event_name(event: &MoveEvent) -> &'static str {
 /// Plays the job's first move and every event's through the sampler, handing each sample
 /// to `sink` (its `tick` counted from the run's start). An event at tick `k > 0` takes over
 /// from the sample of tick `k − 1` ([`take_over_into`]); events at tick 0 shape the first
-/// move. Feed override, hold, resume and abort re-time the motion ([`Control`]). The
+/// move. Feed override, hold, resume and abort re-time the motion: a feed override solves
+/// the move to the target again with every velocity limit (and the target's velocity and
+/// acceleration) times the feed, a hold is a quick stop that keeps the target, resume
+/// solves the move to it again, feed 0 stops like a hold, an abort is a quick stop after
+/// which every event is ignored. The
 /// firmware under QEMU plays targets and stops alike (`firmware-sim/qemu/src/moves.rs`).
 ///
 /// # Errors

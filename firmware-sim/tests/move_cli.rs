@@ -1,7 +1,7 @@
 //! `strak-sim move`: the bundled online move (a moving start, a new target at 0.3 s, a quick
 //! stop at 0.6 s) in every number format, read back from its files and checked here from the
-//! samples; velocity moves; a start outside the limits; and bad files (one error line naming
-//! the field, exit 1).
+//! samples; velocity moves; a start outside the limits; the operator events (feed override,
+//! hold, resume, abort); and bad files (one error line naming the field, exit 1).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -250,4 +250,57 @@ fn bad_files_name_their_field() {
         "events[1].tick",
     );
     fails_naming(&with("[target]", "[target]\nspeed = 3"), "target.speed");
+    fails_naming(
+        &format!("{GOOD}[[events]]\ntick = 5\nfeed = 0.005\n"),
+        "events[0].feed",
+    );
+    fails_naming(
+        &format!("{GOOD}[[events]]\ntick = 5\nhold = true\nabort = true\n"),
+        "events[0]",
+    );
+}
+
+/// The operator events re-time the move: a feed override, a hold (a quick stop that keeps
+/// the target), a new target while held (it waits), resume (to the new target), an abort
+/// (every later event ignored); every limit holds, in every format.
+#[test]
+fn operator_events_re_time_the_move_within_the_limits() {
+    let events = "[[events]]\ntick = 20\nfeed = 0.5\n[[events]]\ntick = 150\nhold = true\n\
+                  [[events]]\ntick = 180\ntarget = { position = [-5, 5] }\n\
+                  [[events]]\ntick = 400\nresume = true\n[[events]]\ntick = 460\nabort = true\n\
+                  [[events]]\ntick = 700\nresume = true\n";
+    let dir = tempfile::tempdir().unwrap();
+    for (number, resolution) in [
+        ("f64", f64::EPSILON),
+        ("f32", f64::from(f32::EPSILON)),
+        ("fixed", 1e-9),
+    ] {
+        let text = format!("{GOOD}{events}").replace("\"f64\"", &format!("\"{number}\""));
+        let (output, stderr, out) = run(number, &text, dir.path());
+        assert!(output.status.success(), "{number}: {stderr}");
+        let (_, rows) = samples(&out);
+        let limits = [[100.0, 1000.0, 10000.0]; 2];
+        assert_keeps(&rows, &limits, resolution);
+        let s = summary(&out);
+        let kinds: Vec<&str> = s["moves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m["kind"].as_str().unwrap())
+            .collect();
+        // The new target while held moves nothing; the resume after the abort is ignored.
+        assert_eq!(
+            kinds,
+            ["target", "feed", "hold", "resume", "abort"],
+            "{number}"
+        );
+        assert_eq!(s["events_ignored"].as_u64(), Some(1), "{number}");
+        // The feed halves the velocity limits from tick 20 on (the x axis, which limits the
+        // move, reaches its half; at full feed it would be past it by tick 150); the hold
+        // stops the motion before the resume.
+        let vx = rows[20..150].iter().fold(0.0_f64, |m, r| m.max(r[4].abs()));
+        assert!(vx <= 50.0 * (1.0 + 1e-9) && vx > 45.0, "{number}: {vx}");
+        assert_eq!((rows[399][4], rows[399][5]), (0.0, 0.0), "{number}");
+        assert_eq!(&rows.last().unwrap()[4..8], &[0.0; 4], "{number}: at rest");
+    }
 }
