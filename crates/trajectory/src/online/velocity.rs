@@ -85,7 +85,6 @@ pub(super) fn time_optimal<R: Real>(
 /// gained, `(a₁² − a₀²)/2j₁ + a₁t₂ + (a_f² − a₁²)/2j₃ = v_f − v₀`, is
 /// `c₂a₁² + c₁a₁ + c₀ = 0` with `c₂ = 1/2j₃ − 1/2j₁`, `c₁ = τ + a₀/j₁ − a_f/j₃`,
 /// `c₀ = a_f²/2j₃ − a₀²/2j₁ − (v_f − v₀)`: linear when both ramps have the same jerk.
-#[allow(clippy::too_many_arguments)]
 fn ramp_hold_ramp<R: Real>(
     (v0, a0): (R, R),
     (vf, af): (R, R),
