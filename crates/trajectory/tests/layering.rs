@@ -28,7 +28,7 @@ const LAYERS: [(&str, u8); 7] = [
 
 /// The modules of `plan` in dependency order (`mod` is the layer's own helpers): a module
 /// names only the modules before it.
-const PLAN_ORDER: [&str; 15] = [
+const PLAN_ORDER: [&str; 16] = [
     "mod",
     "arc_inverse",
     "limits",
@@ -41,6 +41,7 @@ const PLAN_ORDER: [&str; 15] = [
     "options",
     "joins",
     "speed_limit",
+    "transitions",
     "planner",
     "parameter",
     "path_timing",

@@ -29,6 +29,7 @@ mod scurve;
 mod speed_limit;
 mod timing;
 mod trajectory;
+mod transitions;
 mod trapezoid;
 
 #[cfg(test)]

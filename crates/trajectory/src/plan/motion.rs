@@ -204,10 +204,20 @@ impl ProfileZone {
 
     /// Appends a phase of `duration` starting with acceleration `a0` and jerk `j`; the start
     /// time, arc length and speed continue from the previous phase (or from the zone entry
-    /// `(t, s, v)`). Phases that are not longer than zero are left out.
-    pub(super) fn push(&mut self, entry: (f64, f64, f64), duration: f64, a0: f64, j: f64) {
+    /// `(t, s, v)`). Phases that are not longer than zero are left out, and a cruise
+    /// (`a0 = j = 0`) after a cruise lengthens it. `false` when the phase is lost because
+    /// all [`PHASES_PER_ZONE`] slots are taken.
+    pub(super) fn push(&mut self, entry: (f64, f64, f64), duration: f64, a0: f64, j: f64) -> bool {
         if !greater(duration, 0.0) {
-            return;
+            return true;
+        }
+        let cruise = |a0: f64, j: f64| a0 == 0.0 && j == 0.0;
+        if let Some(last) = self.phases_mut().last_mut()
+            && cruise(last.a0, last.j)
+            && cruise(a0, j)
+        {
+            last.duration += duration;
+            return true;
         }
         let (t0, s0, v0) = match self.phases().last() {
             Some(last) => {
@@ -226,7 +236,14 @@ impl ProfileZone {
                 j,
             };
             self.count += 1;
+            return true;
         }
+        false
+    }
+
+    /// The phases of the zone, to change in place.
+    pub(super) fn phases_mut(&mut self) -> &mut [Phase] {
+        self.phases.get_mut(..self.count).unwrap_or(&mut [])
     }
 
     /// The time at which the zone's last phase ends (`t_start` for a zone without phases).
@@ -396,10 +413,16 @@ mod tests {
         assert_eq!(z.t_end(), 4.0);
         assert_eq!(z.end_state().s, 4.0);
         // at most seven phases are stored
-        for _ in 0..10 {
-            z.push((0.0, 0.0, 0.0), 1.0, 0.0, 0.0);
+        for k in 0..10 {
+            let kept = z.push((0.0, 0.0, 0.0), 1.0, 1.0, 0.0);
+            assert_eq!(kept, k < PHASES_PER_ZONE - 2);
         }
         assert_eq!(z.phases().len(), PHASES_PER_ZONE);
+        // a cruise after a cruise lengthens it
+        let mut c = ProfileZone::new(0.0, 10.0, 2.0, 1.0, 1.0);
+        c.push((0.0, 0.0, 1.0), 2.0, 0.0, 0.0);
+        c.push((0.0, 0.0, 1.0), 3.0, 0.0, 0.0);
+        assert_eq!((c.phases().len(), c.t_end()), (1, 5.0));
     }
 
     #[test]

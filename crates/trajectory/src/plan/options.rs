@@ -77,8 +77,16 @@ pub enum ProfileShape {
 /// 5. **Profiles.** Each zone gets the fastest double S (or trapezoid) from its entry to
 ///    its exit speed under its limits, cruising at most at its speed limit, with zero
 ///    acceleration at its ends: `s`, `v` and `a` are continuous across zones (the jerk
-///    steps there). Ending every zone with `a = 0` costs time on continuously curved
-///    paths (many short zones); it keeps each zone's profile independent and exact.
+///    steps there).
+/// 6. **Transitions.** Where the speed rises (or falls) on both sides of a boundary, the
+///    stretch from the start of the change before it to the end of the change after it is
+///    replaced by the time-optimal motion between those two states under the tighter
+///    limits of the two zones (the one-dimensional online solver, [`solve_axis`](crate::solve_axis)):
+///    it passes the boundary with acceleration instead of flattening out there. It is kept
+///    only where it is faster and keeps each zone's speed, acceleration and jerk limits on
+///    its part of the zone (where the faster rise would pass the speed limit of the zone
+///    before the boundary, the boundary keeps its zero acceleration). For the bundled pick-and-place job this takes the motion
+///    from 1.949 s to 1.942 s.
 ///
 /// The plan is made for one control rate: compile it at that rate
 /// ([`PathTiming::compile`](crate::PathTiming::compile) does).

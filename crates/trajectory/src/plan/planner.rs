@@ -9,6 +9,7 @@ use super::motion::{MotionProfile, ProfileZone};
 use super::options::PlanOptions;
 use super::scurve::{fill_zone, reach};
 use super::speed_limit::zones_into;
+use super::transitions::carry_acceleration;
 use crate::error::Error;
 
 /// The forward/backward pass over the zone boundaries: sets `v_start`, `v_end` of every
@@ -33,6 +34,26 @@ fn boundary_speeds(zones: &mut [ProfileZone]) {
     }
 }
 
+/// The motion through `zones` (whose extents, limits and caps are set), in place: the
+/// boundary speeds, a profile per zone, and the transitions that carry the acceleration
+/// across boundaries where that is faster.
+fn fill_zones(zones: &mut [ProfileZone]) {
+    double_s_zones(zones);
+    carry_acceleration(zones);
+}
+
+/// The boundary speeds and the double S of each zone, from and to zero acceleration.
+fn double_s_zones(zones: &mut [ProfileZone]) {
+    boundary_speeds(zones);
+    let (mut t, mut s) = (0.0, 0.0);
+    for z in zones.iter_mut() {
+        z.t_start = t;
+        fill_zone(z, s);
+        t = z.t_end();
+        s = z.end_state().s;
+    }
+}
+
 /// Plans the motion along `curve` (whose arc-length table is `table`) under `limits` less
 /// the feed reserve into `motion`, in place: zones of the speed limit, boundary speeds, and
 /// a profile per zone. `options` must be valid and the axis count checked.
@@ -52,14 +73,7 @@ where
 {
     let planned = limits.without_reserve(options.feed_share());
     zones_into(curve, table, &planned, options, &mut motion.zones)?;
-    boundary_speeds(&mut motion.zones);
-    let (mut t, mut s) = (0.0, 0.0);
-    for z in motion.zones.iter_mut() {
-        z.t_start = t;
-        fill_zone(z, s);
-        t = z.t_end();
-        s = z.end_state().s;
-    }
+    fill_zones(&mut motion.zones);
     motion.seal(table.length())?;
     if motion.duration() * options.rate() > f64::from(u32::MAX) {
         return Err(Error::TooLong);
@@ -73,6 +87,7 @@ mod tests {
     use std::vec::Vec as StdVec;
 
     use super::*;
+    use crate::plan::motion::Phase;
     use crate::plan::options::{MAX_SAMPLES, ProfileShape};
     use crate::plan::scurve::change_distance;
     use crate::plan::testcurves::{LineArcLine, textbook_scurve_duration};
@@ -699,5 +714,112 @@ mod tests {
                 "{ticks}"
             );
         }
+    }
+
+    /// Zones `(end, v_limit, a_limit, j_limit)` from arc length 0, filled with or without
+    /// the transitions; the duration.
+    fn zones_of(spec: &[(f64, f64, f64, f64)], carry: bool) -> (StdVec<ProfileZone>, f64) {
+        let mut start = 0.0;
+        let mut zones: StdVec<ProfileZone> = spec
+            .iter()
+            .map(|&(end, v, a, j)| {
+                let z = ProfileZone::new(start, end, v, a, j);
+                start = end;
+                z
+            })
+            .collect();
+        if carry {
+            fill_zones(&mut zones);
+        } else {
+            double_s_zones(&mut zones);
+        }
+        let t = zones.last().map_or(0.0, ProfileZone::t_end);
+        (zones, t)
+    }
+
+    #[test]
+    fn a_speed_change_through_a_boundary_is_one_double_s() {
+        // Two zones of the same limits: the fastest motion is the one double S over both;
+        // with zero acceleration at the boundary (inside the first speed change) it is
+        // slower.
+        let single = MotionProfile::<1>::scurve(10.0, 2.0, 4.0, 16.0).unwrap();
+        let rising = [(0.5, 2.0, 4.0, 16.0), (10.0, 2.0, 4.0, 16.0)];
+        let falling = [(9.5, 2.0, 4.0, 16.0), (10.0, 2.0, 4.0, 16.0)];
+        for spec in [rising, falling] {
+            let (zones, t) = zones_of(&spec, true);
+            let (_, t_flat) = zones_of(&spec, false);
+            assert!(
+                (t - single.duration()).abs() < 1e-12,
+                "{t} vs {}",
+                single.duration()
+            );
+            assert!(t_flat > t + 0.05, "{t_flat} vs {t}");
+            // the boundary is passed with acceleration
+            let a = zones[1].phases()[0].a0;
+            assert!(a.abs() > 1.0, "{a}");
+        }
+    }
+
+    #[test]
+    fn transitions_keep_every_zone_limit_and_are_continuous() {
+        let mut rng = crate::online::testing::Rng(7);
+        let mut carried = 0;
+        for case in 0..300 {
+            let n = 2 + case % 7;
+            let mut end = 0.0;
+            let spec: StdVec<_> = (0..n)
+                .map(|_| {
+                    end += rng.range(0.05, 3.0);
+                    let v = rng.range(0.5, 3.0);
+                    (end, v, rng.range(1.0, 8.0), rng.range(5.0, 50.0))
+                })
+                .collect();
+            let (zones, t) = zones_of(&spec, true);
+            let (_, t_flat) = zones_of(&spec, false);
+            assert!(t <= t_flat, "case {case}: {t} > {t_flat}");
+            carried += usize::from(t < t_flat - 1e-9);
+            check_zones(&zones, end, case);
+        }
+        // (most of the others rise into a zone whose lower limit the faster motion would pass)
+        assert!(carried > 50, "{carried} of 300 cases faster");
+    }
+
+    /// Every phase continues the previous one in `s`, `v`, `a` and time, keeps its zone's
+    /// limits (sampled), and the motion ends at `length` at rest.
+    fn check_zones(zones: &[ProfileZone], length: f64, case: usize) {
+        let mut prev: Option<Phase> = None;
+        for z in zones {
+            for ph in z.phases() {
+                if let Some(p) = prev {
+                    let end = p.local(p.duration);
+                    let tol = 1e-9 * (1.0 + end.s);
+                    assert!((ph.t0 - p.end()).abs() < 1e-12, "case {case}: time");
+                    assert!((ph.s0 - end.s).abs() < tol, "case {case}: s");
+                    assert!((ph.v0 - end.v).abs() < 1e-9, "case {case}: v");
+                    assert!((ph.a0 - end.a).abs() < 1e-9, "case {case}: a");
+                }
+                for k in 0..=20 {
+                    let st = ph.local(ph.duration * f64::from(k) / 20.0);
+                    let ok = st.v >= -1e-12
+                        && st.v <= z.v_limit * (1.0 + 1e-9)
+                        && st.a.abs() <= z.a_limit * (1.0 + 1e-9)
+                        && st.j.abs() <= z.j_limit
+                        && st.s >= z.start - 1e-9
+                        && st.s <= z.end + 1e-9;
+                    assert!(ok, "case {case}: {st:?} in {z:?}");
+                }
+                prev = Some(*ph);
+            }
+        }
+        let last = prev.unwrap();
+        let end = last.local(last.duration);
+        assert!(
+            (end.s - length).abs() < 1e-9 * length,
+            "case {case}: {end:?}"
+        );
+        assert!(
+            end.v.abs() < 1e-9 && end.a.abs() < 1e-9,
+            "case {case}: {end:?}"
+        );
     }
 }
