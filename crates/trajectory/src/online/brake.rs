@@ -115,8 +115,8 @@ fn acceleration_brake<R: Real>(v: R, a: R, l: &AxisLimits<R>) -> [JerkPhase<R>; 
 fn velocity_brake<R: Real>(v: R, a: R, l: &AxisLimits<R>) -> [JerkPhase<R>; 2] {
     let j = l.jerk;
     let to_a_min = (a - l.a_min) / j;
-    let to_v_max = (a + (a * a + R::TWO * j * (v - l.v_max)).sqrt()) / j;
-    let to_v_min = (a + (a * a * R::HALF + j * (v - l.v_min)).sqrt()) / j;
+    let to_v_max = (a + (a * a + R::TWO * j * (v - l.v_max)).root()) / j;
+    let to_v_min = (a + (a * a * R::HALF + j * (v - l.v_min)).root()) / j;
     let first = to_v_max.min_of(to_v_min);
     let mut phases = [
         JerkPhase {

@@ -114,10 +114,10 @@ impl<R: Real> Up<R> {
             return None;
         }
         let mut s = Shape {
-            a1: peak.sqrt(),
+            a1: peak.root(),
             t2: R::ZERO,
             t4: R::ZERO,
-            a5: -trough.sqrt(),
+            a5: -trough.root(),
             t6: R::ZERO,
             cruise: true,
         };

@@ -183,9 +183,9 @@ fn quadratic_in<R: Real>(c0: R, c1: R, c2: R, lo: R, hi: R) -> Roots<R> {
     } else {
         let q =
             -(c1 + if c1.is_negative() {
-                -disc.sqrt()
+                -disc.root()
             } else {
-                disc.sqrt()
+                disc.root()
             }) * R::HALF;
         x1 = q / c2;
         x2 = if q == R::ZERO { x1 } else { c0 / q };

@@ -245,8 +245,8 @@ impl<R: Real> Up<R> {
         // `t₂ ≥ 0` (within the time tolerance) needs `a₅² ≥ q`: below `−√q` or above `√q`.
         let q = a * a - j * (vf - v0) - (a0s - afs) * R::HALF - a * j * self.tol.time;
         let (lo, mut hi) = (l.a_min, af.min_of(a));
-        if q > R::ZERO && hi < q.sqrt() {
-            hi = hi.min_of(-q.sqrt());
+        if q > R::ZERO && hi < q.root() {
+            hi = hi.min_of(-q.root());
         }
         for &a5 in roots_in(&coeffs, lo, hi).as_slice() {
             let t2 = (-c(2.0) * a * a + c(2.0) * j * (vf - v0) + a0s - afs + c(2.0) * a5 * a5)
@@ -289,8 +289,8 @@ impl<R: Real> Up<R> {
         // `t₆ ≥ 0` (within the time tolerance) needs `a₁² ≥ q`: below `−√q` or above `√q`.
         let q = am * am - j * (v0 - vf) + (a0s - afs) * R::HALF + am * j * self.tol.time;
         let mut lo = a0.max_of(am);
-        if q > R::ZERO && lo > -q.sqrt() {
-            lo = lo.max_of(q.sqrt());
+        if q > R::ZERO && lo > -q.root() {
+            lo = lo.max_of(q.root());
         }
         for &a1 in roots_in(&coeffs, lo, l.a_max).as_slice() {
             let t6 = -(-c(2.0) * am * am + c(2.0) * j * (v0 - vf) - a0s + afs + c(2.0) * a1 * a1)
@@ -366,7 +366,7 @@ impl<R: Real> Up<R> {
             if (d + e).is_negative() {
                 return None;
             }
-            let r = (d + e).sqrt() + R::lit(8.0) * R::EPS * m;
+            let r = (d + e).root() + R::lit(8.0) * R::EPS * m;
             Some((m - r, m + r))
         };
         let (lo1, hi1) = between(l.a_max + slack, R::ONE)?;

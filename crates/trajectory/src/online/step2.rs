@@ -80,7 +80,7 @@ impl<R: Real> Up<R> {
         };
         let c = -a * a + a * (j * tau + a0 - af) + j * (v0 - vf) - squares;
         let peak = (a * a + c >= R::ZERO).then(|| {
-            let a5 = a - (a * a + c).sqrt();
+            let a5 = a - (a * a + c).root();
             Shape {
                 a1: a,
                 t2: (j * tau - two * a + a0 - af + two * a5) / j,
@@ -92,7 +92,7 @@ impl<R: Real> Up<R> {
         });
         let c = am * am + am * (j * tau + a0 - af) + j * (v0 - vf) - squares;
         let trough = (am * am - c >= R::ZERO).then(|| {
-            let a1 = am + (am * am - c).sqrt();
+            let a1 = am + (am * am - c).root();
             Shape {
                 a1,
                 t2: R::ZERO,

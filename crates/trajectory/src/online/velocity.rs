@@ -19,7 +19,7 @@ fn rise_hold_fall<R: Real>(v0: R, a0: R, vf: R, af: R, a_max: R, j: R) -> Option
     if peak2.is_negative() {
         return None;
     }
-    let mut peak = peak2.sqrt();
+    let mut peak = peak2.root();
     let mut hold = R::ZERO;
     if peak > a_max {
         peak = a_max;
@@ -117,9 +117,9 @@ fn ramp_hold_ramp<R: Real>(
         }
         // The root without cancellation, and its partner from the product of the roots.
         let root_disc = if c1.is_negative() {
-            -disc.sqrt()
+            -disc.root()
         } else {
-            disc.sqrt()
+            disc.root()
         };
         let q = -(c1 + root_disc) * R::HALF;
         match (root, q == R::ZERO) {

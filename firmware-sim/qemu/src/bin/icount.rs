@@ -11,10 +11,13 @@
 //! (2 501 samples, several pieces each).
 //!
 //! Then the online solver: the host benchmark's random 3-axis moves, each solved in place
-//! (`strak_qemu::online`), in `f32` and `f64`.
+//! (`strak_qemu::online`), in `f32` and `f64`; on the Cortex-M4F also their first step alone
+//! in `f32` (each axis's time-optimal motion and feasible durations, `solve_axis`), which
+//! splits a solve's count between that step and the synchronization.
 //!
 //! Before measuring, it checks every tick kernel entry point against the portable kernel, bit
-//! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`), and the sampler's
+//! for bit, on random states of 1 to 8 axes (`strak_qemu::kernel_check`), the solver's `f32`
+//! square root against the software one (`strak_qemu::online::check_root`), and the sampler's
 //! entry points against each other over the measured paths, in RAM and from blobs
 //! (`strak_qemu::sampler_check`): a difference is logged and fails the run.
 //!
@@ -317,6 +320,13 @@ fn main() -> ! {
         );
         exit_failure()
     }
+    if let Err(bits) = online::check_root() {
+        defmt::error!(
+            "the solver's f32 square root differs from the software one at {=u32:#x}",
+            bits
+        );
+        exit_failure()
+    }
     let mut compared = 0;
     #[cfg(target_abi = "eabihf")]
     {
@@ -426,6 +436,19 @@ fn main() -> ! {
                 defmt::error!("{=str}: move {=usize} did not solve", name, i);
                 exit_failure()
             }
+        }
+        report(name, counts);
+        cases += 1;
+    }
+    // The first step alone (each axis solved on its own), in `f32` on the FPU.
+    #[cfg(target_abi = "eabihf")]
+    {
+        let counts = counts.get_mut(..ONLINE_CASES).unwrap_or(&mut []);
+        let name = "online-f32-3axis-step1";
+        if let Err(i) = online::count_axis_solves::<f32>(&counter, &cal, OnlineCase::in_f32, counts)
+        {
+            defmt::error!("{=str}: move {=usize} did not solve", name, i);
+            exit_failure()
         }
         report(name, counts);
         cases += 1;
