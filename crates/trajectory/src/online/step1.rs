@@ -377,11 +377,15 @@ impl<R: Real> Up<R> {
     }
 }
 
-/// The profiles found, with their durations, at most [`MAX_VALID`] + 3 kept.
+/// The durations of the profiles found (at most [`MAX_VALID`] + 3 kept), and the shortest
+/// profile (the first found of that duration).
 #[derive(Clone, Copy, Debug)]
 struct Found<R> {
-    items: [(Candidate<R>, R); MAX_VALID + 3],
+    durations: [R; MAX_VALID + 3],
     len: usize,
+    best: Candidate<R>,
+    /// The profiles found now are of the mirrored problem: negate them.
+    mirrored: bool,
     /// Stop at the first profile.
     first_only: bool,
 }
@@ -394,10 +398,19 @@ impl<R: Real> Found<R> {
     }
 
     fn push(&mut self, c: Candidate<R>) {
-        if self.len < self.items.len() {
-            self.items[self.len] = (c, c.duration());
+        if self.len < self.durations.len() {
+            let d = c.duration();
+            if self.len == 0 || d < self.shortest() {
+                self.best = if self.mirrored { c.negated() } else { c };
+            }
+            self.durations[self.len] = d;
             self.len += 1;
         }
+    }
+
+    /// The duration of [`best`](Self::best) (some profile must have been found).
+    fn shortest(&self) -> R {
+        self.best.duration()
     }
 }
 
@@ -424,8 +437,10 @@ pub(super) fn time_optimal<R: Real>(
     // stops at the first, beginning in the direction of the target.
     let first_only = target.velocity == R::ZERO && target.acceleration == R::ZERO;
     let mut found = Found {
-        items: [(empty, R::ZERO); MAX_VALID + 3],
+        durations: [R::ZERO; MAX_VALID + 3],
         len: 0,
+        best: empty,
+        mirrored: false,
         first_only,
     };
     let directions = if up.dp.is_negative() {
@@ -434,13 +449,8 @@ pub(super) fn time_optimal<R: Real>(
         [(&up, false), (&down, true)]
     };
     for (problem, mirrored) in directions {
-        let from = found.len;
+        found.mirrored = mirrored;
         problem.profiles(&mut found);
-        if mirrored {
-            for item in &mut found.items[from..found.len] {
-                item.0 = item.0.negated();
-            }
-        }
     }
     block(origin, brake, brake_time, &mut found, up.tol.time, out)
 }
@@ -455,24 +465,27 @@ fn block<R: Real>(
     tol: R,
     out: &mut AxisProfile<R>,
 ) -> Option<Span<R>> {
-    let items = &mut found.items[..found.len];
-    // Insertion sort by duration (at most eight items).
-    for i in 1..items.len() {
+    if found.len == 0 {
+        return None;
+    }
+    let sorted = &mut found.durations[..found.len];
+    // Insertion sort (at most eight durations).
+    for i in 1..sorted.len() {
         let mut k = i;
-        while k > 0 && items[k].1 < items[k - 1].1 {
-            items.swap(k, k - 1);
+        while k > 0 && sorted[k] < sorted[k - 1] {
+            sorted.swap(k, k - 1);
             k -= 1;
         }
     }
     let mut durations = [R::ZERO; MAX_VALID + 3];
     let mut n = 0;
-    for item in items.iter() {
-        if n == 0 || item.1 - durations[n - 1] > tol {
-            durations[n] = item.1;
+    for &d in sorted.iter() {
+        if n == 0 || d - durations[n - 1] > tol {
+            durations[n] = d;
             n += 1;
         }
     }
-    let best = items.first()?.0;
+    let best = found.best;
     with_brake(
         origin,
         brake,
