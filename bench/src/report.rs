@@ -617,12 +617,12 @@ pub fn online_checks(r: &Results) -> Vec<Check> {
 /// Why the online solver misses its speed target (from the profile of a random 3-axis
 /// move under callgrind).
 const ONLINE_MISSED: &str = "Where the time of a random 3-axis synchronized move goes (callgrind, \
-2 000 moves: about 31 700 x86-64 instructions per move in f64, 29 100 in f32): 56 % is the \
+2 000 moves: about 30 100 x86-64 instructions per move in f64, 27 700 in f32): 56 % is the \
 time-optimal search of each axis (both directions, five forms each: the closed form with a \
 cruise, three quartics and a quadratic, each root isolated on its interval and checked by \
-integrating the seven phases), of which 23 points are root finding; 37 % is the motion of \
+integrating the seven phases), of which 25 points are root finding; 38 % is the motion of \
 the common duration for the two axes that are not the slowest (the farthest motions in \
-either direction, 22 %, and their blend, 13 %). The search narrows each quartic's interval \
+either direction, 22 %, and their blend, 14 %). The search narrows each quartic's interval \
 to the roots whose profile can keep its acceleration limits and non-negative holds before \
 it isolates any root: of the 32 700 quartic forms tried on the first 2 000 moves only 659 \
 yield a profile (the cruise form gives 4 762 of the 6 064 profiles), and the narrowing cut \
