@@ -124,6 +124,8 @@ struct HostJob {
 struct HostMove {
     name: String,
     job: MoveJob,
+    /// The firmware source of its events ([`move_events_src`]).
+    events: String,
     playback: NumberFormat,
     /// Every sample's bits ([`move_bits`]).
     bits: Vec<u64>,
@@ -317,17 +319,7 @@ fn export_moves(dir: &Path) -> Result<Vec<HostMove>, String> {
                 job.axes()
             ));
         }
-        if let Some((tick, _)) = job
-            .events
-            .iter()
-            .find(|(_, e)| matches!(e, MoveEvent::Operator(_)))
-        {
-            return Err(format!(
-                "{}: the event at tick {tick}: the firmware plays new targets and stops, not \
-                 feed override, hold, resume or abort",
-                file.display()
-            ));
-        }
+        let events = move_events_src(&job).map_err(|e| format!("{}: {e}", file.display()))?;
         for playback in FIRMWARE_FORMATS {
             let bits = move_bits(&job, playback)
                 .map_err(|e| format!("{} ({playback}): {e}", file.display()))?;
@@ -339,6 +331,7 @@ fn export_moves(dir: &Path) -> Result<Vec<HostMove>, String> {
             out.push(HostMove {
                 name: name.clone(),
                 job: job.clone(),
+                events: events.clone(),
                 playback,
                 bits,
             });
@@ -451,49 +444,61 @@ fn jobs_source(jobs: &[HostJob], flash: &HostJob, moves: &[HostMove]) -> String 
     );
     s += "\n/// The online moves the device solves and plays (3 axes).\npub static MOVE_JOBS: &[MoveJob<3>] = &[\n";
     for m in moves.iter().filter(|m| m.playback == FIRMWARE_FORMATS[0]) {
-        s += &format!("    {},\n", move_job_src(&m.name, &m.job));
+        s += &format!("    {},\n", move_job_src(&m.name, &m.job, &m.events));
     }
     s += "];\n";
     s
 }
 
-/// A `MoveJob` literal for the move file `name`.
-fn move_job_src(name: &str, job: &MoveJob) -> String {
-    let states = |v: &[[f64; 3]]| {
-        let rows: Vec<String> = v
-            .iter()
-            .map(|r| format!("[{}]", r.map(f64_src).join(", ")))
-            .collect();
-        format!("[{}]", rows.join(", "))
-    };
-    let target = |t: &MoveTarget| {
-        format!(
-            "MoveTarget {{ states: {}, position: {} }}",
-            states(&t.states),
-            t.position
-        )
-    };
-    let events: Vec<String> = job
-        .events
+/// The source of states, one `[position, velocity, acceleration]` per axis.
+fn states_src(v: &[[f64; 3]]) -> String {
+    let rows: Vec<String> = v
         .iter()
-        .map(|(tick, e)| match e {
-            MoveEvent::Target(t) => format!("({tick}, MoveEvent::Target({}))", target(t)),
-            MoveEvent::Stop => format!("({tick}, MoveEvent::Stop)"),
-            MoveEvent::Operator(_) => unreachable!("rejected by export_moves"),
-        })
+        .map(|r| format!("[{}]", r.map(f64_src).join(", ")))
         .collect();
+    format!("[{}]", rows.join(", "))
+}
+
+/// A `MoveTarget` literal.
+fn target_src(t: &MoveTarget) -> String {
+    format!(
+        "MoveTarget {{ states: {}, position: {} }}",
+        states_src(&t.states),
+        t.position
+    )
+}
+
+/// The source of a move file's events (the inside of a slice literal).
+///
+/// # Errors
+/// An operator event (feed override, hold, resume, abort): the firmware plays new targets
+/// and stops only.
+fn move_events_src(job: &MoveJob) -> Result<String, String> {
+    let event = |(tick, e): &(u64, MoveEvent)| match e {
+        MoveEvent::Target(t) => Ok(format!("({tick}, MoveEvent::Target({}))", target_src(t))),
+        MoveEvent::Stop => Ok(format!("({tick}, MoveEvent::Stop)")),
+        MoveEvent::Operator(_) => Err(format!(
+            "the event at tick {tick}: the firmware plays new targets and stops, not feed \
+             override, hold, resume or abort"
+        )),
+    };
+    let events: Result<Vec<String>, String> = job.events.iter().map(event).collect();
+    Ok(events?.join(", "))
+}
+
+/// A `MoveJob` literal for the move file `name`, with its `events` ([`move_events_src`]).
+fn move_job_src(name: &str, job: &MoveJob, events: &str) -> String {
     let sync = match job.sync {
         Synchronization::Time => "Time",
         Synchronization::Phase => "Phase",
         Synchronization::None => "None",
     };
     format!(
-        "MoveJob {{ name: {name:?}, rate_hz: {}, sync: Synchronization::{sync}, limits: {}, start: {}, target: {}, events: &[{}] }}",
+        "MoveJob {{ name: {name:?}, rate_hz: {}, sync: Synchronization::{sync}, limits: {}, start: {}, target: {}, events: &[{events}] }}",
         f64_src(job.rate_hz),
-        states(&job.limits),
-        states(&job.start),
-        target(&job.target),
-        events.join(", ")
+        states_src(&job.limits),
+        states_src(&job.start),
+        target_src(&job.target),
     )
 }
 
