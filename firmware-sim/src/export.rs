@@ -21,6 +21,7 @@ use crate::curve_file::CurveFile;
 use crate::job::{Job, JobError};
 use crate::number::NumberFormat;
 use crate::pipeline::{PIECES, Prepared, boxed_path, compile_options, is_planned, plan_options};
+use crate::schedule::schedule;
 
 /// A sample value's raw bits, widened to `u64` (`f32`, `f64`: `to_bits`; `I32F32`: the `i64`
 /// bits reinterpreted).
@@ -162,15 +163,17 @@ fn to_blob<N: Number, const D: usize>(
     Ok((blob, back))
 }
 
-/// Plays `path` with the job's events as `strak-sim run` does; every sample's bits, and
+/// Plays `path` with the scheduled events as `strak-sim run` does; every sample's bits, and
 /// whether the sampler finished.
-fn play_bits<N, const D: usize>(job: &Job, path: &Path<N, D, PIECES>) -> (Vec<u64>, bool)
+fn play_bits<N, const D: usize>(
+    events: &[TimedEvent],
+    path: &Path<N, D, PIECES>,
+) -> (Vec<u64>, bool)
 where
     N: Kernel,
     N::Out: OutBits,
 {
-    let events = job.timed_events();
-    let mut player = EventPlayer::new(&events, path.ticks());
+    let mut player = EventPlayer::new(events, path.ticks());
     let mut sampler = Sampler::new(path);
     let mut bits = Vec::with_capacity(3 * D * (path.ticks() as usize + 1));
     while let Some(s) = player.step(&mut sampler) {
@@ -192,14 +195,15 @@ where
     let path = &*compiled.path;
     // What firmware plays is what was compiled: the blob reads back as the path.
     let (blob, back) = to_blob(path)?;
-    let (bits, finished) = play_bits(job, &back);
+    let events = schedule(job, &back)?.events;
+    let (bits, finished) = play_bits(&events, &back);
     Ok(Export {
         playback,
         axes: D,
         blob,
         pieces: path.pieces().len(),
         ticks: path.ticks(),
-        events: job.timed_events(),
+        events,
         bits,
         finished,
         recipe: recipe::<D>(job, &prepared.limits),

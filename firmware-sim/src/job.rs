@@ -30,7 +30,8 @@
 //! tolerance = 0.001           # position tolerance in units (default 1e-4 of the extent)
 //! max_piece_ticks = 256       # longest polynomial piece in ticks
 //! feed_share = 0.25           # share of acceleration and jerk reserved for feed changes
-//!                             # (not for a straight line: see `crate::line`)
+//!                             # (default 0: none, the feed guard schedules feed events;
+//!                             # not for a straight line: see `crate::line`)
 //!
 //! [[events]]                  # optional, any number; one action each
 //! tick = 300
@@ -104,6 +105,15 @@ mod range {
             d,
             |v: f64| v > 0.0 && v < 1.0,
             |v: f64| format!("must be between 0 and 1 (exclusive), not {v}"),
+        )
+        .map(Some)
+    }
+
+    pub(super) fn some_reserve<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        check(
+            d,
+            |v: f64| (0.0..1.0).contains(&v),
+            |v: f64| format!("must be at least 0 and below 1, not {v}"),
         )
         .map(Some)
     }
@@ -309,8 +319,9 @@ pub struct JobCompile {
     /// The longest piece in ticks (default 256).
     #[serde(default, deserialize_with = "range::some_ticks")]
     pub max_piece_ticks: Option<u32>,
-    /// The share of acceleration and jerk reserved for feed changes (default 0.25).
-    #[serde(default, deserialize_with = "range::some_share")]
+    /// The share of acceleration and jerk reserved for feed changes (default 0: none, feed
+    /// events are scheduled by the feed guard).
+    #[serde(default, deserialize_with = "range::some_reserve")]
     pub feed_share: Option<f64>,
 }
 
@@ -458,11 +469,11 @@ impl Job {
         self.unit.as_deref().unwrap_or("units")
     }
 
-    /// The share of acceleration and jerk reserved for feed changes.
+    /// The share of acceleration and jerk reserved for feed changes (default 0: the motion
+    /// uses the full limits and a [`FeedGuard`](strak_trajectory::FeedGuard) schedules each
+    /// feed event).
     pub fn feed_share(&self) -> f64 {
-        self.compile
-            .feed_share
-            .unwrap_or(strak_trajectory::CompileOptions::DEFAULT_FEED_SHARE)
+        self.compile.feed_share.unwrap_or(0.0)
     }
 
     /// The events sorted by tick (stable: events of one tick in file order).
@@ -563,7 +574,7 @@ kind = "s-curve"
         assert_eq!(job.axes(), 2);
         assert_eq!(job.profile.kind(), ProfileKind::SCurve);
         assert_eq!(job.profile.planner(), Some(&PlannerSettings::default()));
-        assert_eq!(job.feed_share(), 0.25);
+        assert_eq!(job.feed_share(), 0.0);
         assert!(job.events.is_empty());
     }
 

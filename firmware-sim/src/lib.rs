@@ -17,5 +17,6 @@ pub mod pipeline;
 pub mod plot;
 pub mod run;
 pub mod sample;
+pub mod schedule;
 pub mod summary;
 pub mod toml_error;

@@ -30,11 +30,7 @@ pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 /// assert_eq!(resolution(NumberFormat::Q40, 1e6), 2f64.powi(-32));
 /// ```
 pub fn resolution(number: NumberFormat, magnitude: f64) -> f64 {
-    match number {
-        NumberFormat::F64 => magnitude * f64::EPSILON,
-        NumberFormat::F32 => magnitude * f64::from(f32::EPSILON),
-        NumberFormat::Q40 => 2.0_f64.powi(-32),
-    }
+    number.sample_resolution(magnitude)
 }
 
 /// `|v|` over the axes.

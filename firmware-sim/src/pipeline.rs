@@ -8,12 +8,14 @@
 //!    ([`ParameterTiming::over`]), `constant-speed` ([`PathTiming::constant_speed`]),
 //!    `trapezoid` and `s-curve` ([`PathTiming::plan`] with [`ProfileShape::Trapezoid`] /
 //!    [`ProfileShape::SCurve`]: curvature and per-axis limits included), at the job's rate
-//!    and with the **feed share** `s` (`[compile] feed_share`, default ¼) reserved by the
+//!    and with the **feed share** `s` (`[compile] feed_share`, default 0) reserved by the
 //!    planner ([`PlanOptions::with_feed_share`]: it plans with `(1 − s)·a`, `(1 − s)·j`,
 //!    `(1 − s)·aᵢ`); the velocity limits (path and per axis) are reduced by
 //!    [`VELOCITY_RESERVE`] for the compiled spline's fit error. The compiler is given `a`,
 //!    `j` and `aᵢ` as the limits of feed changes and checks that the plan left `s` of each
 //!    free, so a feed ramp adds to the path and to each axis only what the plan left free.
+//!    Without a share (the default) the motion uses the full limits and the feed events are
+//!    scheduled by the feed guard ([`crate::schedule`]).
 //! 3. **Compile** ([`compile_into`]) into a [`Path`] of at most [`PIECES`] pieces, in the
 //!    playback format (`f64`, `f32`, [`Q40`]).
 //!
@@ -81,9 +83,16 @@ pub fn axis_array<const D: usize>(v: Option<&[f64]>) -> [f64; D] {
 /// # Errors
 /// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
 pub fn planning_limits<const D: usize>(job: &Job) -> Result<Limits<D>, JobError> {
+    job_limits(job, 1.0 - VELOCITY_RESERVE)
+}
+
+/// The job's limits (path and per axis), with the velocities times `v_keep`.
+///
+/// # Errors
+/// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
+pub fn job_limits<const D: usize>(job: &Job, v_keep: f64) -> Result<Limits<D>, JobError> {
     let l = &job.limits;
     let bad = |field: &'static str| move |e: TrajError| JobError::new(field, e.to_string());
-    let v_keep = 1.0 - VELOCITY_RESERVE;
     Limits::<D>::new(l.velocity * v_keep, l.acceleration, l.jerk)
         .map_err(bad("limits"))?
         .with_axis_velocity(axis_array::<D>(l.axis_velocity.as_deref()).map(|v| v * v_keep))
@@ -500,12 +509,15 @@ kind = "s-curve"
         ))
         .unwrap();
         let l = planning_limits::<2>(&job).unwrap();
-        // the planner reserves the feed share itself
+        // the planner reserves the feed share itself: none by default
         assert_eq!(l.acceleration(), 1000.0);
         assert_eq!(l.velocity(), 100.0 * (1.0 - VELOCITY_RESERVE));
         assert_eq!(l.axis_acceleration(), [800.0, f64::INFINITY]);
         let plan = plan_options(&job);
-        assert_eq!((plan.feed_share(), plan.rate()), (0.25, job.rate_hz));
+        assert_eq!((plan.feed_share(), plan.rate()), (0.0, job.rate_hz));
+        let reserved = Job::parse(&format!("{JOB}\n[compile]\nfeed_share = 0.25\n")).unwrap();
+        assert_eq!(plan_options(&reserved).feed_share(), 0.25);
+        assert_eq!(compile_options(&reserved).feed_share(), 0.25);
         let compile = compile_options(&job);
         assert_eq!(compile.limits(), Some((1000.0, 10000.0)));
         assert_eq!(

@@ -27,7 +27,9 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strak_curves::{I32F32, ParamCurve, ParamCurveDeriv, Scalar, arc_length};
-use strak_trajectory::{EventPlayer, Kernel, Number, Q40, RunEnd, Sample, Sampler};
+use strak_trajectory::{
+    Event, EventPlayer, Kernel, Number, Q40, RunEnd, Sample, Sampler, TimedEvent,
+};
 
 use crate::dyn_curve::{DynCurve, build_dyn};
 use crate::job::{Job, JobError, ProfileKind};
@@ -35,6 +37,7 @@ use crate::measure::{Measure, Observed, distance, norm, to_f64};
 use crate::number::{self, NumberFormat};
 use crate::pipeline::{Compiled, PIECES, Prepared, axis_array, curve_error, is_planned};
 use crate::plot::{self, PlotLimits, Recorder};
+use crate::schedule::{Scheduled, schedule};
 use crate::summary::{
     Accuracy, AlongPath, CheckRule, Checked, Differences, EndPoint, FiniteDifferences, Maxima,
     PlannedLimits, ReferenceDistance, Summary, WallTime,
@@ -205,6 +208,7 @@ struct Played<const D: usize> {
     aborted: bool,
     applied: usize,
     ignored: usize,
+    scheduled: Scheduled,
     last_position: [f64; D],
     exact_end: bool,
 }
@@ -336,9 +340,10 @@ where
     let csv_path = out.join("samples.csv");
     let mut csv = BufWriter::new(File::create(&csv_path).map_err(io_error(&csv_path))?);
     writeln!(csv, "{}", csv_header(D)).map_err(io_error(&csv_path))?;
-    let events = job.timed_events();
     let path = &*compiled.path;
-    let mut player = EventPlayer::new(&events, path.ticks());
+    let scheduled = schedule(job, path)?;
+    let events = &scheduled.events;
+    let mut player = EventPlayer::new(events, path.ticks());
     let last_event = events.last().map_or(0, |e| e.tick);
     let expected = (u64::from(path.ticks()) + 1).max(last_event + 1);
     let bar = progress_bar(options.progress, expected);
@@ -382,11 +387,20 @@ where
         samples: player.samples(),
         stop: player.end(&sampler),
         aborted: player.aborted(),
-        applied: player.applied(),
-        ignored: player.ignored(),
+        applied: job_events(&events[..player.applied()]),
+        ignored: job_events(&events[player.applied()..]),
+        scheduled: scheduled.clone(),
         last_position,
         exact_end: last_out == path.end_position(),
     })
+}
+
+/// The job's events among `events` (not the ramp scales the feed guard put before them).
+fn job_events(events: &[TimedEvent]) -> usize {
+    events
+        .iter()
+        .filter(|e| !matches!(e.event, Event::RampScale(_)))
+        .count()
 }
 
 /// The limit checks of the sampled maxima, the finite differences and the components along
@@ -573,6 +587,9 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
         finished: played.stop == RunEnd::Finished,
         events_applied: played.applied,
         events_ignored: played.ignored,
+        events_late_ticks: played.scheduled.latest(),
+        events_refused: played.scheduled.refused(),
+        feed_events: played.scheduled.applied.clone(),
         path_length: path_length(curves.reference),
         pieces: path.pieces().len(),
         piece_capacity: PIECES,
@@ -674,9 +691,9 @@ mod tests {
         assert_eq!(job.rate_hz, 1000.0);
         assert_eq!(job.profile.kind(), ProfileKind::SCurve);
         let limits = planning_limits::<3>(&job).unwrap();
-        // the planner reserves the feed share (¼) of the acceleration and jerk itself
+        // planned at the full acceleration and jerk (no feed share by default)
         assert_eq!(limits.acceleration(), job.limits.acceleration);
-        assert_eq!(crate::pipeline::plan_options(&job).feed_share(), 0.25);
+        assert_eq!(crate::pipeline::plan_options(&job).feed_share(), 0.0);
         assert_eq!(
             limits.velocity(),
             job.limits.velocity * (1.0 - VELOCITY_RESERVE)

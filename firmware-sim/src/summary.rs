@@ -199,6 +199,18 @@ pub struct PlannedLimits {
     pub axis_acceleration: Vec<Option<f64>>,
 }
 
+/// When one of the job's events took effect.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Applied {
+    /// The event's tick in the job.
+    pub tick: u64,
+    /// The tick it applied at; `None` when the guard found no tick and slow-down that keeps
+    /// the limits (the event is left out).
+    pub at: Option<u64>,
+    /// The slow-down `2⁻ˢʰⁱᶠᵗ` of the feed ramps from then on.
+    pub ramp_shift: u8,
+}
+
 /// Everything `strak-sim run` reports.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Summary {
@@ -238,6 +250,12 @@ pub struct Summary {
     pub events_applied: usize,
     /// Events whose tick came after the run had ended.
     pub events_ignored: usize,
+    /// The most ticks an event waited for the feed guard (0 on a path with a feed share).
+    pub events_late_ticks: u64,
+    /// Events the feed guard found no tick for within the limits (left out).
+    pub events_refused: usize,
+    /// When each of the job's events took effect, and the feed ramps' slow-down from then.
+    pub feed_events: Vec<Applied>,
     /// Arc length of the f64 reference curve.
     pub path_length: f64,
     /// Polynomial pieces of the compiled path.
@@ -385,6 +403,12 @@ impl Summary {
             .filter(|(_, c)| c.exceeds())
             .map(|(name, c)| exceeded(&name, c))
             .collect();
+        if self.events_refused > 0 {
+            lines.push(format!(
+                "the feed guard found no tick for {} event(s) within the limits (left out)",
+                self.events_refused
+            ));
+        }
         if self.accuracy.distance.exceeds() {
             lines.push(exceeded(
                 "accuracy: distance to the curve (bound: tolerance + playback bound)",
@@ -418,9 +442,18 @@ impl Summary {
         } else {
             String::new()
         };
+        let late = if self.events_late_ticks > 0 {
+            format!(
+                " (the latest {} ticks = {} s late)",
+                self.events_late_ticks,
+                num(self.events_late_ticks as f64 / self.rate_hz)
+            )
+        } else {
+            String::new()
+        };
         writeln!(
             f,
-            "  run        {} samples, last at {} s, {} event(s) applied{ignored}; stop: {}",
+            "  run        {} samples, last at {} s, {} event(s) applied{late}{ignored}; stop: {}",
             self.samples,
             num(self.run_time_s),
             self.events_applied,
@@ -434,14 +467,24 @@ impl Summary {
             num(self.tolerance),
             num(self.playback_bound)
         )?;
-        writeln!(
-            f,
-            "  planned    with v = {}, a = {}, j = {} (a and j: {} of the limits; the rest is kept for feed changes)",
-            num(self.planned_with.velocity),
-            num(self.planned_with.acceleration),
-            num(self.planned_with.jerk),
-            num(1.0 - self.feed_share)
-        )
+        if self.feed_share > 0.0 {
+            writeln!(
+                f,
+                "  planned    with v = {}, a = {}, j = {} (a and j: {} of the limits; the rest is kept for feed changes)",
+                num(self.planned_with.velocity),
+                num(self.planned_with.acceleration),
+                num(self.planned_with.jerk),
+                num(1.0 - self.feed_share)
+            )
+        } else {
+            writeln!(
+                f,
+                "  planned    with v = {}, a = {}, j = {} (the full limits; the feed guard schedules feed changes)",
+                num(self.planned_with.velocity),
+                num(self.planned_with.acceleration),
+                num(self.planned_with.jerk),
+            )
+        }
     }
 
     fn fmt_table(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

@@ -1,6 +1,7 @@
 //! `strak-sim run` (the binary) against a direct library call: the curve built with
 //! strak-curves' own constructors, planned with `PathTiming::plan_into` under the job's limits
-//! reduced by the feed share, compiled with `compile_into` and played with `Sampler` — every sample
+//! (no feed share), compiled with `compile_into` and played with `Sampler`, each event where
+//! and as slowly as a `FeedGuard` of the job's limits schedules it — every sample
 //! bit for bit (the CSV holds the shortest text that reads back to the same bits). Also: the
 //! last sample is the path's end point exactly, and every output file exists and is not empty.
 
@@ -16,7 +17,8 @@ use strak_curves::{
     SplineBoundary,
 };
 use strak_trajectory::{
-    Along, CompileOptions, Kernel, Limits, PlanOptions, Q40, Sampler, compile_into,
+    Along, CompileOptions, Event as LibEvent, FeedGuard, Kernel, Limits, PlanOptions, Playable,
+    Q40, Sampler, compile_into,
 };
 
 use strak_sim::pipeline::{TABLE, ZONES, boxed_path, boxed_plan};
@@ -153,22 +155,53 @@ where
     let mut path = boxed_path::<N, A>();
     compile_into(&Along::new(curve, &*timing), rate, &options, &mut path).unwrap();
     let mut sampler = Sampler::new(&*path);
+    // without a feed share, each event applies when and as slowly as the feed guard of the
+    // job's limits schedules it
+    let guard = (feed_share == 0.0).then(|| {
+        let limits = Limits::<A>::new(limits[0], limits[1], limits[2])
+            .unwrap()
+            .with_axis_velocity(axis_v)
+            .unwrap()
+            .with_axis_acceleration(axis_a)
+            .unwrap();
+        FeedGuard::new(&limits, rate)
+    });
     let mut k = 0_u64;
     let mut next = 0;
-    let mut last = None;
+    let (mut last, mut last_sample, mut pending) = (None, None, None);
     while !sampler.is_finished() {
         while let Some(&(tick, e)) = events.get(next) {
             if tick > k {
                 break;
             }
-            match e {
-                Event::Feed(f) => sampler.set_feed(f),
-                Event::Hold => sampler.hold(),
-                Event::Resume => sampler.resume(),
-            }
+            let e = match e {
+                Event::Feed(f) => LibEvent::Feed(f),
+                Event::Hold => LibEvent::Hold,
+                Event::Resume => LibEvent::Resume,
+            };
+            let (at, shift) = match (&guard, pending) {
+                (_, Some(_)) => break,
+                (None, None) => (k, None),
+                (Some(g), None) => {
+                    let when = g.schedule(&sampler, last_sample.as_ref(), e).unwrap();
+                    (k + u64::from(when.delay), when.shift)
+                }
+            };
+            pending = Some((at, shift, e));
             next += 1;
         }
+        if let Some((at, shift, e)) = pending
+            && at == k
+        {
+            if let Some(shift) = shift {
+                assert!(sampler.scale_feed_ramp(shift));
+            }
+            sampler.apply(e);
+            pending = None;
+            continue;
+        }
         let s = sampler.next();
+        last_sample = Some(s);
         let row = &rows[usize::try_from(k).unwrap()];
         assert_eq!(row[0], k.to_string());
         assert_eq!(
@@ -220,7 +253,7 @@ fn pick_and_place(job: Option<&str>, events: &[(u64, Event)]) {
             limits: [500.0, 5000.0, 100_000.0],
             axis_v: [500.0, 500.0, 400.0],
             axis_a: [5000.0, 5000.0, 3000.0],
-            feed_share: 0.25,
+            feed_share: 0.0,
             rate: 1000.0,
         },
         events,
@@ -272,7 +305,7 @@ fn f32_circle_matches_the_library_bit_for_bit() {
             limits: [500.0, 5000.0, 100_000.0],
             axis_v: [inf, inf],
             axis_a: [inf, inf],
-            feed_share: 0.25,
+            feed_share: 0.0,
             rate: 2000.0,
         },
         &[],
@@ -307,7 +340,7 @@ fn fixed_point_contour_matches_the_library_bit_for_bit() {
             limits: [300.0, 3000.0, 60_000.0],
             axis_v: [250.0, 250.0],
             axis_a: [2500.0, 2500.0],
-            feed_share: 0.25,
+            feed_share: 0.0,
             rate: 10_000.0,
         },
         &[],

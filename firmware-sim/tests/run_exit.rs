@@ -126,9 +126,15 @@ fn a_planned_overshoot_exits_3_naming_the_quantity() {
     let s = run_scaled("line", SHORT_JERK_PHASES, dir.path(), Some(1.03));
     assert_eq!(exit_code(&s), 3);
     let lines = violation_lines("line.toml", &s);
-    // Only the sampled velocity is scaled: it alone exceeds its limit (the finite
-    // differences of the positions and the accelerations are the run's own).
-    assert_eq!(lines.len(), 1, "{lines:?}");
+    // Only the sampled velocity is scaled: it exceeds its limit, and so do its finite
+    // differences, 1.03 times an acceleration planned at its limit (the finite differences
+    // of the positions and the accelerations are the run's own).
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    assert!(
+        lines[1].starts_with("strak-sim: error: line.toml: limit exceeded: acceleration |Δv|·f = "),
+        "{}",
+        lines[1]
+    );
     let measured: f64 = lines[0]
         .strip_prefix("strak-sim: error: line.toml: limit exceeded: velocity |v| = ")
         .and_then(|rest| rest.split_once(" at t = "))

@@ -23,6 +23,8 @@ pub enum FeedEvent {
     Hold,
     /// [`Sampler::resume`].
     Resume,
+    /// [`Sampler::scale_feed_ramp`] (what a feed guard puts before an event).
+    RampScale(u8),
 }
 
 /// The samples of one playback, in `f64`.
@@ -56,6 +58,9 @@ fn apply<N: Kernel, const A: usize>(sampler: &mut Sampler<'_, N, A>, event: Feed
         FeedEvent::Feed(f) => sampler.set_feed(f),
         FeedEvent::Hold => sampler.hold(),
         FeedEvent::Resume => sampler.resume(),
+        FeedEvent::RampScale(shift) => {
+            sampler.scale_feed_ramp(shift);
+        }
     }
 }
 

@@ -17,10 +17,13 @@
 use strak_curves::{I32F32, Scalar};
 use strak_sim::curve_file::CurveFile;
 use strak_sim::dyn_curve::{DynCurve, build_dyn};
-use strak_sim::job::{Action, Job, Profile, ProfileKind};
+use strak_sim::job::{Job, JobEvent, Profile, ProfileKind};
 use strak_sim::pipeline::{compile_options, plan_options, planning_limits};
 use strak_sim::sample::{NumberFormat, SampleOptions, sample_rows};
-use strak_trajectory::{Along, Kernel, ParameterTiming, Path, PathTiming, Q40, Timing, compile};
+use strak_sim::schedule::schedule;
+use strak_trajectory::{
+    Along, Event, Kernel, ParameterTiming, Path, PathTiming, Q40, Timing, compile,
+};
 
 use crate::check::{Bounds, FeedEvent, MAX_TICKS};
 use crate::pipeline::check_compiled;
@@ -141,6 +144,55 @@ fn plan<N: Kernel, S: Scalar, const D: usize>(
     play(job, curve, &*timing, &path)
 }
 
+/// The job's events as strak-sim plays them ([`schedule`]: on a path without a feed share
+/// each where and as slowly as the feed guard allows), without an abort (it ends the motion
+/// on the path, not at its end) and with a resume and feed 1 after the last event and the
+/// path's end (scheduled too), so that the motion finishes.
+///
+/// # Errors
+/// A violation when the guard refuses an event.
+fn scheduled_events<N: Kernel, const D: usize>(
+    job: &Job,
+    path: &Path<N, D, PIECES>,
+) -> Result<Vec<(u64, FeedEvent)>, Violation> {
+    let mut job = job.clone();
+    job.events.retain(|e| e.abort != Some(true));
+    let last = job.events.iter().map(|e| e.tick).max().unwrap_or(0);
+    if !job.events.is_empty() {
+        let tick = last.max(u64::from(path.ticks())) + 1;
+        let event = |feed, resume| JobEvent {
+            tick,
+            feed,
+            hold: None,
+            resume,
+            abort: None,
+        };
+        job.events.push(event(None, Some(true)));
+        job.events.push(event(Some(1.0), None));
+    }
+    let scheduled = schedule(&job, path).map_err(|e| violation!("scheduling: {e}"))?;
+    if scheduled.refused() > 0 {
+        return Err(violation!(
+            "the feed guard refused {} event(s)",
+            scheduled.refused()
+        ));
+    }
+    Ok(scheduled
+        .events
+        .iter()
+        .filter_map(|e| {
+            let event = match e.event {
+                Event::Feed(f) => FeedEvent::Feed(f),
+                Event::Hold => FeedEvent::Hold,
+                Event::Resume => FeedEvent::Resume,
+                Event::RampScale(shift) => FeedEvent::RampScale(shift),
+                Event::Abort => return None,
+            };
+            Some((e.tick, event))
+        })
+        .collect())
+}
+
 fn play<N: Kernel, S: Scalar, const D: usize>(
     job: &Job,
     curve: &DynCurve<S, D>,
@@ -167,18 +219,7 @@ fn play<N: Kernel, S: Scalar, const D: usize>(
         axis_acceleration: axis(&l.axis_acceleration),
         tangential: false,
     };
-    // An abort ends the motion on the path, not at its end: played without it.
-    let events: Vec<(u64, FeedEvent)> = job
-        .sorted_events()
-        .into_iter()
-        .filter_map(|(tick, a)| match a {
-            #[allow(clippy::cast_possible_truncation)]
-            Action::Feed(f) => Some((tick, FeedEvent::Feed(f as f32))),
-            Action::Hold => Some((tick, FeedEvent::Hold)),
-            Action::Resume => Some((tick, FeedEvent::Resume)),
-            Action::Abort => None,
-        })
-        .collect();
+    let events = scheduled_events(job, path)?;
     check_compiled(
         curve,
         timing,

@@ -384,10 +384,15 @@ fn pipeline<N: Kernel, const A: usize>(
     );
     let rest_to_rest = limited;
     let ticks = f64::from(path.ticks());
+    // A path without a feed reserve takes its feed changes when a `FeedGuard` schedules
+    // them (tested in `tests/trajectory/tests/trajectory_feed_guard.rs` and by strak-sim's
+    // random feed jobs), not at the case's ticks: it plays without events here.
+    let reserved = path.feed_share() > 0.0;
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let events: Vec<(u64, FeedEvent)> = case
         .events
         .iter()
+        .filter(|_| reserved)
         .map(|(at, e)| ((at * ticks) as u64, *e))
         .collect();
     // With feed events the machine's limits hold: the case's, or the compile's where those

@@ -397,6 +397,7 @@ fn events_src(events: &[TimedEvent]) -> String {
                 Event::Hold => "Event::Hold".to_owned(),
                 Event::Resume => "Event::Resume".to_owned(),
                 Event::Abort => "Event::Abort".to_owned(),
+                Event::RampScale(shift) => format!("Event::RampScale({shift})"),
             };
             format!("TimedEvent {{ tick: {}, event: {event} }}", e.tick)
         })

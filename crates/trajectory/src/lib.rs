@@ -29,4 +29,5 @@ pub use path::{
 };
 pub use plan::*;
 pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};
+pub use play::guard::{FeedGuard, MAX_DELAY, MAX_RAMP_TICKS, Schedule};
 pub use play::{Kernel, Sampler, SamplerState};

@@ -224,7 +224,6 @@ fn invalid_limit_compile_options() {
         CompileOptions::new().with_limits(1.0, -1.0),
         CompileOptions::new().with_limits(NAN, 1.0),
         CompileOptions::new().with_limits(1.0, INF),
-        CompileOptions::new().with_feed_share(0.0),
         CompileOptions::new().with_feed_share(1.0),
         CompileOptions::new().with_feed_share(-0.25),
         CompileOptions::new().with_feed_share(NAN),

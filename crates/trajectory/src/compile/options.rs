@@ -260,7 +260,7 @@ impl CompileOptions {
     ///
     /// # Errors
     /// [`Error::InvalidLimit`] for a tolerance, limit or share that is not finite and
-    /// positive (share: in `(0, 1)`; an axis acceleration may be `f64::INFINITY`), a maximal
+    /// positive (share: in `[0, 1)`; an axis acceleration may be `f64::INFINITY`), a maximal
     /// piece length of 0, or a largest slow-down that is not finite and at least 1.
     pub(crate) fn validate(&self) -> Result<(), Error> {
         let positive = |x: f64| x.is_finite() && x > 0.0;
@@ -277,7 +277,7 @@ impl CompileOptions {
             && limits_ok
             && axes_ok
             && self.max_piece_ticks >= 1
-            && positive(self.feed_share)
+            && self.feed_share >= 0.0
             && self.feed_share < 1.0
             && self.max_slowdown.is_finite()
             && self.max_slowdown >= 1.0
@@ -296,6 +296,11 @@ mod tests {
     #[test]
     fn validation() {
         assert_eq!(CompileOptions::new().validate(), Ok(()));
+        // no reserve: the feed changes go through a feed guard
+        assert_eq!(
+            CompileOptions::new().with_feed_share(0.0).validate(),
+            Ok(())
+        );
         let bad = [
             CompileOptions::new().with_tolerance(0.0),
             CompileOptions::new().with_relative_tolerance(f64::NAN),
@@ -305,7 +310,8 @@ mod tests {
             CompileOptions::new().with_axis_acceleration([1.0, 0.0]),
             CompileOptions::new().with_axis_acceleration([f64::NAN]),
             CompileOptions::new().with_feed_share(1.0),
-            CompileOptions::new().with_feed_share(0.0),
+            CompileOptions::new().with_feed_share(-0.1),
+            CompileOptions::new().with_feed_share(f64::NAN),
             CompileOptions::new().with_max_slowdown(0.99),
             CompileOptions::new().with_max_slowdown(f64::NAN),
             CompileOptions::new().with_max_slowdown(f64::INFINITY),

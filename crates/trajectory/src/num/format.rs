@@ -90,6 +90,24 @@ impl NumberFormat {
             NumberFormat::F64 | NumberFormat::Q40 => 8,
         }
     }
+
+    /// The resolution `u(M)` of a sample value of magnitude `magnitude`: the spacing of the
+    /// sampler's output type there (`M·2⁻⁵²` in `f64`, `M·2⁻²³` in `f32`, `2⁻³²` for the
+    /// `I32F32` samples of `Q40`). Two samples of a motion differ by up to `2·u(M)` more than
+    /// the motion does, which a check of their finite differences allows.
+    ///
+    /// ```
+    /// use strak_trajectory::NumberFormat;
+    /// assert_eq!(NumberFormat::F32.sample_resolution(1.0), f64::from(f32::EPSILON));
+    /// assert_eq!(NumberFormat::Q40.sample_resolution(1e6), 2f64.powi(-32));
+    /// ```
+    pub fn sample_resolution(self, magnitude: f64) -> f64 {
+        match self {
+            NumberFormat::F64 => magnitude * f64::EPSILON,
+            NumberFormat::F32 => magnitude * f64::from(f32::EPSILON),
+            NumberFormat::Q40 => libm::ldexp(1.0, -32),
+        }
+    }
 }
 
 impl fmt::Display for NumberFormat {

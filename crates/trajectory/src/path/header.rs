@@ -47,8 +47,11 @@ pub(crate) struct FeedRampLimits<N> {
     pub(crate) snap: N,
 }
 
+/// The share of the limits the feed ramps of a path without a reserve are sized for.
+pub(crate) const UNRESERVED_RAMP_SHARE: f64 = 0.25;
+
 /// The smallest change of the feed rate per tick: 2⁻⁴⁰ (one `Q40` ulp).
-const MIN_ALPHA: f64 = 1.0 / (1_u64 << 40) as f64;
+pub(crate) const MIN_ALPHA: f64 = 1.0 / (1_u64 << 40) as f64;
 
 /// `max |C(x, k)|` for `x ∈ [0, n]`, `k ≤ 3` (the Newton coefficients of an offset `x`).
 fn binomial_bound(n: f64, k: u32) -> f64 {
@@ -135,10 +138,19 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
 /// reaches anyway). Per tick: `ω_max = A/(v_peak·f)`, `α = (R − c·A)/(v_peak·f²)`,
 /// `2⁻⁴⁰ ≤ α ≤ ¼` (the same resolution in every format), `ω_max ≤ min(½, √α)`, and
 /// `α ≤ ω_max` (a smaller `α` where the jerk would reach `ω_max` within a tick).
+///
+/// A path without a reserve (`share = 0`) sizes its ramps as if
+/// [`UNRESERVED_RAMP_SHARE`] of the limits were free: nothing keeps them free, so its feed
+/// changes keep the limits only where a [`FeedGuard`](crate::FeedGuard) has checked them.
 pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
-    let a_ramp = (meta.acceleration_limit - meta.peak_acceleration)
-        .max(meta.feed_share * meta.acceleration_limit);
-    let j_ramp = (meta.jerk_limit - meta.peak_jerk).max(meta.feed_share * meta.jerk_limit);
+    let share = if meta.feed_share > 0.0 {
+        meta.feed_share
+    } else {
+        UNRESERVED_RAMP_SHARE
+    };
+    let a_ramp =
+        (meta.acceleration_limit - meta.peak_acceleration).max(share * meta.acceleration_limit);
+    let j_ramp = (meta.jerk_limit - meta.peak_jerk).max(share * meta.jerk_limit);
     let (omega, alpha) = if meta.peak_velocity > 0.0 {
         let v = meta.peak_velocity;
         let c = 3.0 * meta.peak_acceleration / v;
@@ -351,7 +363,8 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
 
     /// The share of the limits reserved for feed changes (at most what the ramps may add,
     /// relative to [`acceleration_limit`](Self::acceleration_limit) and
-    /// [`jerk_limit`](Self::jerk_limit)).
+    /// [`jerk_limit`](Self::jerk_limit)); 0 for a path planned at the full limits, whose
+    /// feed changes need a [`FeedGuard`](crate::FeedGuard).
     pub fn feed_share(&self) -> f64 {
         self.meta.feed_share
     }
@@ -399,7 +412,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
             && nonneg(meta.peak_jerk)
             && positive(meta.acceleration_limit)
             && positive(meta.jerk_limit)
-            && positive(meta.feed_share)
+            && nonneg(meta.feed_share)
             && meta.feed_share <= 1.0)
         {
             return Err(Error::InvalidLimit);

@@ -186,9 +186,11 @@ impl PlanOptions {
         self
     }
 
-    /// The share (in `(0, 1)`) of the acceleration and jerk limits, path and per axis,
+    /// The share (in `[0, 1)`) of the acceleration and jerk limits, path and per axis,
     /// reserved for feed changes: the motion is planned with `1 − share` of them, and the
-    /// sampler's feed override, hold and resume ramp within the rest.
+    /// sampler's feed override, hold and resume ramp within the rest. With 0 the motion
+    /// uses the full limits and a feed change keeps them only once a
+    /// [`FeedGuard`](crate::FeedGuard) has found when and how fast it can ramp.
     pub const fn with_feed_share(mut self, share: f64) -> Self {
         self.feed_share = share;
         self
@@ -249,7 +251,7 @@ impl PlanOptions {
         let tol = self.zone_tolerance;
         if (1..=MAX_SAMPLES).contains(&self.samples)
             && share(self.centripetal_share)
-            && share(self.feed_share)
+            && (self.feed_share == 0.0 || share(self.feed_share))
             && tol.is_finite()
             && tol >= 0.0
             && self.corner_angle.is_finite()
@@ -279,7 +281,7 @@ mod tests {
         for ok in [100.0, 100_000.0] {
             assert_eq!(PlanOptions::new().with_rate(ok).validate(), Ok(()));
         }
-        for share in [0.0, 1.0, -0.1, f64::NAN] {
+        for share in [1.0, -0.1, f64::NAN] {
             assert_eq!(
                 PlanOptions::new().with_feed_share(share).validate(),
                 Err(Error::InvalidLimit),
@@ -287,6 +289,7 @@ mod tests {
             );
         }
         assert_eq!(PlanOptions::new().with_feed_share(0.9).validate(), Ok(()));
+        assert_eq!(PlanOptions::new().with_feed_share(0.0).validate(), Ok(()));
         assert_eq!(
             PlanOptions::DEFAULT_FEED_SHARE,
             crate::CompileOptions::DEFAULT_FEED_SHARE

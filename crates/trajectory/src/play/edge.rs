@@ -169,7 +169,7 @@ impl<N: Kernel, const A: usize> Sampler<'_, N, A> {
     /// The feed ramp's step, then the playback point by `φ` (stepping the state when it
     /// crosses a tick), and back on the tick grid when the ramp has returned to full feed.
     fn advance_feed(&mut self) {
-        self.feed.step(&self.path.header().ramp);
+        self.feed.step(&self.ramp);
         // Invariant: shift + θ ∈ [0, 1), so the playback point stays inside the current
         // tick interval of the current piece (θ may be negative after a step).
         self.theta = self.theta + self.feed.phi;

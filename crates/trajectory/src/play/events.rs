@@ -23,6 +23,9 @@ pub enum Event {
     Resume,
     /// Abort: come to rest on the path and finish there ([`Sampler::abort`]).
     Abort,
+    /// Slows the later feed ramps by `2⁻ˢʰⁱᶠᵗ` ([`Sampler::scale_feed_ramp`]): what a
+    /// [`FeedGuard`](crate::FeedGuard) puts before a feed change it has checked.
+    RampScale(u8),
 }
 
 /// An event at a tick: it applies before the sample of `tick` (ticks count the samples of a
@@ -95,6 +98,9 @@ impl<N: Kernel, const A: usize> Playable for Sampler<'_, N, A> {
             Event::Hold => self.hold(),
             Event::Resume => self.resume(),
             Event::Abort => self.abort(),
+            Event::RampScale(shift) => {
+                self.scale_feed_ramp(shift);
+            }
         }
     }
 }

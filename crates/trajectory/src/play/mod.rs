@@ -6,10 +6,11 @@ mod edge;
 pub(crate) mod events;
 mod feed;
 mod form;
+pub(crate) mod guard;
 pub(crate) mod kernel;
 mod switch;
 
-use crate::path::{AxisState, Newton, PathView, Piece, Sample};
+use crate::path::{AxisState, FeedRampLimits, MIN_ALPHA, Newton, PathView, Piece, Sample};
 use feed::FeedRamp;
 pub use kernel::Kernel;
 use switch::After;
@@ -147,6 +148,8 @@ pub struct Sampler<'a, N: Kernel, const A: usize> {
     /// `shift + theta ∈ [0, 1)`.
     theta: N,
     feed: FeedRamp<N>,
+    /// The feed ramp's constants: the path's, scaled by [`Sampler::scale_feed_ramp`].
+    ramp: FeedRampLimits<N>,
     /// The override set by [`Sampler::set_feed`].
     feed_override: N,
     /// What the sampler is doing.
@@ -186,6 +189,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
             on_grid: true,
             theta: N::ZERO,
             feed: FeedRamp::full(),
+            ramp: path.header().ramp,
             feed_override: N::ONE,
             mode: SamplerState::Running,
             end: 0,
@@ -446,6 +450,10 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
 
     /// Sets the feed override `f`, clamped to `[0, 1]` (NaN is ignored). Takes effect
     /// through a jerk-limited ramp; while holding it is stored for [`resume`](Self::resume).
+    /// The ramp keeps the limits within the path's feed reserve
+    /// ([`PathHeader::feed_share`](crate::PathHeader::feed_share)); on a path planned without
+    /// one, call it when and after the slow-down a [`FeedGuard`](crate::FeedGuard) schedules
+    /// (the same for [`hold`](Self::hold), [`resume`](Self::resume) and [`abort`](Self::abort)).
     /// Not for the interrupt's hot path on FPU-less parts: converts through `f64` once.
     pub fn set_feed(&mut self, f: f32) {
         if f.is_nan() {
@@ -470,6 +478,58 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
     /// The current feed factor `φ` (moving toward the override during a ramp).
     pub fn feed(&self) -> f64 {
         self.feed.phi.to_f64()
+    }
+
+    /// `true` while the feed factor ramps (or the ramp's last step is still in the
+    /// acceleration the next sample reports).
+    pub fn is_ramping(&self) -> bool {
+        !self.feed.is_idle()
+    }
+
+    /// Slows the feed ramps down: their largest rate `φ̇` and its change per tick `φ̈` become
+    /// the path's times `2⁻ˢʰⁱᶠᵗ` (0: the path's own), for every later feed change. A ramp
+    /// so slowed adds `2⁻ˢʰⁱᶠᵗ` of the acceleration and jerk a full one adds, and takes
+    /// about `2ˢʰⁱᶠᵗ` times as long. Only while no ramp runs ([`is_ramping`](Self::is_ramping)):
+    /// returns `false` and changes nothing otherwise, or when the slowed change per tick is
+    /// below 2⁻⁴⁰ or not exact in the number format. A [`FeedGuard`](crate::FeedGuard)
+    /// chooses the shift.
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{CompileOptions, Limits, Path, PathTiming, PlanOptions, Sampler};
+    /// let line = Bezier::new([[0.0_f64], [10.0]])?;
+    /// let limits = Limits::<1>::new(100.0, 1_000.0, 20_000.0)?;
+    /// let timing = PathTiming::<_, 16, 4>::plan(&line, &limits, &PlanOptions::new())?;
+    /// let path: Path<f64, 1, 64> = timing.compile(&CompileOptions::new())?;
+    /// let mut sampler = Sampler::new(&path);
+    /// assert!(sampler.scale_feed_ramp(2));
+    /// sampler.hold();
+    /// assert!(!sampler.scale_feed_ramp(0)); // a ramp runs
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn scale_feed_ramp(&mut self, shift: u8) -> bool {
+        if self.is_ramping() || shift >= 40 {
+            return false;
+        }
+        let path = self.path.header().ramp;
+        let scale = libm::ldexp(1.0, -i32::from(shift));
+        let alpha = path.alpha.to_f64() * scale;
+        let Some(scaled) = N::from_f64(alpha).filter(|a| a.to_f64() == alpha) else {
+            return false;
+        };
+        if alpha < MIN_ALPHA {
+            return false;
+        }
+        self.ramp = FeedRampLimits {
+            alpha: scaled,
+            snap: if scaled > N::EPSILON {
+                scaled
+            } else {
+                N::EPSILON
+            },
+            ..path
+        };
+        true
     }
 
     /// Feed hold: ramp down to feed 0 and stand still on the path (ignored after an abort).
