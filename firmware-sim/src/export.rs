@@ -20,7 +20,9 @@ use strak_trajectory::{
 use crate::curve_file::CurveFile;
 use crate::job::{Job, JobError};
 use crate::number::NumberFormat;
-use crate::pipeline::{PIECES, Prepared, boxed_path, compile_options, is_planned, plan_options};
+use crate::pipeline::{
+    PIECES, Prepared, axis_array, boxed_path, compile_options, is_planned, plan_options,
+};
 use crate::schedule::schedule;
 
 /// A sample value's raw bits, widened to `u64` (`f32`, `f64`: `to_bits`; `I32F32`: the `i64`
@@ -58,13 +60,18 @@ pub struct DeviceRecipe {
     pub degree: usize,
     /// The B-spline's control points.
     pub points: Vec<Vec<f64>>,
-    /// Planning limits: path velocity, acceleration, jerk (acceleration and jerk already
-    /// reduced by the feed share).
+    /// Planning limits: path velocity (reduced for the fit, as `strak-sim run` plans),
+    /// acceleration, jerk (the planner reserves the feed share itself).
     pub limits: [f64; 3],
-    /// Per-axis velocity limits (`inf`: none).
+    /// Per-axis velocity limits, reduced for the fit (`inf`: none).
     pub axis_velocity: Vec<f64>,
-    /// Per-axis acceleration limits, reduced by the feed share (`inf`: none).
+    /// Per-axis acceleration limits (`inf`: none).
     pub axis_acceleration: Vec<f64>,
+    /// The job's own path limits (velocity, acceleration, jerk), which its samples keep and
+    /// a feed guard checks.
+    pub machine_limits: [f64; 3],
+    /// The job's own per-axis velocity limits (`inf`: none).
+    pub machine_axis_velocity: Vec<f64>,
     /// The planner's settings.
     pub plan: PlanOptions,
     /// The compiler's settings.
@@ -227,6 +234,12 @@ fn recipe<const D: usize>(job: &Job, limits: &Limits<D>) -> Option<DeviceRecipe>
         axis_acceleration: limits.axis_acceleration().to_vec(),
         plan: plan_options(job),
         compile: compile_options(job),
+        machine_limits: [
+            job.limits.velocity,
+            job.limits.acceleration,
+            job.limits.jerk,
+        ],
+        machine_axis_velocity: axis_array::<D>(job.limits.axis_velocity.as_deref()).to_vec(),
     })
 }
 

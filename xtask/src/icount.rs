@@ -120,6 +120,14 @@ pub(crate) fn parse_output(text: &str, target: &str) -> Result<Vec<Measured>, St
                 num(moves)?;
                 num(sum)?;
             }
+            // the feed guard's holds: how many were counted and their delays in ticks
+            ["G", name, holds, delays] => {
+                println!(
+                    "    {name}: {} holds scheduled, {} ticks of delay in all",
+                    num(holds)?,
+                    num(delays)?
+                );
+            }
             ["DONE", n] => done = Some(num(n)?),
             [] => {}
             _ => return Err(format!("unexpected icount output: `{line}`")),
@@ -388,6 +396,10 @@ mod tests {
         assert!(parse_output("I a 1 2 3 10 4\nDONE 1\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nI a 1 2 3 10 4\nDONE 2\n", "t").is_err());
         assert!(parse_output("CAL 1 9 64\nhello\n", "t").is_err());
+        // the feed guard's line: counts, not a case
+        let guard = "CAL 154 6707 64\nG guard 70 0\nDONE 0\n";
+        assert_eq!(parse_output(guard, "t"), Ok(vec![]));
+        assert!(parse_output("CAL 154 6707 64\nG guard x 0\nDONE 0\n", "t").is_err());
     }
 
     #[test]

@@ -561,7 +561,7 @@ fn device_job_src(r: &DeviceRecipe, f: &HostJob, x: &HostJob) -> String {
     let list = |v: &[f64]| v.iter().map(|x| f64_src(*x)).collect::<Vec<_>>().join(", ");
     let points: Vec<String> = r.points.iter().map(|p| format!("[{}]", list(p))).collect();
     format!(
-        "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        plan: {},\n        compile: {},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
+        "    DeviceJob {{\n        name: {:?},\n        rate_hz: {},\n        degree: {},\n        points: &[{}],\n        limits: [{}],\n        axis_velocity: [{}],\n        axis_acceleration: [{}],\n        machine_limits: [{}],\n        machine_axis_velocity: [{}],\n        plan: {},\n        compile: {},\n        events: {},\n        host_blob_f32: include_bytes!({:?}),\n        host_blob_fixed: include_bytes!({:?}),\n    }},\n",
         f.name,
         f64_src(r.rate_hz),
         r.degree,
@@ -569,6 +569,8 @@ fn device_job_src(r: &DeviceRecipe, f: &HostJob, x: &HostJob) -> String {
         list(&r.limits),
         list(&r.axis_velocity),
         list(&r.axis_acceleration),
+        list(&r.machine_limits),
+        list(&r.machine_axis_velocity),
         plan_src(r),
         compile_src(r),
         events_src(&f.export.events),

@@ -30,8 +30,8 @@ pub struct BlobJob {
 }
 
 /// A job the device compiles at start-up: a clamped uniform B-spline over `[0, 1]` with the
-/// planner and compiler settings of `strak-sim` (acceleration and jerk limits already
-/// reduced by the feed share, as `strak-sim run` plans).
+/// planner and compiler settings of `strak-sim` (velocity limits reduced for the fit, as
+/// `strak-sim run` plans; the planner reserves the feed share itself).
 #[derive(Clone, Copy, Debug)]
 pub struct DeviceJob<const D: usize> {
     /// The job's name.
@@ -48,6 +48,10 @@ pub struct DeviceJob<const D: usize> {
     pub axis_velocity: [f64; D],
     /// Per-axis acceleration limits (`inf`: none).
     pub axis_acceleration: [f64; D],
+    /// The job's own path velocity, acceleration and jerk limits (what a feed guard checks).
+    pub machine_limits: [f64; 3],
+    /// The job's own per-axis velocity limits (`inf`: none).
+    pub machine_axis_velocity: [f64; D],
     /// The planner's settings.
     pub plan: PlanOptions,
     /// The compiler's settings.

@@ -5,7 +5,7 @@
 //! instruction counter ([`counter`]), the check of the tick kernels against the portable
 //! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
 //! confines a firmware to the memories of a real part ([`mpu`]), the planning job
-//! ([`planning`]) and the online solves ([`online`]).
+//! ([`planning`]), the online solves ([`online`]) and the feed guard's cost ([`guard`]).
 //!
 //! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
 //! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a
@@ -32,6 +32,7 @@
 
 pub mod counter;
 pub mod device;
+pub mod guard;
 pub mod jobs;
 pub mod kernel_check;
 pub mod moves;

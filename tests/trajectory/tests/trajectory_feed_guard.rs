@@ -218,3 +218,27 @@ fn a_guard_below_the_cruise_waits_for_the_slowdown() {
     assert!(norm(&f64s(before.velocity)) <= 100.0, "{when:?}");
     assert!(norm(&f64s(last.unwrap().velocity)) > 100.0);
 }
+
+/// Held at rest, a resume that no slow-down keeps within the guard's limits is refused at
+/// once (every later tick is the same standstill): here a guard whose jerk limit no ramp
+/// can keep.
+#[test]
+fn a_resume_no_ramp_can_keep_is_refused() {
+    let path = path::<f64>();
+    let mut sampler = Sampler::new(&*path);
+    for _ in 0..300 {
+        sampler.next();
+    }
+    sampler.hold();
+    let mut last = sampler.next();
+    while sampler.is_ramping() {
+        last = sampler.next();
+    }
+    assert_eq!(sampler.feed(), 0.0);
+    let strict = Limits::<3>::new(400.0, 2_000.0, 1e-6).unwrap();
+    let guard = FeedGuard::new(&strict, RATE);
+    assert_eq!(guard.schedule(&sampler, Some(&last), Event::Resume), None);
+    // the machine's guard resumes at once
+    let when = FeedGuard::new(&limits(), RATE).schedule(&sampler, Some(&last), Event::Resume);
+    assert_eq!(when.map(|w| w.delay), Some(0));
+}

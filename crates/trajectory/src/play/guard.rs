@@ -18,12 +18,12 @@
 //! candidate's ramp is checked to its end, so a later change is checked from the state this
 //! one leaves, and the motion after a ramp is the plan's at a constant feed (within the
 //! limits). The work is bounded: at most [`MAX_DELAY`] ticks of delay, `max_shift + 1`
-//! ramps of at most [`MAX_RAMP_TICKS`] ticks for each of about 100 delays, a sampler tick and
+//! ramps of at most [`MAX_RAMP_TICKS`] ticks for each of about 110 delays, a sampler tick and
 //! one check each; cheap on a host, and on a device a job for the main loop, not the
 //! interrupt.
 
 use super::events::{Event, Playable};
-use super::{Kernel, Sampler};
+use super::{Kernel, Sampler, SamplerState};
 use crate::num::NumberFormat;
 use crate::path::Sample;
 use crate::plan::Limits;
@@ -145,7 +145,7 @@ impl<const A: usize> FeedGuard<A> {
     /// When and how slowly `event` can apply to `sampler` (whose last sample was `last`,
     /// `None` before the first) so that every sample keeps the limits; `None` when no delay
     /// up to [`MAX_DELAY`] ticks or the end of the motion and no slow-down up to
-    /// `2⁻ᵐᵃˣ_ˢʰⁱᶠᵗ` does. An event that starts no ramp (a resume while not held, a feed
+    /// `2⁻ᵐᵃˣ_ˢʰⁱᶠᵗ` does (while held at rest, when none does now: waiting changes nothing). An event that starts no ramp (a resume while not held, a feed
     /// change while held) applies at once. Apply [`Schedule::shift`] as an
     /// [`Event::RampScale`] and then `event` before the sample `delay` ticks on.
     pub fn schedule<N: Kernel>(
@@ -167,7 +167,10 @@ impl<const A: usize> FeedGuard<A> {
             if let Some(shift) = self.first_passing(&base, prev.as_ref(), event) {
                 return Some(Schedule { delay, shift });
             }
-            if base.is_finished() || delay >= MAX_DELAY {
+            // Held at rest, every later tick is this one: waiting changes nothing.
+            let resting =
+                base.state() == SamplerState::Holding && base.feed() == 0.0 && !base.is_ramping();
+            if base.is_finished() || resting || delay >= MAX_DELAY {
                 return None;
             }
             let next = if delay < 16 {

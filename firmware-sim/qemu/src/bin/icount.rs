@@ -453,6 +453,23 @@ fn main() -> ! {
         report(name, counts);
         cases += 1;
     }
+    // The feed guard: a hold scheduled at every 25th tick of the pick-and-place path.
+    #[cfg(target_abi = "eabihf")]
+    {
+        let name = "guard-hold-f32-3axis";
+        let mut holds = [0_u32; 128];
+        match strak_qemu::guard::count_holds(&counter, &cal, &mut holds) {
+            Ok((n, delays)) => {
+                defmt::println!("G {=str} {=usize} {=u64}", name, n, delays);
+                report(name, holds.get_mut(..n).unwrap_or(&mut []));
+            }
+            Err(why) => {
+                defmt::error!("{=str}: {=str}", name, why);
+                exit_failure()
+            }
+        }
+        cases += 1;
+    }
     defmt::println!("DONE {=u32}", cases);
     exit_success()
 }
