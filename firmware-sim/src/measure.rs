@@ -18,8 +18,9 @@ use strak_curves::Scalar;
 
 use crate::number::NumberFormat;
 
-/// The relative tolerance of every check: the rounding of the `f64` arithmetic of the check.
-pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+/// The relative tolerance of every check: the rounding of the `f64` arithmetic of the check
+/// (the library's, which its feed guard checks with).
+pub const RELATIVE_TOLERANCE: f64 = strak_trajectory::LIMIT_CHECK_RELATIVE;
 
 /// The resolution `u(M)` of a sample value of magnitude `magnitude` in the job's format.
 ///
@@ -208,7 +209,7 @@ impl<const D: usize> Measure<D> {
     /// (`norm`: for the norm over the axes); see the module docs.
     pub fn slack(&self, number: NumberFormat, magnitude: f64, norm: bool) -> f64 {
         let axes = if norm { (D as f64).sqrt() } else { 1.0 };
-        2.0 * resolution(number, magnitude) * self.rate * axes
+        number.difference_allowance(magnitude, self.rate) * axes
     }
 }
 

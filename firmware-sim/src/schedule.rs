@@ -110,7 +110,7 @@ pub fn schedule<N: Kernel, const D: usize, const P: usize>(
 /// The guard of the job's limits (path and per axis; without the jerk for a trapezoid).
 fn guard<const D: usize>(job: &Job) -> Result<FeedGuard<D>, JobError> {
     let limits = job_limits::<D>(job, 1.0)?;
-    let guard = FeedGuard::new(&limits, job.rate_hz);
+    let guard = FeedGuard::new(&limits);
     Ok(if job.profile.kind() == ProfileKind::SCurve {
         guard
     } else {

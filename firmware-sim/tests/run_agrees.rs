@@ -164,7 +164,7 @@ where
             .unwrap()
             .with_axis_acceleration(axis_a)
             .unwrap();
-        FeedGuard::new(&limits, rate)
+        FeedGuard::new(&limits)
     });
     let mut k = 0_u64;
     let mut next = 0;

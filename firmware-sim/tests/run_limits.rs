@@ -8,21 +8,11 @@ mod common;
 
 use common::{bundled_jobs, stem};
 use strak_sim::job::{Job, ProfileKind};
-use strak_sim::number::NumberFormat;
 use strak_sim::run::{RunOptions, run_job};
 use strak_sim::summary::Summary;
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// The relative resolution of a sample value in the job's format (for finite-difference noise).
-fn resolution(number: NumberFormat, magnitude: f64) -> f64 {
-    match number {
-        NumberFormat::F64 => 2.0 * f64::EPSILON * magnitude,
-        NumberFormat::F32 => 2.0 * f64::from(f32::EPSILON) * magnitude,
-        NumberFormat::Q40 => 2.0_f64.powi(-32),
-    }
 }
 
 /// Checks `value ≤ limit + slack`, remembering the worst ratio.
@@ -193,9 +183,9 @@ fn check_job(name: &str, job: &Job) -> Summary {
             rows.iter().flat_map(f).fold(0.0_f64, |m, x| m.max(x.abs()))
         };
         // Finite-difference noise of each quantity in the job's number format.
-        let slack_v = 2.0 * resolution(job.number, max_of(&pos)) * rate;
-        let slack_a = 2.0 * resolution(job.number, max_of(&vel)) * rate;
-        let slack_j = 2.0 * resolution(job.number, max_of(&acc)) * rate;
+        let slack_v = 2.0 * job.number.sample_resolution(max_of(&pos)) * rate;
+        let slack_a = 2.0 * job.number.sample_resolution(max_of(&vel)) * rate;
+        let slack_j = 2.0 * job.number.sample_resolution(max_of(&acc)) * rate;
         // A trapezoid is not planned under the jerk.
         let jerk_limit = if job.profile.kind() == ProfileKind::SCurve {
             l.jerk

@@ -18,7 +18,7 @@ pub use compile::{
     take_over_into,
 };
 pub use error::{BlobFormat, Error, Quantity, Units};
-pub use num::{Number, NumberFormat, ParseNumberFormatError, Q40};
+pub use num::{LIMIT_CHECK_RELATIVE, Number, NumberFormat, ParseNumberFormatError, Q40};
 pub use online::{
     AxisLimits, AxisProfile, Block, Interface, JerkPhase, Kinematics, MAX_PHASES, MoveOptions,
     OnlineMove, Real, Synchronization, solve_axis, solve_axis_velocity,

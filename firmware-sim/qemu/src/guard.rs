@@ -43,7 +43,7 @@ pub fn count_holds(
         .and_then(|l| l.with_axis_velocity(recipe.machine_axis_velocity))
         .and_then(|l| l.with_axis_acceleration(recipe.axis_acceleration))
         .map_err(|_| "bad limits")?;
-    let guard = FeedGuard::new(&limits, recipe.rate_hz);
+    let guard = FeedGuard::new(&limits);
     let mut sampler = Sampler::new(blob.view());
     let mut last: Option<Sample<f32, 3>> = None;
     let (mut n, mut delays) = (0, 0_u64);

@@ -110,7 +110,7 @@ impl<N: Kernel> Run<'_, N> {
     fn apply(&mut self, event: Event, guarded: bool) -> u64 {
         let mut waited = 0;
         if guarded {
-            let guard = FeedGuard::new(&limits(), RATE);
+            let guard = FeedGuard::new(&limits());
             let when = guard
                 .schedule(&self.sampler, self.last.as_ref(), event)
                 .unwrap();
@@ -200,7 +200,7 @@ fn guarded_holds_keep_every_limit_in_every_format() {
 fn a_guard_below_the_cruise_waits_for_the_slowdown() {
     let path = path::<f64>();
     let tight = Limits::<3>::new(100.0, 2_000.0, 60_000.0).unwrap();
-    let guard = FeedGuard::new(&tight, RATE);
+    let guard = FeedGuard::new(&tight);
     let mut sampler = Sampler::new(&*path);
     let mut last = None;
     for _ in 0..200 {
@@ -236,9 +236,9 @@ fn a_resume_no_ramp_can_keep_is_refused() {
     }
     assert_eq!(sampler.feed(), 0.0);
     let strict = Limits::<3>::new(400.0, 2_000.0, 1e-6).unwrap();
-    let guard = FeedGuard::new(&strict, RATE);
+    let guard = FeedGuard::new(&strict);
     assert_eq!(guard.schedule(&sampler, Some(&last), Event::Resume), None);
     // the machine's guard resumes at once
-    let when = FeedGuard::new(&limits(), RATE).schedule(&sampler, Some(&last), Event::Resume);
+    let when = FeedGuard::new(&limits()).schedule(&sampler, Some(&last), Event::Resume);
     assert_eq!(when.map(|w| w.delay), Some(0));
 }

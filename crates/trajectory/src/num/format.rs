@@ -108,7 +108,30 @@ impl NumberFormat {
             NumberFormat::Q40 => libm::ldexp(1.0, -32),
         }
     }
+
+    /// The rounding a limit check allows a finite difference `(y₁ − y₀)·rate` of two samples
+    /// of magnitude at most `magnitude` on one axis: `2·u(M)·rate` (see
+    /// [`sample_resolution`](Self::sample_resolution)); a norm over `D` axes allows `√D`
+    /// times this. A check passes when the difference is at most
+    /// `L·(1 + LIMIT_CHECK_RELATIVE)` plus this.
+    ///
+    /// ```
+    /// use strak_trajectory::NumberFormat;
+    /// let allowance = NumberFormat::Q40.difference_allowance(5.0, 1_000.0);
+    /// assert_eq!(allowance, 2.0 * 2f64.powi(-32) * 1_000.0);
+    /// ```
+    pub fn difference_allowance(self, magnitude: f64, rate: f64) -> f64 {
+        2.0 * self.sample_resolution(magnitude) * rate
+    }
 }
+
+/// The relative tolerance of a limit check of samples: the rounding of its own `f64`
+/// arithmetic (see [`NumberFormat::difference_allowance`]).
+///
+/// ```
+/// assert!(strak_trajectory::LIMIT_CHECK_RELATIVE < 1e-6);
+/// ```
+pub const LIMIT_CHECK_RELATIVE: f64 = 1e-9;
 
 impl fmt::Display for NumberFormat {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

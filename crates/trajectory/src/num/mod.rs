@@ -8,7 +8,7 @@ use strak_curves::{I32F32, Scalar};
 
 mod format;
 
-pub use format::{NumberFormat, ParseNumberFormatError};
+pub use format::{LIMIT_CHECK_RELATIVE, NumberFormat, ParseNumberFormatError};
 
 /// The lowest and highest control rates in Hz.
 pub(crate) const RATE_RANGE: (f64, f64) = (100.0, 100_000.0);

@@ -47,6 +47,29 @@ pub(crate) struct FeedRampLimits<N> {
     pub(crate) snap: N,
 }
 
+impl<N: Number> FeedRampLimits<N> {
+    /// The constants of a ramp changing `ω` by at most `alpha` per tick, up to
+    /// `k_max · alpha`, with its snap distance `max(α, ε)`.
+    pub(crate) fn new(alpha: N, k_max: i64, rate: N) -> Self {
+        let snap = if alpha > N::EPSILON {
+            alpha
+        } else {
+            N::EPSILON
+        };
+        FeedRampLimits {
+            alpha,
+            k_max,
+            rate,
+            snap,
+        }
+    }
+
+    /// The same ramp with the change per tick `alpha` (and `ω` up to `k_max · alpha`).
+    pub(crate) fn with_alpha(&self, alpha: N) -> Self {
+        Self::new(alpha, self.k_max, self.rate)
+    }
+}
+
 /// The share of the limits the feed ramps of a path without a reserve are sized for.
 pub(crate) const UNRESERVED_RAMP_SHARE: f64 = 0.25;
 
@@ -426,16 +449,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
         let rate = N::from_f64(meta.rate).ok_or(Error::OutOfRange)?;
         #[allow(clippy::cast_precision_loss)]
         let phi_dot_max = alpha.to_f64() * (k_max as f64) * meta.rate;
-        header.ramp = FeedRampLimits {
-            alpha,
-            k_max,
-            rate,
-            snap: if alpha > N::EPSILON {
-                alpha
-            } else {
-                N::EPSILON
-            },
-        };
+        header.ramp = FeedRampLimits::new(alpha, k_max, rate);
         Ok(Validator {
             header,
             phi_dot_max,

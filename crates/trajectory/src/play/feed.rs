@@ -120,16 +120,11 @@ mod tests {
     /// The limits as the path stores them: ω_max a whole multiple of α.
     fn limits<N: Number>(omega_max: f64, alpha: f64) -> FeedRampLimits<N> {
         let alpha = N::from_f64(alpha).unwrap();
-        FeedRampLimits {
+        FeedRampLimits::new(
             alpha,
-            k_max: libm::floor(omega_max / alpha.to_f64()) as i64,
-            rate: N::ONE,
-            snap: if alpha > N::EPSILON {
-                alpha
-            } else {
-                N::EPSILON
-            },
-        }
+            libm::floor(omega_max / alpha.to_f64()) as i64,
+            N::ONE,
+        )
     }
 
     /// Runs the ramp to its target; returns the number of ticks and checks the limits.

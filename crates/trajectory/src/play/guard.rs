@@ -11,10 +11,9 @@
 //! see [`Sampler::scale_feed_ramp`]); for each candidate it plays a copy of the sampler until
 //! the ramp has ended and checks every sample as a run's samples are checked: `|v|`, `|a|`
 //! (path norms and per axis) and the finite differences `|Δx|·f`, `|Δv|·f`, `|Δa|·f`
-//! against the limits, allowing `10⁻⁹` relative and `2·u(M)·f` (`√A` times that for a norm)
-//! for the rounding of the samples (`u(M)`:
-//! [`NumberFormat::sample_resolution`](crate::NumberFormat::sample_resolution) at the larger
-//! magnitude of the two samples). The first candidate that passes is the schedule. Every
+//! against the limits, allowing [`LIMIT_CHECK_RELATIVE`] and
+//! [`NumberFormat::difference_allowance`] (`√A` times that for a norm) at the larger
+//! magnitude of the two samples for their rounding. The first candidate that passes is the schedule. Every
 //! candidate's ramp is checked to its end, so a later change is checked from the state this
 //! one leaves, and the motion after a ramp is the plan's at a constant feed (within the
 //! limits). The work is bounded: at most [`MAX_DELAY`] ticks of delay, `max_shift + 1`
@@ -24,7 +23,7 @@
 
 use super::events::{Event, Playable};
 use super::{Kernel, Sampler, SamplerState};
-use crate::num::NumberFormat;
+use crate::num::{LIMIT_CHECK_RELATIVE, NumberFormat};
 use crate::path::Sample;
 use crate::plan::Limits;
 
@@ -33,9 +32,6 @@ pub const MAX_DELAY: u32 = 1 << 20;
 
 /// The longest ramp the guard plays ahead, in ticks; a candidate whose ramp is longer fails.
 pub const MAX_RAMP_TICKS: u32 = 1 << 18;
-
-/// The relative tolerance of a check: the rounding of its `f64` arithmetic.
-const RELATIVE: f64 = 1e-9;
 
 /// When and how slowly a feed change ramps: [`FeedGuard::schedule`]'s answer.
 ///
@@ -76,7 +72,7 @@ pub struct Schedule {
 /// for _ in 0..150 {
 ///     last = sampler.next(); // accelerating at the limits
 /// }
-/// let guard = FeedGuard::new(&limits, 1_000.0);
+/// let guard = FeedGuard::new(&limits);
 /// let when = guard.schedule(&sampler, Some(&last), Event::Hold).unwrap();
 /// assert!(when.delay < 1_000);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -88,7 +84,8 @@ pub struct FeedGuard<const A: usize> {
     jerk: f64,
     axis_velocity: [f64; A],
     axis_acceleration: [f64; A],
-    rate: f64,
+    /// `√A`: a norm's allowance in multiples of one axis's.
+    root_axes: f64,
     max_shift: u8,
 }
 
@@ -96,15 +93,17 @@ impl<const A: usize> FeedGuard<A> {
     /// The default largest slow-down of a ramp: `2⁻³`.
     pub const DEFAULT_MAX_SHIFT: u8 = 3;
 
-    /// A guard of `limits` (path and per axis) for a path played at `rate_hz`.
-    pub fn new(limits: &Limits<A>, rate_hz: f64) -> Self {
+    /// A guard of `limits` (path and per axis); the differences are taken at the rate of the
+    /// path each sampler plays.
+    pub fn new(limits: &Limits<A>) -> Self {
         FeedGuard {
             velocity: limits.velocity(),
             acceleration: limits.acceleration(),
             jerk: limits.jerk(),
             axis_velocity: limits.axis_velocity(),
             axis_acceleration: limits.axis_acceleration(),
-            rate: rate_hz,
+            #[allow(clippy::cast_precision_loss)]
+            root_axes: libm::sqrt(A as f64),
             max_shift: Self::DEFAULT_MAX_SHIFT,
         }
     }
@@ -114,8 +113,8 @@ impl<const A: usize> FeedGuard<A> {
     ///
     /// ```
     /// use strak_trajectory::{FeedGuard, Limits};
-    /// let g = FeedGuard::new(&Limits::<1>::new(1.0, 1.0, 1.0)?, 1_000.0).without_jerk();
-    /// assert_ne!(g, FeedGuard::new(&Limits::<1>::new(1.0, 1.0, 1.0)?, 1_000.0));
+    /// let g = FeedGuard::new(&Limits::<1>::new(1.0, 1.0, 1.0)?).without_jerk();
+    /// assert_ne!(g, FeedGuard::new(&Limits::<1>::new(1.0, 1.0, 1.0)?));
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub const fn without_jerk(mut self) -> Self {
@@ -128,7 +127,7 @@ impl<const A: usize> FeedGuard<A> {
     ///
     /// ```
     /// use strak_trajectory::{FeedGuard, Limits};
-    /// let g = FeedGuard::new(&Limits::<1>::new(1.0, 1.0, 1.0)?, 1_000.0).with_max_shift(0);
+    /// let g = FeedGuard::new(&Limits::<1>::new(1.0, 1.0, 1.0)?).with_max_shift(0);
     /// assert_eq!(g.max_shift(), 0);
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
@@ -218,11 +217,12 @@ impl<const A: usize> FeedGuard<A> {
             return false;
         }
         s.apply(event);
+        let rate = s.path().header().rate();
         let mut prev = prev.map(to_f64::<N, A>);
         for _ in 0..MAX_RAMP_TICKS {
             let ramping = s.is_ramping();
             let sample = to_f64::<N, A>(&s.next());
-            if !self.keeps(prev.as_ref(), &sample, N::FORMAT) {
+            if !self.keeps(prev.as_ref(), &sample, N::FORMAT, rate) {
                 return false;
             }
             // The sample after the ramp's end is checked too: its jump in φ̇ is in it.
@@ -234,10 +234,17 @@ impl<const A: usize> FeedGuard<A> {
         false
     }
 
-    /// `true` when `s` (after `p`) keeps the limits, as the module docs say.
-    fn keeps(&self, p: Option<&Kinematics<A>>, s: &Kinematics<A>, format: NumberFormat) -> bool {
-        let within = |x: f64, limit: f64, slack: f64| x <= limit * (1.0 + RELATIVE) + slack;
-        let axes = libm::sqrt(A as f64);
+    /// `true` when `s` (after `p`, one tick of a path at `rate` earlier) keeps the limits, as
+    /// the module docs say.
+    fn keeps(
+        &self,
+        p: Option<&Kinematics<A>>,
+        s: &Kinematics<A>,
+        format: NumberFormat,
+        rate: f64,
+    ) -> bool {
+        let within =
+            |x: f64, limit: f64, slack: f64| x <= limit * (1.0 + LIMIT_CHECK_RELATIVE) + slack;
         let norms =
             within(norm(&s.v), self.velocity, 0.0) && within(norm(&s.a), self.acceleration, 0.0);
         let per_axis = (0..A).all(|i| {
@@ -247,9 +254,9 @@ impl<const A: usize> FeedGuard<A> {
         let Some(p) = p else {
             return norms && per_axis;
         };
-        let f = self.rate;
+        let f = rate;
         let slack = |a: &[f64; A], b: &[f64; A]| {
-            2.0 * format.sample_resolution(magnitude(a).max(magnitude(b))) * f
+            format.difference_allowance(magnitude(a).max(magnitude(b)), f)
         };
         let diff = |a: &[f64; A], b: &[f64; A]| {
             let mut d = [0.0; A];
@@ -260,6 +267,7 @@ impl<const A: usize> FeedGuard<A> {
         };
         let (dx, dv, da) = (diff(&s.x, &p.x), diff(&s.v, &p.v), diff(&s.a, &p.a));
         let (sx, sv, sa) = (slack(&s.x, &p.x), slack(&s.v, &p.v), slack(&s.a, &p.a));
+        let axes = self.root_axes;
         let differences = within(norm(&dx), self.velocity, sx * axes)
             && within(norm(&dv), self.acceleration, sv * axes)
             && within(norm(&da), self.jerk, sa * axes)

@@ -520,15 +520,7 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         if alpha < MIN_ALPHA {
             return false;
         }
-        self.ramp = FeedRampLimits {
-            alpha: scaled,
-            snap: if scaled > N::EPSILON {
-                scaled
-            } else {
-                N::EPSILON
-            },
-            ..path
-        };
+        self.ramp = path.with_alpha(scaled);
         true
     }
 
