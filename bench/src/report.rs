@@ -616,21 +616,26 @@ pub fn online_checks(r: &Results) -> Vec<Check> {
 
 /// Why the online solver misses its speed target (from the profile of a random 3-axis
 /// move under callgrind).
-const ONLINE_MISSED: &str = "Where the time of a random 3-axis synchronized move goes (callgrind, \
-2 000 moves: about 30 100 x86-64 instructions per move in f64, 27 700 in f32): 56 % is the \
-time-optimal search of each axis (both directions, five forms each: the closed form with a \
-cruise, three quartics and a quadratic, each root isolated on its interval and checked by \
-integrating the seven phases), of which 25 points are root finding; 38 % is the motion of \
-the common duration for the two axes that are not the slowest (the farthest motions in \
-either direction, 22 %, and their blend, 14 %). The search narrows each quartic's interval \
-to the roots whose profile can keep its acceleration limits and non-negative holds before \
-it isolates any root: of the 32 700 quartic forms tried on the first 2 000 moves only 659 \
-yield a profile (the cruise form gives 4 762 of the 6 064 profiles), and the narrowing cut \
-the instructions by a fifth. Ruckig does the same search, with closed-form quartic roots, \
-and stops at the first profile in more cases. What would close more of the gap: closed-form \
-roots of the quartics (Ferrari) polished by one Newton step instead of isolation, end \
-positions of the common-duration forms in closed form instead of integrating each, and \
-solving the common duration only where the slowest axis's gaps allow.";
+const ONLINE_MISSED: &str = "Where the time of a random 3-axis synchronized move goes \
+(callgrind on `src/bin/solves.rs`, the first 2 000 moves: about 27 400 x86-64 instructions per move in f32, 30 100 in f64): 60 \
+% is the time-optimal search of each axis (both directions, five forms each: the closed form \
+with a cruise, three quartics and a quadratic, each root isolated on its interval and \
+checked by integrating the seven phases); 38 % is the motion of the common duration for the \
+two axes that are not the slowest (the farthest motions in either direction, 23 %, and their \
+blend, 14 %). Across both steps the root finding takes 25 %, the integration that checks \
+each candidate profile 25 %, and writing the profiles 7 %. The search narrows each quartic's \
+interval to the roots whose profile can keep its acceleration limits and non-negative holds \
+before it isolates any root: of the 32 700 quartic forms tried on the first 2 000 moves only \
+659 yield a profile (the cruise form gives 4 762 of the 6 064 profiles), and the narrowing \
+cut the instructions by a fifth. Of the 17 781 quartics solved for these moves in f32, \
+8 561 pass the quick test that the polynomial cannot vanish on its interval, and only \
+1 666 roots are found in them: most isolations find the derivative's roots only to find no \
+sign change. Ruckig does the same search, with closed-form quartic roots, and stops at the \
+first profile in more cases. What would close more of the gap: closed-form roots of the \
+quartics (Ferrari) polished by one Newton step instead of isolation, or a sign test of the \
+quartic's Bernstein coefficients on its interval before any isolation (no sign change: no \
+root); end positions of the common-duration forms in closed form instead of integrating \
+each; and solving the common duration only where the slowest axis's gaps allow.";
 
 /// The online section: peers' and strak's mean time per move, the checks.
 fn online_section(o: &mut String, r: &Results) {
