@@ -87,6 +87,12 @@ pub enum Error {
     },
     /// A tolerance, accuracy or count argument is zero, negative or otherwise unusable.
     InvalidArgument,
+    /// An arc's start or end is its centre, its radius is zero, or (in the radius form)
+    /// its start and end coincide so that no centre follows.
+    DegenerateArc,
+    /// An arc's end is not on the circle of its start within the tolerance (its distance
+    /// from the centre differs, or the chord is longer than the diameter).
+    ArcEndOffCircle,
     /// A tolerance or accuracy is finer than the number type `scalar` resolves at the curve's
     /// size: below the spacing of its values there (see [`resolution`](crate::resolution) and
     /// [`length_resolution`](crate::length_resolution)). Checked before any iteration starts.
@@ -158,6 +164,12 @@ impl fmt::Display for Error {
             }
             Error::InvalidArgument => f.write_str(
                 "an argument (tolerance, accuracy, count) is zero, negative or unusable",
+            ),
+            Error::DegenerateArc => f.write_str(
+                "degenerate arc: its start or end is its centre, or no centre follows from its radius",
+            ),
+            Error::ArcEndOffCircle => f.write_str(
+                "the arc's end is not on the circle of its start within the tolerance",
             ),
             Error::ToleranceBelowResolution { scalar } => write!(
                 f,

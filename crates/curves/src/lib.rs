@@ -3,6 +3,7 @@
 #![forbid(unsafe_code)]
 
 mod analysis;
+mod arc;
 pub mod basis;
 mod bezier;
 mod bspline;
@@ -14,6 +15,7 @@ mod point;
 mod scalar;
 
 pub use analysis::*;
+pub use arc::{CircularArc, Plane, Turn};
 pub use bezier::*;
 pub use bspline::*;
 pub use curve::{ParamCurve, ParamCurveDeriv, PieceDeriv, ScalarOf};

@@ -1,6 +1,7 @@
-//! Every curve kind issue 3 names — B-spline, NURBS, Hermite spline, interpolating cubic
-//! spline, Bézier chain — planned with the jerk-limited S-curve (`PathTiming::scurve`),
-//! compiled (`strak_trajectory::compile`) and played (`Sampler`) in `f64` and `f32`.
+//! The curve kinds of strak-curves — B-spline, NURBS, Hermite spline, interpolating cubic
+//! spline, Bézier chain, and the helix of a G-code arc — planned with the jerk-limited
+//! S-curve (`PathTiming::scurve`), compiled (`strak_trajectory::compile`) and played
+//! (`Sampler`) in `f64` and `f32`.
 //!
 //! Checked for each (see `strak_trajectory_tests::check_playback`): `ticks + 1` samples; the last
 //! sample equals `Path::end_position` bit for bit (and, in `f64`, the curve's own end point);
@@ -10,8 +11,8 @@
 //! `--nocapture`.
 
 use strak_curves::{
-    BSpline, BezierChain, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv, Parameterization,
-    SplineBoundary,
+    BSpline, BezierChain, CircularArc, CubicSpline, HermiteSpline, Nurbs, ParamCurveDeriv,
+    Parameterization, Plane, SplineBoundary, Turn,
 };
 use strak_trajectory::{Along, CompileOptions, Limits, Path, PathTiming, Sampler};
 use strak_trajectory_tests::{Unpromised, check_playback, compile_boxed};
@@ -118,6 +119,21 @@ fn interpolating_cubic_spline() {
     )
     .expect("cubic spline");
     plan_compile_play("cubic spline", &c);
+}
+
+#[test]
+fn helix() {
+    // half a turn of radius 20, rising 30
+    let c = CircularArc::with_center(
+        [65.0, 25.0, 0.0],
+        [25.0, 25.0, 30.0],
+        [45.0, 25.0],
+        Plane::XY,
+        Turn::CounterClockwise,
+        1e-9,
+    )
+    .expect("helix");
+    plan_compile_play("helix", &c);
 }
 
 #[test]

@@ -27,8 +27,9 @@
 use std::fmt::Write as _;
 
 use strak_curves::{
-    BSpline, Bezier, BezierChain, CubicSpline, HermiteSpline, I32F32, LagrangeCurve, Nurbs,
-    ParabolicBlend, ParamCurveDeriv, Parameterization, Point, PowerSpline, Scalar, SplineBoundary,
+    BSpline, Bezier, BezierChain, CircularArc, CubicSpline, HermiteSpline, I32F32, LagrangeCurve,
+    Nurbs, ParabolicBlend, ParamCurveDeriv, Parameterization, Plane, Point, PowerSpline, Scalar,
+    SplineBoundary, Turn,
 };
 use strak_trajectory::{
     Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
@@ -335,6 +336,31 @@ fn polylines_with_corners_from_5_to_179_degrees() {
             BSpline::<[S; 2], 16, 24>::clamped_uniform(1, &pts, S::ZERO, S::ONE).expect("polyline")
         });
     }
+    report.finish();
+}
+
+#[test]
+fn helix_and_full_circle() {
+    let mut report = Report::default();
+    every_format!(report, "helix", 3, |S| {
+        let p = points::<S, 3>(&[[65.0, 25.0, 0.0], [25.0, 25.0, 30.0]]);
+        let center = points::<S, 2>(&[[45.0, 25.0]])[0];
+        let tolerance = S::from_f64(1e-6).expect("tolerance");
+        CircularArc::with_center(
+            p[0],
+            p[1],
+            center,
+            Plane::XY,
+            Turn::CounterClockwise,
+            tolerance,
+        )
+        .expect("helix")
+    });
+    every_format!(report, "full circle", 2, |S| {
+        let p = points::<S, 2>(&[[40.0, 5.0], [40.0, -20.0]]);
+        CircularArc::with_center(p[0], p[0], p[1], Plane::XY, Turn::Clockwise, S::ZERO)
+            .expect("circle")
+    });
     report.finish();
 }
 
