@@ -154,7 +154,6 @@ impl<P: Point> CircularArc<P> {
         if r0 == 0.0 || r1 == 0.0 {
             return Err(Error::DegenerateArc);
         }
-        // The difference of the radii, formed without cancellation of the squares' sum.
         if (r0 - r1).abs() > tolerance {
             return Err(Error::ArcEndOffCircle);
         }
@@ -283,21 +282,53 @@ impl<P: Point> CircularArc<P> {
     }
 
     /// The signed angle turned, `Δθ` (positive counter-clockwise), in radians.
+    ///
+    /// ```
+    /// use strak_curves::{CircularArc, Plane, Turn};
+    /// let a = CircularArc::with_center([1.0_f64, 0.0], [0.0, 1.0], [0.0, 0.0], Plane::XY,
+    ///     Turn::Clockwise, 0.0)?;
+    /// assert!((a.sweep() + 1.5 * core::f64::consts::PI).abs() < 1e-15);
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
     pub fn sweep(&self) -> f64 {
         self.sweep
     }
 
     /// The radius at the start and at the end (equal on a circle).
+    ///
+    /// ```
+    /// use strak_curves::{CircularArc, Plane, Turn};
+    /// let spiral = CircularArc::with_center([2.0_f64, 0.0], [-2.1, 0.0], [0.0, 0.0], Plane::XY,
+    ///     Turn::Clockwise, 0.2)?;
+    /// assert_eq!(spiral.radii(), (2.0, 2.1));
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
     pub fn radii(&self) -> (f64, f64) {
         (self.radius, self.radius + self.radius_change)
     }
 
     /// The centre's two coordinates in the plane.
+    ///
+    /// ```
+    /// use strak_curves::{CircularArc, Plane, Turn};
+    /// let a = CircularArc::with_radius([0.0_f64, 0.0], [2.0, 0.0], 1.0, Plane::XY,
+    ///     Turn::Clockwise, 0.0)?;
+    /// assert_eq!(a.center(), [1.0, 0.0]);
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
     pub fn center(&self) -> [f64; 2] {
         self.center
     }
 
     /// The plane of the turn.
+    ///
+    /// ```
+    /// use strak_curves::{CircularArc, Plane, Turn};
+    /// let a = CircularArc::with_center([0.0_f64, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 0.0],
+    ///     Plane::ZX, Turn::CounterClockwise, 0.0)?;
+    /// assert_eq!(a.plane(), Plane::ZX);
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
     pub fn plane(&self) -> Plane {
         self.plane
     }
@@ -423,8 +454,8 @@ fn full_turn(turn: Turn) -> f64 {
     }
 }
 
-/// The angle from `from` to `to` in the sense `turn`: in `(0, 2π)` counter-clockwise, in
-/// `(−2π, 0)` clockwise (distinct points: never zero or a full turn).
+/// The angle from `from` to `to` in the sense `turn`: in `(0, 2π]` counter-clockwise, in
+/// `[−2π, 0)` clockwise (a full turn only where the two angles are equal).
 fn sweep_between(from: f64, to: f64, turn: Turn) -> f64 {
     // `to − from` lies in [−2π, 2π] (both from `atan2`): one or two turns added at most.
     let d = to - from;
