@@ -25,6 +25,11 @@ pub enum Error {
     InvalidRate,
     /// The path has zero length (or the parameter law a zero duration): nothing to play.
     EmptyPath,
+    /// A move of a stream has zero length, its tangent vanishes at an end (a Bézier control
+    /// point on its end point), or it does not start where the move before it ends.
+    DegenerateMove,
+    /// A corner-blend tolerance is negative or not finite.
+    InvalidTolerance,
     /// The number of axes of the sampler does not match the curve's point dimension.
     AxisMismatch {
         /// Axes of the curve's points.
@@ -236,6 +241,11 @@ impl fmt::Display for Error {
             Error::InvalidLimit => f.write_str("a limit is zero, negative or not finite"),
             Error::InvalidRate => f.write_str("control rate must be between 100 Hz and 100 kHz"),
             Error::EmptyPath => f.write_str("the path has zero length or zero duration"),
+            Error::DegenerateMove => f.write_str(
+                "a move has zero length, no tangent at an end, or does not start where the \
+                 move before it ends",
+            ),
+            Error::InvalidTolerance => f.write_str("a blend tolerance is negative or not finite"),
             Error::AxisMismatch { curve, path } => {
                 write!(f, "the curve has {curve} axes, the path {path}")
             }

@@ -12,6 +12,7 @@ mod online;
 mod path;
 mod plan;
 mod play;
+mod stream;
 
 pub use compile::{
     CompileOptions, Tolerance, compile, compile_into, compile_move, compile_move_into,
@@ -31,3 +32,4 @@ pub use plan::*;
 pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};
 pub use play::guard::{FeedGuard, MAX_DELAY, MAX_RAMP_TICKS, Schedule};
 pub use play::{Kernel, Sampler, SamplerState};
+pub use stream::{Blend, Junction, Move, MoveCurve, REVERSAL_ANGLE, Shape, Toolpath, junction};

@@ -1,7 +1,8 @@
 //! The crate is laid out by pipeline stage, and data flows one way through the stages:
 //! `error` and `num` (the number formats), then `online` (the state-to-state solver, which
 //! the planner uses between zones), `path` (what a compiled path is), `plan` (limits and time
-//! laws), `compile` (plan → path), `play` (the sampler and its kernels).
+//! laws), `stream` (moves and their corner blends), `compile` (plan → path), `play` (the
+//! sampler and its kernels).
 //! A module of one layer names only its own layer and the layers before it, outside its
 //! `#[cfg(test)]` items (tests may use the whole pipeline). Inside `plan`, whose modules
 //! once formed a circle, the modules are ordered as well (`PLAN_ORDER`).
@@ -16,14 +17,15 @@ use std::path::{Path, PathBuf};
 
 /// The layers in the order data flows through them, with their rank (a layer may name the
 /// layers of lower or equal rank).
-const LAYERS: [(&str, u8); 7] = [
+const LAYERS: [(&str, u8); 8] = [
     ("error", 0),
     ("num", 0),
     ("online", 1),
     ("path", 2),
     ("plan", 3),
-    ("compile", 4),
-    ("play", 5),
+    ("stream", 4),
+    ("compile", 5),
+    ("play", 6),
 ];
 
 /// The modules of `plan` in dependency order (`mod` is the layer's own helpers): a module

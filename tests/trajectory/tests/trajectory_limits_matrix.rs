@@ -32,8 +32,8 @@ use strak_curves::{
     SplineBoundary, Turn,
 };
 use strak_trajectory::{
-    Along, CompileOptions, Error, Kernel, Limits, Path, PathTiming, PlanOptions, ProfileShape, Q40,
-    Quantity,
+    Along, CompileOptions, Error, Kernel, Limits, Move, Path, PathTiming, PlanOptions,
+    ProfileShape, Q40, Quantity, Shape, Toolpath,
 };
 use strak_trajectory_tests::compile_boxed;
 use strak_trajectory_tests::limits_check::measure;
@@ -95,6 +95,20 @@ where
     C: ParamCurveDeriv,
     C::Point: Point,
 {
+    run_zones::<N, C, D, ZONES>(name, curve, shape, rate)
+}
+
+/// [`run`] with a plan of `Z` zones.
+fn run_zones<N: Kernel, C, const D: usize, const Z: usize>(
+    name: &str,
+    curve: &C,
+    shape: ProfileShape,
+    rate: f64,
+) -> Run
+where
+    C: ParamCurveDeriv,
+    C::Point: Point,
+{
     let (v, a, j) = LIMITS;
     let limits = Limits::<D>::new(v, a, j).expect("limits");
     let what = format!(
@@ -103,7 +117,7 @@ where
         N::NAME
     );
     let options = PlanOptions::new().with_shape(shape);
-    let plan = match PathTiming::<_, TABLE, ZONES>::plan(curve, &limits, &options) {
+    let plan = match PathTiming::<_, TABLE, Z>::plan(curve, &limits, &options) {
         Ok(p) => p,
         Err(e) => return failed(what, format!("plan: {e:?}")),
     };
@@ -361,6 +375,63 @@ fn helix_and_full_circle() {
         CircularArc::with_center(p[0], p[0], p[1], Plane::XY, Turn::Clockwise, S::ZERO)
             .expect("circle")
     });
+    report.finish();
+}
+
+/// Moves with their corners blended within 0.05 mm (`strak_trajectory::Toolpath`, an `f64`
+/// curve, played in every number format): lines turning by 5°, 150° and between, a line
+/// into a tangent arc (a curvature step), a helix, a Bézier, a reversal (an exact stop).
+#[test]
+fn blended_moves() {
+    let mut moves: Vec<Move<3>> = zigzag(5.0)[1..5]
+        .iter()
+        .chain(&zigzag(150.0)[3..7])
+        .map(|p| Move::line([p[0], p[1], 0.0]))
+        .collect();
+    let corner = moves.last().expect("moves").to;
+    let arc_end = [corner[0] + 10.0, corner[1] + 10.0, 5.0];
+    let center = [corner[0], corner[1] + 10.0];
+    let ccw = Shape::ArcCenter {
+        center,
+        plane: Plane::XY,
+        turn: Turn::CounterClockwise,
+    };
+    moves.push(Move::new(arc_end, ccw));
+    moves.push(Move::line([arc_end[0], arc_end[1] + 20.0, 5.0]));
+    let b = [arc_end[0] + 10.0, arc_end[1] + 30.0, 0.0];
+    moves.push(Move::new(
+        b,
+        Shape::Bezier {
+            c1: [arc_end[0], arc_end[1] + 30.0, 5.0],
+            c2: [b[0] - 5.0, b[1], 0.0],
+        },
+    ));
+    moves.push(Move::line([b[0] - 10.0, b[1], 0.0]));
+    let path = Toolpath::<3, 32>::new([120.0, -35.0, 0.0], &moves, 0.05, 1e-9).expect("toolpath");
+    assert!(path.blends() >= moves.len() - 3, "{} blends", path.blends());
+    let mut report = Report::default();
+    for shape in [ProfileShape::SCurve, ProfileShape::Trapezoid] {
+        for rate in RATES {
+            report.add(run_zones::<f64, _, 3, 1024>(
+                "blended moves",
+                &path,
+                shape,
+                rate,
+            ));
+            report.add(run_zones::<f32, _, 3, 1024>(
+                "blended moves",
+                &path,
+                shape,
+                rate,
+            ));
+            report.add(run_zones::<Q40, _, 3, 1024>(
+                "blended moves",
+                &path,
+                shape,
+                rate,
+            ));
+        }
+    }
     report.finish();
 }
 

@@ -1,0 +1,368 @@
+//! Corner blends: the curvature-continuous (G²) quintic that replaces the junction of two
+//! moves, within a tolerance of the programmed path.
+//!
+//! # The blend
+//!
+//! A blend leaves the incoming move at the arc length `L` before the junction `C` and joins
+//! the outgoing move at `L` after it. It is the quintic Bézier curve (Farin, *Curves and
+//! Surfaces for CAGD*, 5th ed., ch. 4) with the control points
+//!
+//! ```text
+//! b₀ = S,  b₁ = S + a·T_S,  b₂ = S + (a+b)·T_S + (5/4)·a²·k_S,
+//! b₅ = E,  b₄ = E − a·T_E,  b₃ = E − (a+b)·T_E + (5/4)·a²·k_E,
+//! ```
+//!
+//! where `S`, `E` are the points where it leaves and joins, `T` the unit tangents there and
+//! `k` the curvature vectors (`d²c/ds²`), `a = 0.4·L` and `b = 0.325·L`. At `t = 0`,
+//! `B' = 5a·T_S` and `B'' = 20·((b − a)·T_S + (5/4)·a²·k_S)`, whose part normal to `T_S`
+//! divided by `|B'|²` is `k_S`: position, tangent and curvature vector agree with the move,
+//! and likewise at `t = 1`. The fractions `0.4` and `0.325` keep the largest curvature
+//! derivative `dκ/ds` low (it, not the curvature, binds the speed through a tight corner
+//! under a jerk limit: `v³·|dκ/ds| ≤ j`); at a right angle they need 18 % more curvature
+//! than the fractions of least curvature but a sixteenth of their curvature derivative.
+//!
+//! # The deviation bound
+//!
+//! Let `u₁`, `u₂` be the unit tangents at `C` and `φ` the angle between them. The same
+//! construction on the two tangent lines at `C` has the control points
+//! `q₀ = C − L·u₁, q₁ = C − (L−a)·u₁, q₂ = C − (L−a−b)·u₁` and their mirror images
+//! `q₃, q₄, q₅` on `C + s·u₂`. Its Bernstein weights give the corner blend of two lines:
+//!
+//! * `Σ Bᵢ(t)·qᵢ = C − α(t)·u₁ + β(t)·u₂`, where `α` has the coefficients
+//!   `(L, L−a, L−a−b, 0, 0, 0)`, so it falls monotonically, and `β` is its mirror image
+//!   and rises. Both equal `K/32` at `t = ½`, with `K = 16L − 15a − 10b`.
+//! * Where `β ≤ α` the point lies `β·sin φ ≤ (K/32)·sin φ` from the tangent line of `u₁`,
+//!   with its foot at most `x = L·(1 + max(0, −cos φ))` from `C`; likewise on the other
+//!   side. The midpoint is `(K/16)·sin(φ/2)` from `C`, which bounds both.
+//!
+//! The blend's control points differ from these by `eᵢ = bᵢ − qᵢ`, and a convex combination
+//! of the `eᵢ` is no longer than the longest, so every point of the blend lies within
+//! `(K/16)·sin(φ/2) + max|eᵢ|` of a foot on a tangent line, and `C` lies that close to the
+//! blend's midpoint. A move whose parameter runs at the speed `|c'| = σ` at `C` departs from
+//! its tangent line by at most `M₂·(x/σ)²/2` over the length `x` (Taylor's theorem with
+//! `M₂ ≥ |c''|`, [`MoveCurve::second_derivative_bound`]). So
+//!
+//! ```text
+//! deviation ≤ (K/16)·sin(φ/2) + max|eᵢ| + max over both moves of M₂·(x/σ)²/2
+//! ```
+//!
+//! bounds both the distance of every point of the blend from the programmed path and the
+//! distance of `C` from the blend (a two-sided bound, as G64 P means it). For two lines
+//! the last two terms vanish and `L = 16·ε / ((16 − 15·0.4 − 10·0.325)·sin(φ/2))` meets the
+//! tolerance `ε` exactly; otherwise `L` starts there and shrinks until the bound holds.
+//! It never exceeds half of either move, so that the blends at both ends of a move never
+//! overlap.
+
+use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv, Point};
+
+use super::moves::MoveCurve;
+use crate::error::Error;
+
+/// `a / L`: the first control leg of a blend, as a share of its trim length.
+const FIRST_LEG: f64 = 0.4;
+/// `b / L`: the second control leg.
+const SECOND_LEG: f64 = 0.325;
+/// `K / L = 16 − 15·a/L − 10·b/L`.
+const MIDPOINT_FACTOR: f64 = 16.0 - 15.0 * FIRST_LEG - 10.0 * SECOND_LEG;
+
+/// The largest turn that is blended (radians): beyond it the junction is an exact stop. A
+/// blend of a near-reversal folds back on itself within a width of `ε`, and its curvature
+/// derivative (growing as the fold tightens) allows so little speed that a stop at the
+/// corner costs no time.
+pub const REVERSAL_ANGLE: f64 = 170.0 * core::f64::consts::PI / 180.0;
+
+/// Joins whose tangents and curvature vectors differ by less than this (relative) are
+/// passed straight through: the difference is the rounding of the moves' ends.
+const STRAIGHT: f64 = 1e-9;
+
+/// Shrinking steps of the trim length before a junction is left to an exact stop.
+const SHRINK_STEPS: usize = 64;
+
+/// A curvature-continuous blend that replaces a junction of two moves.
+///
+/// ```
+/// use strak_trajectory::{Junction, Move, MoveCurve, junction};
+/// use strak_curves::ParamCurve;
+/// let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
+/// let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+/// let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { panic!("a right angle blends") };
+/// let mid = blend.curve().eval(0.5);
+/// let corner = ((mid[0] - 10.0).powi(2) + mid[1].powi(2)).sqrt();
+/// assert!((corner - 0.05).abs() < 1e-10); // the midpoint is the tolerance from the corner
+/// assert!(blend.deviation() <= 0.05);
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Blend<const D: usize> {
+    curve: Bezier<[f64; D], 6>,
+    leave: f64,
+    join: f64,
+    trim: f64,
+    deviation: f64,
+}
+
+impl<const D: usize> Blend<D> {
+    /// The blend curve, a quintic Bézier from where it leaves the incoming move to where it
+    /// joins the outgoing one.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
+    /// assert_eq!(blend.curve().control_points().len(), 6);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn curve(&self) -> &Bezier<[f64; D], 6> {
+        &self.curve
+    }
+
+    /// The parameter of the incoming move where the blend leaves it.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
+    /// assert!((blend.leave() - (1.0 - blend.trim() / 10.0)).abs() < 1e-15);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn leave(&self) -> f64 {
+        self.leave
+    }
+
+    /// The parameter of the outgoing move where the blend joins it.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
+    /// assert!((blend.join() - blend.trim() / 10.0).abs() < 1e-15);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn join(&self) -> f64 {
+        self.join
+    }
+
+    /// The arc length `L` the blend takes from each move.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
+    /// // two lines at a right angle: L = 16·ε / (6.75·sin 45°)
+    /// let l = 16.0 * 0.05 / (6.75 * core::f64::consts::FRAC_1_SQRT_2);
+    /// assert!((blend.trim() - l).abs() < 1e-8 * l);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn trim(&self) -> f64 {
+        self.trim
+    }
+
+    /// The proven bound of the blend's deviation from the programmed path (see the module
+    /// docs): at most the tolerance it was made for.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
+    /// assert!(blend.deviation() <= 0.05);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn deviation(&self) -> f64 {
+        self.deviation
+    }
+}
+
+/// How the motion passes from one move to the next.
+///
+/// ```
+/// use strak_trajectory::{Junction, Move, MoveCurve, junction};
+/// let a = MoveCurve::new([0.0, 0.0], &Move::line([1.0, 0.0]), 0.0)?;
+/// let b = MoveCurve::new([1.0, 0.0], &Move::line([2.0, 0.0]), 0.0)?;
+/// assert_eq!(junction(&a, &b, 0.01)?, Junction::Straight);
+/// assert_eq!(junction(&a, &b, 0.0)?, Junction::Straight);
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Junction<const D: usize> {
+    /// The moves join with continuous tangent and curvature: the motion passes straight on.
+    Straight,
+    /// The motion comes to rest at the junction (an exact stop: a zero tolerance, or a turn
+    /// beyond [`REVERSAL_ANGLE`]).
+    Stop,
+    /// A blend replaces the junction.
+    Blend(Blend<D>),
+}
+
+/// The unit tangent, the curvature vector `d²c/ds²` and the speed `|c'|` at `u`; `None`
+/// where the speed vanishes.
+fn frame<const D: usize>(curve: &MoveCurve<D>, u: f64) -> Option<([f64; D], [f64; D], f64)> {
+    let (d1, d2) = (curve.deriv(u, 1), curve.deriv(u, 2));
+    let speed = d1.norm();
+    if !(speed > 0.0 && speed.is_finite()) {
+        return None;
+    }
+    let t = d1.times(1.0 / speed);
+    let normal = d2.minus(t.times(d2.dot(t)));
+    Some((t, normal.times(1.0 / (speed * speed)), speed))
+}
+
+/// How the motion passes the junction of `incoming` (ending at the junction) and `outgoing`
+/// (starting there) within the tolerance `tolerance` (units; 0 for an exact stop): straight
+/// on where tangent and curvature are continuous, an exact stop for a zero tolerance or a
+/// near-reversal, else a [`Blend`] whose deviation from the programmed path is at most the
+/// tolerance (module docs) and which takes at most half of either move.
+///
+/// # Errors
+/// [`Error::InvalidTolerance`] for a negative or non-finite tolerance;
+/// [`Error::DegenerateMove`] when the moves do not meet (the outgoing move must start where
+/// the incoming one ends); [`Error::Curve`] when an arc-length inversion fails.
+///
+/// ```
+/// use strak_trajectory::{Junction, Move, MoveCurve, junction};
+/// let a = MoveCurve::new([0.0, 0.0], &Move::line([1.0, 0.0]), 0.0)?;
+/// let back = MoveCurve::new([1.0, 0.0], &Move::line([0.0, 0.0]), 0.0)?;
+/// assert_eq!(junction(&a, &back, 0.01)?, Junction::Stop); // a reversal
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+pub fn junction<const D: usize>(
+    incoming: &MoveCurve<D>,
+    outgoing: &MoveCurve<D>,
+    tolerance: f64,
+) -> Result<Junction<D>, Error> {
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(Error::InvalidTolerance);
+    }
+    let corner = incoming.eval(1.0);
+    if corner != outgoing.eval(0.0) {
+        return Err(Error::DegenerateMove);
+    }
+    let (Some(end), Some(start)) = (frame(incoming, 1.0), frame(outgoing, 0.0)) else {
+        return Err(Error::DegenerateMove);
+    };
+    let (u1, u2) = (end.0, start.0);
+    let curvature_step = end.1.minus(start.1).norm();
+    if u1.minus(u2).norm() <= STRAIGHT
+        && curvature_step <= STRAIGHT * (end.1.norm() + start.1.norm())
+    {
+        return Ok(Junction::Straight);
+    }
+    let cos_phi = u1.dot(u2).clamp(-1.0, 1.0);
+    if tolerance == 0.0 || cos_phi < libm::cos(REVERSAL_ANGLE) {
+        return Ok(Junction::Stop);
+    }
+    let corner_frame = Corner {
+        point: corner,
+        tangents: [u1, u2],
+        speeds: [end.2, start.2],
+        cos_phi,
+        half_sin: libm::sqrt((1.0 - cos_phi) / 2.0),
+    };
+    let half = (incoming.length() / 2.0).min(outgoing.length() / 2.0);
+    let mut trim = if corner_frame.half_sin > 0.0 {
+        // a hair inside, so that the rounding of the control points does not cost a step
+        (16.0 * tolerance * (1.0 - 1e-9) / (MIDPOINT_FACTOR * corner_frame.half_sin)).min(half)
+    } else {
+        half
+    };
+    for _ in 0..SHRINK_STEPS {
+        match corner_frame.blend(incoming, outgoing, trim)? {
+            Some(blend) if blend.deviation <= tolerance => return Ok(Junction::Blend(blend)),
+            Some(blend) => trim = corner_frame.shorter(trim, blend.deviation, tolerance),
+            None => trim *= 0.5,
+        }
+    }
+    Ok(Junction::Stop)
+}
+
+/// The junction point, the unit tangents and the parameter speeds there.
+struct Corner<const D: usize> {
+    point: [f64; D],
+    tangents: [[f64; D]; 2],
+    speeds: [f64; 2],
+    cos_phi: f64,
+    /// `sin(φ/2)`.
+    half_sin: f64,
+}
+
+impl<const D: usize> Corner<D> {
+    /// The part of the deviation bound that grows linearly with the trim: that of the
+    /// corner of the tangent lines, `(K/16)·sin(φ/2)`.
+    fn tangent_corner(&self, trim: f64) -> f64 {
+        MIDPOINT_FACTOR * trim / 16.0 * self.half_sin
+    }
+
+    /// A shorter trim for a blend of trim `trim` whose bound `deviation` exceeds
+    /// `tolerance`: the root of `c₁·L + c₂·L² = tolerance`, with `c₁·trim` the tangent
+    /// corner's part and `c₂·trim²` the rest (the control points' and the moves' departures
+    /// from the tangent lines grow about as `L²`), a little inside, and at most `(1 − 10⁻⁶)·trim`.
+    fn shorter(&self, trim: f64, deviation: f64, tolerance: f64) -> f64 {
+        let linear = self.tangent_corner(trim);
+        let c1 = linear / trim;
+        let c2 = ((deviation - linear) / (trim * trim)).max(0.0);
+        let target = tolerance * (1.0 - 1e-9);
+        let root = 2.0 * target / (c1 + libm::sqrt(c1 * c1 + 4.0 * c2 * target));
+        root.min(trim * (1.0 - 1e-6))
+    }
+
+    /// The blend of trim length `trim` and its deviation bound; `None` where a move's
+    /// speed vanishes at the trim or its tangent-line bound would reach past its start or
+    /// end.
+    fn blend(
+        &self,
+        incoming: &MoveCurve<D>,
+        outgoing: &MoveCurve<D>,
+        trim: f64,
+    ) -> Result<Option<Blend<D>>, Error> {
+        let leave = incoming.param_at(incoming.length() - trim)?;
+        let join = outgoing.param_at(trim)?;
+        let (Some(s), Some(e)) = (frame(incoming, leave), frame(outgoing, join)) else {
+            return Ok(None);
+        };
+        let (a, b) = (FIRST_LEG * trim, SECOND_LEG * trim);
+        let (sp, ep) = (incoming.eval(leave), outgoing.eval(join));
+        let bend = 1.25 * a * a;
+        let points = [
+            sp,
+            sp.plus(s.0.times(a)),
+            sp.plus(s.0.times(a + b)).plus(s.1.times(bend)),
+            ep.minus(e.0.times(a + b)).plus(e.1.times(bend)),
+            ep.minus(e.0.times(a)),
+            ep,
+        ];
+        let [u1, u2] = self.tangents;
+        let offsets = [trim, trim - a, trim - a - b];
+        let mut control_error: f64 = 0.0;
+        for i in 0..3 {
+            let q_in = self.point.minus(u1.times(offsets[i]));
+            let q_out = self.point.plus(u2.times(offsets[i]));
+            control_error = control_error
+                .max(points[i].minus(q_in).norm())
+                .max(points[5 - i].minus(q_out).norm());
+        }
+        let reach = trim * (1.0 + (-self.cos_phi).max(0.0));
+        let mut departure: f64 = 0.0;
+        for (curve, speed) in [(incoming, self.speeds[0]), (outgoing, self.speeds[1])] {
+            let tau = reach / speed;
+            if tau > 1.0 {
+                return Ok(None);
+            }
+            departure = departure.max(curve.second_derivative_bound() * tau * tau / 2.0);
+        }
+        let lines = self.tangent_corner(trim);
+        let Ok(curve) = Bezier::new(points) else {
+            return Ok(None);
+        };
+        Ok(Some(Blend {
+            curve,
+            leave,
+            join,
+            trim,
+            deviation: lines + control_error + departure,
+        }))
+    }
+}

@@ -1,0 +1,542 @@
+//! Streams of moves: the moves' curves and the corner blends, checked from dense samples of
+//! the programmed path (not from the blend's own bound).
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
+use strak_curves::{ParamCurve, ParamCurveDeriv, Plane, Point, Turn};
+use strak_trajectory::{
+    Along, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Path, PathTiming, PlanOptions,
+    REVERSAL_ANGLE, Sampler, Shape, Toolpath, junction,
+};
+use strak_trajectory_tests::compile_boxed;
+
+/// Samples of each curve for the distance checks.
+const CURVE_SAMPLES: usize = 400;
+/// The relative allowance of the sampled distances: their bound of the polygons' departure
+/// from the curves (a two-line blend passes the corner at exactly the tolerance).
+const SAMPLING: f64 = 1e-6;
+
+/// The distance of `p` from the segment `a`–`b`.
+fn segment_distance<const D: usize>(p: [f64; D], a: [f64; D], b: [f64; D]) -> f64 {
+    let ab = b.minus(a);
+    let len2 = ab.dot(ab);
+    let t = if len2 > 0.0 {
+        (p.minus(a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.minus(a.plus(ab.times(t))).norm()
+}
+
+/// A part of a curve as the polygon of its samples, with the polygon's largest departure
+/// from the curve (`M₂·h²/8` for the parameter step `h`; de Boor, *A Practical Guide to
+/// Splines*, ch. 2): a point's distance from the polygon plus that departure bounds its
+/// distance from the curve from above, independent of the blend's own bound. Searching a
+/// part of the curve only makes the distance larger, so a check against it is stricter.
+struct Polygon<const D: usize> {
+    points: Vec<[f64; D]>,
+    sag: f64,
+}
+
+impl<const D: usize> Polygon<D> {
+    fn new<C: ParamCurveDeriv<Point = [f64; D]>>(
+        curve: &C,
+        (u0, u1): (f64, f64),
+        m2: f64,
+        n: usize,
+    ) -> Self {
+        let h = (u1 - u0) / n as f64;
+        let points = (0..=n).map(|i| curve.eval(u0 + i as f64 * h)).collect();
+        Polygon {
+            points,
+            sag: m2 * h * h / 8.0,
+        }
+    }
+
+    fn distance(&self, p: [f64; D]) -> f64 {
+        let chords = self
+            .points
+            .windows(2)
+            .map(|w| segment_distance(p, w[0], w[1]));
+        chords.fold(f64::INFINITY, f64::min) + self.sag
+    }
+}
+
+/// The largest distance of the blend from the programmed path (both moves, within twice the
+/// trim of the corner), and the distance of the junction from the blend: upper bounds from
+/// samples.
+fn measured_deviation<const D: usize>(
+    blend: &strak_trajectory::Blend<D>,
+    a: &MoveCurve<D>,
+    b: &MoveCurve<D>,
+) -> (f64, f64) {
+    let near_a = Polygon::new(
+        a,
+        ((2.0 * blend.leave() - 1.0).max(0.0), 1.0),
+        a.second_derivative_bound(),
+        CURVE_SAMPLES,
+    );
+    let near_b = Polygon::new(
+        b,
+        (0.0, (2.0 * blend.join()).min(1.0)),
+        b.second_derivative_bound(),
+        CURVE_SAMPLES,
+    );
+    let p = blend.curve().control_points();
+    let second = (0..4).map(|i| p[i + 2].minus(p[i + 1].times(2.0)).plus(p[i]).norm());
+    let blend_m2 = 20.0 * second.fold(0.0, f64::max);
+    let curve = Polygon::new(blend.curve(), (0.0, 1.0), blend_m2, CURVE_SAMPLES);
+    let out = curve
+        .points
+        .iter()
+        .map(|&q| near_a.distance(q).min(near_b.distance(q)));
+    let fine = Polygon::new(blend.curve(), (0.0, 1.0), blend_m2, 100 * CURVE_SAMPLES);
+    (out.fold(0.0, f64::max), fine.distance(a.eval(1.0)))
+}
+
+fn line<const D: usize>(from: [f64; D], to: [f64; D]) -> MoveCurve<D> {
+    MoveCurve::new(from, &Move::line(to), 0.0).unwrap()
+}
+
+fn blended<const D: usize>(
+    a: &MoveCurve<D>,
+    b: &MoveCurve<D>,
+    tol: f64,
+) -> strak_trajectory::Blend<D> {
+    match junction(a, b, tol).unwrap() {
+        Junction::Blend(blend) => blend,
+        other => panic!("expected a blend, got {other:?}"),
+    }
+}
+
+/// The unit tangent and curvature vector of a curve at `u`, from its derivatives.
+fn frame<C: ParamCurveDeriv<Point = [f64; D]>, const D: usize>(
+    c: &C,
+    u: f64,
+) -> ([f64; D], [f64; D]) {
+    let (d1, d2) = (c.deriv(u, 1), c.deriv(u, 2));
+    let s = d1.norm();
+    let t = d1.times(1.0 / s);
+    (t, d2.minus(t.times(d2.dot(t))).times(1.0 / (s * s)))
+}
+
+/// Position, tangent and curvature of the blend agree with the moves where it leaves and
+/// joins them.
+fn assert_g2<const D: usize>(
+    blend: &strak_trajectory::Blend<D>,
+    a: &MoveCurve<D>,
+    b: &MoveCurve<D>,
+) {
+    let c = blend.curve();
+    for (u_blend, curve, u) in [(0.0, a, blend.leave()), (1.0, b, blend.join())] {
+        assert_eq!(
+            c.eval(u_blend),
+            curve.eval(u),
+            "the blend starts and ends on the moves"
+        );
+        let (t0, k0) = frame(c, u_blend);
+        let (t1, k1) = frame(curve, u);
+        assert!(t0.minus(t1).norm() < 1e-12, "tangent {t0:?} vs {t1:?}");
+        let scale = k1.norm().max(1.0 / blend.trim());
+        assert!(
+            k0.minus(k1).norm() < 1e-9 * scale,
+            "curvature {k0:?} vs {k1:?}"
+        );
+    }
+}
+
+#[test]
+fn line_corners_meet_the_tolerance_at_the_corner() {
+    let tol = 0.02;
+    for degrees in [1.0, 5.0, 30.0, 60.0, 90.0, 120.0, 135.0, 160.0, 169.0] {
+        let phi = f64::to_radians(degrees);
+        let a = line([0.0, 0.0, 0.0], [10.0, 0.0, 0.0]);
+        let b = line(
+            [10.0, 0.0, 0.0],
+            [10.0 + 10.0 * phi.cos(), 10.0 * phi.sin(), 0.0],
+        );
+        let blend = blended(&a, &b, tol);
+        assert_g2(&blend, &a, &b);
+        let (out, corner_gap) = measured_deviation(&blend, &a, &b);
+        assert!(out <= tol * (1.0 + SAMPLING), "{degrees}°: deviation {out}");
+        assert!(blend.deviation() <= tol);
+        if blend.trim() < 5.0 {
+            // not shortened by half a move: the corner is exactly the tolerance from the blend
+            assert!(
+                (corner_gap - tol).abs() < 1e-6 * tol,
+                "{degrees}°: corner {corner_gap}"
+            );
+        } else {
+            assert!(corner_gap <= tol * (1.0 + SAMPLING));
+        }
+    }
+}
+
+#[test]
+fn blends_take_at_most_half_a_move() {
+    let a = line([0.0, 0.0], [0.1, 0.0]);
+    let b = line([0.1, 0.0], [0.1, 0.05]);
+    for tol in [1e-4, 1e-3, 0.01, 1.0] {
+        let blend = blended(&a, &b, tol);
+        assert!(blend.trim() <= 0.025 + 1e-15, "{tol}: {}", blend.trim());
+        assert!(blend.deviation() <= tol);
+        assert_g2(&blend, &a, &b);
+        let (out, _) = measured_deviation(&blend, &a, &b);
+        assert!(out <= blend.deviation() * (1.0 + SAMPLING));
+    }
+}
+
+#[test]
+fn exact_stops_and_straight_joins() {
+    let a = line([0.0, 0.0], [1.0, 0.0]);
+    let right = line([1.0, 0.0], [1.0, 1.0]);
+    assert_eq!(junction(&a, &right, 0.0).unwrap(), Junction::Stop);
+    let on = line([1.0, 0.0], [3.0, 0.0]);
+    assert_eq!(junction(&a, &on, 0.1).unwrap(), Junction::Straight);
+    for degrees in [171.0, 179.0, 180.0] {
+        let phi = f64::to_radians(degrees);
+        let back = line([1.0, 0.0], [1.0 + phi.cos(), phi.sin()]);
+        assert_eq!(
+            junction(&a, &back, 0.1).unwrap(),
+            Junction::Stop,
+            "{degrees}°"
+        );
+    }
+    assert!(REVERSAL_ANGLE < f64::to_radians(171.0));
+    // an arc going on along the same circle
+    let arc = |from: [f64; 2], to: [f64; 2]| {
+        let shape = Shape::ArcCenter {
+            center: [0.0, 0.0],
+            plane: Plane::XY,
+            turn: Turn::CounterClockwise,
+        };
+        MoveCurve::new(from, &Move::new(to, shape), 1e-12).unwrap()
+    };
+    let (p, q, r) = ([1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]);
+    assert_eq!(
+        junction(&arc(p, q), &arc(q, r), 0.01).unwrap(),
+        Junction::Straight
+    );
+}
+
+#[test]
+fn bad_junctions_are_errors() {
+    let a = line([0.0, 0.0], [1.0, 0.0]);
+    let b = line([1.0, 0.0], [1.0, 1.0]);
+    let apart = line([1.0, 0.1], [1.0, 1.0]);
+    assert_eq!(junction(&a, &apart, 0.1), Err(Error::DegenerateMove));
+    for tol in [-0.1, f64::NAN, f64::INFINITY] {
+        assert_eq!(junction(&a, &b, tol), Err(Error::InvalidTolerance));
+    }
+    assert_eq!(
+        MoveCurve::new([0.0, 0.0], &Move::line([0.0, 0.0]), 0.0),
+        Err(Error::DegenerateMove)
+    );
+    let cusp = Move::new(
+        [1.0, 0.0],
+        Shape::Bezier {
+            c1: [0.5, 1.0],
+            c2: [1.0, 0.0],
+        },
+    );
+    assert_eq!(
+        MoveCurve::new([0.0, 0.0], &cusp, 0.0),
+        Err(Error::DegenerateMove)
+    );
+    let bad_feed = Move::line([1.0, 0.0]).with_feed(0.0);
+    assert_eq!(
+        MoveCurve::new([0.0, 0.0], &bad_feed, 0.0),
+        Err(Error::InvalidLimit)
+    );
+    let nan = Move::line([f64::NAN, 0.0]);
+    assert!(matches!(
+        MoveCurve::new([0.0, 0.0], &nan, 0.0),
+        Err(Error::Curve(_))
+    ));
+}
+
+/// The largest `|dκ/ds|·ε²` and `κ·ε` of a line-corner blend, from the blend's derivatives.
+fn curvature_profile(degrees: f64, tol: f64) -> (f64, f64) {
+    let phi = f64::to_radians(degrees);
+    let a = line([0.0, 0.0], [100.0, 0.0]);
+    let b = line([100.0, 0.0], [100.0 + 100.0 * phi.cos(), 100.0 * phi.sin()]);
+    let blend = blended(&a, &b, tol);
+    let c = blend.curve();
+    let kappa = |u: f64| {
+        let (d1, d2) = (c.deriv(u, 1), c.deriv(u, 2));
+        (d1[0] * d2[1] - d1[1] * d2[0]) / d1.norm().powi(3)
+    };
+    let n = 4000;
+    let (mut dk, mut k) = (0.0_f64, 0.0_f64);
+    for i in 0..n {
+        let (u0, u1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+        let ds = c.eval(u1).minus(c.eval(u0)).norm();
+        dk = dk.max((kappa(u1) - kappa(u0)).abs() / ds);
+        k = k.max(kappa(u0).abs());
+    }
+    (dk * tol * tol, k * tol)
+}
+
+/// The curvature of line-corner blends grows with the turn, and at a right angle the blend's
+/// legs (`a = 0.4·L`, `b = 0.325·L`) give the curvature derivative the module docs state:
+/// `|dκ/ds|·ε² ≈ 0.22` and `κ·ε ≈ 0.505`. Printed with `--nocapture`.
+#[test]
+fn curvature_of_line_blends() {
+    let mut last = (0.0, 0.0);
+    for degrees in [5.0, 30.0, 60.0, 90.0, 120.0, 150.0, 170.0] {
+        let (dk, k) = curvature_profile(degrees, 0.02);
+        println!("{degrees:5}°  dκ/ds·ε² = {dk:10.4}  κ·ε = {k:8.4}");
+        assert!(dk > last.0 && k > last.1, "{degrees}°");
+        last = (dk, k);
+        if degrees == 90.0 {
+            assert!(
+                (0.20..0.24).contains(&dk) && (0.49..0.52).contains(&k),
+                "{dk} {k}"
+            );
+        }
+    }
+}
+
+/// A move from `from` of the kind `kind` (0 line, 1 arc about a centre, with a helical rise,
+/// 2 arc of a radius, 3 Bézier), shaped by the values `x` in `[0, 1)`.
+fn random_move(from: [f64; 3], kind: u8, x: &[f64; 10]) -> Move<3> {
+    let r = |i: usize, lo: f64, hi: f64| lo + (hi - lo) * x[i];
+    let near = |i: usize| {
+        [
+            from[0] + r(i, -6.0, 6.0),
+            from[1] + r(i + 1, -6.0, 6.0),
+            from[2] + r(i + 2, -2.0, 2.0),
+        ]
+    };
+    let turn = if x[9] < 0.5 {
+        Turn::Clockwise
+    } else {
+        Turn::CounterClockwise
+    };
+    match kind {
+        0 => Move::line(near(0)),
+        1 => {
+            let center = [from[0] + r(0, -5.0, 5.0), from[1] + r(1, -5.0, 5.0)];
+            let radius = (from[0] - center[0]).hypot(from[1] - center[1]);
+            let angle = r(3, -3.0, 3.0);
+            let to = [
+                center[0] + radius * angle.cos(),
+                center[1] + radius * angle.sin(),
+                from[2] + r(2, -2.0, 2.0),
+            ];
+            Move::new(
+                to,
+                Shape::ArcCenter {
+                    center,
+                    plane: Plane::XY,
+                    turn,
+                },
+            )
+        }
+        2 => {
+            let to = [
+                from[0] + r(0, -6.0, 6.0),
+                from[1] + r(1, -6.0, 6.0),
+                from[2],
+            ];
+            let chord = (to[0] - from[0]).hypot(to[1] - from[1]);
+            let radius = chord / 2.0 * r(3, 1.0, 4.0) * if x[4] < 0.5 { -1.0 } else { 1.0 };
+            Move::new(
+                to,
+                Shape::ArcRadius {
+                    radius,
+                    plane: Plane::XY,
+                    turn,
+                },
+            )
+        }
+        _ => Move::new(
+            near(6),
+            Shape::Bezier {
+                c1: near(0),
+                c2: near(3),
+            },
+        ),
+    }
+}
+
+/// Checks the junction of two random moves: a blend is G² with both, takes at most half
+/// of each, stays within the tolerance of the programmed path (from samples), and passes
+/// the corner within it.
+fn check_random_junction(
+    kinds: (u8, u8),
+    x: &[f64; 10],
+    y: &[f64; 10],
+    tol: f64,
+) -> Result<bool, TestCaseError> {
+    let start = [0.0, 0.0, 0.0];
+    let Ok(a) = MoveCurve::new(start, &random_move(start, kinds.0, x), 1e-9) else {
+        return Ok(false);
+    };
+    let corner = a.eval(1.0);
+    let Ok(b) = MoveCurve::new(corner, &random_move(corner, kinds.1, y), 1e-9) else {
+        return Ok(false);
+    };
+    let Junction::Blend(blend) = junction(&a, &b, tol).unwrap() else {
+        return Ok(false);
+    };
+    assert_g2(&blend, &a, &b);
+    prop_assert!(blend.trim() <= a.length() / 2.0 * (1.0 + 1e-12));
+    prop_assert!(blend.trim() <= b.length() / 2.0 * (1.0 + 1e-12));
+    prop_assert!(blend.deviation() <= tol);
+    let (out, corner_gap) = measured_deviation(&blend, &a, &b);
+    prop_assert!(out <= tol * (1.0 + SAMPLING), "deviation {out} > {tol}");
+    prop_assert!(
+        corner_gap <= tol * (1.0 + SAMPLING),
+        "corner {corner_gap} > {tol}"
+    );
+    Ok(true)
+}
+
+fn unit10() -> impl Strategy<Value = [f64; 10]> {
+    prop::array::uniform10(0.0..1.0_f64)
+}
+
+/// 300 random junctions of every pair of move kinds (random seeds per run; a failure is
+/// reported with its inputs); at least two thirds of them are blends that get checked.
+#[test]
+fn random_junctions_blend_within_the_tolerance() {
+    let checked = std::sync::atomic::AtomicUsize::new(0);
+    let mut runner = TestRunner::new(Config {
+        cases: 300,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let cases = ((0_u8..4, 0_u8..4), unit10(), unit10(), 1e-3..0.5_f64);
+    let result = runner.run(&cases, |(kinds, x, y, tol)| {
+        if check_random_junction(kinds, &x, &y, tol)? {
+            checked.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        }
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    let checked = checked.into_inner();
+    println!("{checked} of 300 random junctions were blends");
+    assert!(
+        checked >= 200,
+        "only {checked} of 300 junctions were blends"
+    );
+}
+
+#[test]
+fn tangent_line_to_arc_is_blended_for_the_curvature_step() {
+    // a line along +x into a counter-clockwise circle of radius 2 touching it
+    let a = line([0.0, 0.0, 0.0], [5.0, 0.0, 0.0]);
+    let arc = Move::new(
+        [7.0, 2.0, 0.0],
+        Shape::ArcCenter {
+            center: [5.0, 2.0],
+            plane: Plane::XY,
+            turn: Turn::CounterClockwise,
+        },
+    );
+    let b = MoveCurve::new([5.0, 0.0, 0.0], &arc, 1e-12).unwrap();
+    for tol in [1e-3, 0.01, 0.1] {
+        let blend = blended(&a, &b, tol);
+        assert_g2(&blend, &a, &b);
+        let (out, _) = measured_deviation(&blend, &a, &b);
+        assert!(out <= tol && blend.deviation() <= tol, "{tol}: {out}");
+        // the curvature step is spread over a length that grows as √ε
+        assert!(
+            blend.trim() > (tol * 2.0_f64).sqrt(),
+            "{tol}: trim {}",
+            blend.trim()
+        );
+    }
+}
+
+/// A toolpath of lines (corners of 5° to 150° and a reversal), a line into a tangent arc, a
+/// helix and a Bézier, blended within 0.05, planned with the S-curve, compiled and played in
+/// `f64`: every sample lies within the tolerance (plus the compile tolerance) of the
+/// programmed moves, and the motion ends exactly at the last move's end.
+#[test]
+fn played_toolpath_stays_within_the_tolerance() {
+    let tol = 0.05;
+    let mut moves = vec![
+        Move::line([20.0, 0.0, 0.0]),
+        Move::line([40.0, 1.75, 0.0]), // 5°
+        Move::line([50.0, 20.0, 0.0]), // about 56°
+        Move::line([30.0, 10.0, 0.0]), // about 145°
+        Move::line([50.0, 20.0, 0.0]), // a reversal: an exact stop
+        Move::line([70.0, 20.0, 0.0]),
+    ];
+    let ccw = Shape::ArcCenter {
+        center: [70.0, 30.0],
+        plane: Plane::XY,
+        turn: Turn::CounterClockwise,
+    };
+    moves.push(Move::new([80.0, 30.0, 5.0], ccw)); // tangent: only the curvature steps
+    moves.push(Move::line([80.0, 50.0, 5.0]));
+    moves.push(Move::new(
+        [60.0, 60.0, 0.0],
+        Shape::Bezier {
+            c1: [80.0, 60.0, 5.0],
+            c2: [70.0, 65.0, 0.0],
+        },
+    ));
+    let start = [0.0, 0.0, 0.0];
+    let path = Toolpath::<3, 16>::new(start, &moves, tol, 1e-9).unwrap();
+    assert_eq!(
+        path.junctions()
+            .iter()
+            .filter(|j| **j == Junction::Stop)
+            .count(),
+        1
+    );
+    assert_eq!(path.blends(), moves.len() - 2);
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let plan = PathTiming::<_, 1024, 1024>::plan(&path, &limits, &PlanOptions::new()).unwrap();
+    let compile_tol = 1e-4;
+    let options = CompileOptions::new()
+        .with_tolerance(compile_tol)
+        .with_path_limits(&limits);
+    let played: Box<Path<f64, 3, 4096>> =
+        compile_boxed(&Along::new(&path, &plan), 1000.0, &options).unwrap();
+    let programmed: Vec<Polygon<3>> = path
+        .moves()
+        .iter()
+        .map(|m| {
+            Polygon::new(
+                m,
+                (0.0, 1.0),
+                m.second_derivative_bound(),
+                4 * CURVE_SAMPLES,
+            )
+        })
+        .collect();
+    let mut sampler = Sampler::new(&*played);
+    let mut worst = 0.0_f64;
+    loop {
+        let x = sampler.next().position;
+        let d = programmed
+            .iter()
+            .map(|p| p.distance(x))
+            .fold(f64::INFINITY, f64::min);
+        worst = worst.max(d);
+        if sampler.is_finished() {
+            assert_eq!(
+                x,
+                moves.last().unwrap().to,
+                "the motion ends on the last move's end"
+            );
+            break;
+        }
+    }
+    println!(
+        "largest distance from the programmed moves {worst:.6} (tolerance {tol}), {:.3} s",
+        played.duration()
+    );
+    assert!(
+        worst <= tol + compile_tol + played.playback_bound(),
+        "{worst}"
+    );
+    // the blends are used: the motion cuts corners by a good share of the tolerance
+    assert!(worst > tol / 4.0, "{worst}");
+}
