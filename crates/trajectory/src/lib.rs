@@ -15,7 +15,7 @@ mod play;
 mod stream;
 
 pub use compile::{
-    CompileOptions, Tolerance, compile, compile_into, compile_move, compile_move_into,
+    CompileOptions, Stretches, Tolerance, compile, compile_into, compile_move, compile_move_into,
     take_over_into,
 };
 pub use error::{BlobFormat, Error, Quantity, Units};

@@ -5,8 +5,8 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use strak_curves::{ParamCurve, ParamCurveDeriv, Plane, Point, Turn};
 use strak_trajectory::{
-    Along, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Path, PathTiming, PlanOptions,
-    REVERSAL_ANGLE, Sampler, Shape, Toolpath, junction,
+    Along, AxisState, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Path, PathTiming,
+    Piece, PlanOptions, REVERSAL_ANGLE, Sampler, Shape, Stretches, Timing, Toolpath, junction,
 };
 use strak_trajectory_tests::compile_boxed;
 
@@ -539,4 +539,137 @@ fn played_toolpath_stays_within_the_tolerance() {
     );
     // the blends are used: the motion cuts corners by a good share of the tolerance
     assert!(worst > tol / 4.0, "{worst}");
+}
+
+/// The blended toolpath of `played_toolpath_stays_within_the_tolerance`, planned with the
+/// S-curve at 1 kHz.
+fn contour() -> (Toolpath<3, 16>, Limits<3>) {
+    let ccw = Shape::ArcCenter {
+        center: [70.0, 30.0],
+        plane: Plane::XY,
+        turn: Turn::CounterClockwise,
+    };
+    let moves = [
+        Move::line([20.0, 0.0, 0.0]),
+        Move::line([40.0, 1.75, 0.0]),
+        Move::line([50.0, 20.0, 0.0]),
+        Move::line([30.0, 10.0, 0.0]),
+        Move::line([70.0, 20.0, 0.0]),
+        Move::new([80.0, 30.0, 5.0], ccw),
+        Move::line([80.0, 50.0, 5.0]),
+    ];
+    let path = Toolpath::<3, 16>::new([0.0, 0.0, 0.0], &moves, 0.05, 1e-9).unwrap();
+    (path, Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap())
+}
+
+/// A motion compiled in stretches of 150 ticks plays as one path: every tick within the
+/// tolerance of the exact motion, the stretches meeting in position, velocity and
+/// acceleration, and the speed, acceleration and jerk measured from the played samples
+/// within the limits the plan promises, the seams included, without the slow-down a whole
+/// compile of this plan needs.
+#[test]
+fn stretches_join_without_a_seam() {
+    let (path, limits) = contour();
+    let rate = 1000.0;
+    let plan =
+        PathTiming::<_, 4096, 1024>::plan(&path, &limits, &PlanOptions::new().with_rate(rate))
+            .unwrap();
+    let tol = 1e-5;
+    let mut stretches =
+        Stretches::<_, 3>::new(&plan, rate, &CompileOptions::new().with_tolerance(tol)).unwrap();
+    let ticks = stretches.ticks();
+    let per_tick = plan.duration() / f64::from(ticks);
+    let exact = |k: u32| path.eval(plan.param(f64::from(k) * per_tick).0);
+    // play every piece, stretch after stretch
+    let mut pieces: strak_curves::heapless::Vec<Piece<f64, 3>, 256> =
+        strak_curves::heapless::Vec::new();
+    let (mut x, mut v, mut a) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut seams, mut seam_step, mut most) = (0, [0.0_f64; 3], 0);
+    let mut end: Option<[AxisState<f64>; 3]> = None;
+    while stretches.remaining() > 0 {
+        stretches.next_into(150, &mut pieces).unwrap();
+        most = most.max(pieces.len());
+        if let Some(end) = end {
+            // the state the last stretch ended in and the state this one starts from
+            seams += 1;
+            for (e, s) in end.iter().zip(pieces[0].axes()) {
+                seam_step[0] = seam_step[0].max((e.position - s.position).abs());
+                seam_step[1] = seam_step[1].max((e.velocity - s.velocity).abs());
+                seam_step[2] = seam_step[2].max((e.acceleration - s.acceleration).abs());
+            }
+        }
+        for piece in &pieces {
+            let mut state = *piece.axes();
+            for _ in 0..piece.ticks() {
+                x.push(state.map(|s| s.position));
+                v.push(state.map(|s| s.velocity));
+                a.push(state.map(|s| s.acceleration));
+                state.iter_mut().for_each(AxisState::step);
+            }
+            end = Some(state);
+        }
+    }
+    println!(
+        "largest steps at the seams: position {:.1e}, velocity {:.1e}, acceleration {:.1e}",
+        seam_step[0], seam_step[1], seam_step[2]
+    );
+    assert!(
+        seam_step[0] < 1e-9 && seam_step[1] < 1e-7 && seam_step[2] < 1e-4,
+        "{seam_step:?}"
+    );
+    assert!(seams >= 10, "{seams} seams");
+    assert_eq!(x.len() as u32, ticks);
+    let mut worst = 0.0_f64;
+    for (k, p) in x.iter().enumerate() {
+        worst = worst.max(p.minus(exact(k as u32)).norm());
+    }
+    assert!(worst <= tol * 1.000_001, "position error {worst}");
+    let t = 1.0 / rate;
+    let (mut vmax, mut amax, mut jmax) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for k in 1..x.len() {
+        vmax = vmax.max(x[k].minus(x[k - 1]).norm() / t);
+        amax = amax.max(v[k].minus(v[k - 1]).norm() / t);
+        jmax = jmax.max(a[k].minus(a[k - 1]).norm() / t);
+    }
+    println!(
+        "{seams} seams, at most {most} pieces a stretch; error {worst:.2e}; v {vmax:.3} a {amax:.2} j {jmax:.0}"
+    );
+    let whole: Box<Path<f64, 3, 4096>> =
+        compile_boxed(&plan, rate, &CompileOptions::new().with_tolerance(tol)).unwrap();
+    println!(
+        "whole compile: {} ticks, {} pieces, time scale {:.4}; stretches: {ticks} ticks",
+        whole.ticks(),
+        whole.pieces().len(),
+        whole.time_scale()
+    );
+    assert!(
+        whole.ticks() > ticks,
+        "the whole compile slows down, the stretches do not"
+    );
+    // within what the plan promises (the machine's limits less the feed reserve)
+    let promised = plan.limits().unwrap();
+    let slack = 1.0 + 1e-9;
+    assert!(vmax <= promised.velocity * slack, "{vmax}");
+    assert!(amax <= promised.acceleration * slack, "{amax}");
+    assert!(jmax <= promised.jerk * slack, "{jmax}");
+}
+
+/// `PathTiming::param_acceleration` (exact, from the motion and the curve) agrees with the
+/// central difference of `du/dt` along the blended toolpath, blends and arc included.
+#[test]
+fn param_acceleration_is_the_derivative_of_the_rate() {
+    let (path, limits) = contour();
+    let plan = PathTiming::<_, 4096, 1024>::plan(&path, &limits, &PlanOptions::new()).unwrap();
+    let (duration, h) = (plan.duration(), 1e-7);
+    let mut worst = 0.0_f64;
+    let mut scale = 0.0_f64;
+    for i in 1..2000 {
+        let t = duration * f64::from(i) / 2000.0;
+        let difference = (plan.param(t + h).1 - plan.param(t - h).1) / (2.0 * h);
+        let exact = plan.param_acceleration(t);
+        worst = worst.max((exact - difference).abs());
+        scale = scale.max(exact.abs());
+    }
+    println!("largest difference {worst:.3e} of {scale:.3e}");
+    assert!(scale > 0.0 && worst <= 1e-4 * scale, "{worst} of {scale}");
 }

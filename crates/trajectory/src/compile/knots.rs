@@ -44,11 +44,25 @@ pub(crate) trait Knots<const A: usize> {
 /// or in two 4-byte values (`f32`), through the values' little-endian bytes. `2·(2A + 1) ≤
 /// 9A` for every `A ≥ 1`, so a piece always has room for a knot. When the fit is done,
 /// [`SplineFit::write_pieces`](super::spline_fit::SplineFit::write_pieces) overwrites each
-/// slot with its piece.
+/// slot with its piece. The slots start at `offset` (a fit after pieces already written, as
+/// the stretches of [`Stretches`](crate::Stretches) write several fits into one storage).
 #[derive(Debug)]
-pub(crate) struct PieceKnots<'p, N: Number, const A: usize, const P: usize>(
-    pub(crate) &'p mut Vec<Piece<N, A>, P>,
-);
+pub(crate) struct PieceKnots<'p, N: Number, const A: usize, const P: usize> {
+    pub(crate) pieces: &'p mut Vec<Piece<N, A>, P>,
+    pub(crate) offset: usize,
+}
+
+impl<'p, N: Number, const A: usize, const P: usize> PieceKnots<'p, N, A, P> {
+    /// The knots in `pieces`, from its first slot.
+    pub(crate) fn new(pieces: &'p mut Vec<Piece<N, A>, P>) -> Self {
+        PieceKnots { pieces, offset: 0 }
+    }
+
+    /// Slot `j`'s piece, to overwrite with the piece of the fit.
+    pub(crate) fn piece_mut(&mut self, j: usize) -> Option<&mut Piece<N, A>> {
+        self.pieces.get_mut(self.offset + j)
+    }
+}
 
 /// Values of `N` per `f64`: 1 or 2.
 const fn words<N: Number>() -> usize {
@@ -111,11 +125,11 @@ fn get<N: Number, const A: usize>(axes: &[AxisState<N>; A], k: usize) -> f64 {
 
 impl<N: Number, const A: usize, const P: usize> PieceKnots<'_, N, A, P> {
     fn axes(&self, i: usize) -> Option<&[AxisState<N>; A]> {
-        self.0.get(i).map(|p| &p.axes)
+        self.pieces.get(self.offset + i).map(|p| &p.axes)
     }
 
     fn axes_mut(&mut self, i: usize) -> Option<&mut [AxisState<N>; A]> {
-        self.0.get_mut(i).map(|p| &mut p.axes)
+        self.pieces.get_mut(self.offset + i).map(|p| &mut p.axes)
     }
 
     /// The `f64`s `first .. first + A` of slot `i`.
@@ -137,7 +151,7 @@ impl<N: Number, const A: usize, const P: usize> PieceKnots<'_, N, A, P> {
 
 impl<N: Number, const A: usize, const P: usize> Knots<A> for PieceKnots<'_, N, A, P> {
     fn capacity(&self) -> usize {
-        P
+        P.saturating_sub(self.offset)
     }
     fn set_len(&mut self, m: usize) {
         let empty = Piece {
@@ -145,17 +159,18 @@ impl<N: Number, const A: usize, const P: usize> Knots<A> for PieceKnots<'_, N, A
             ticks: 0,
             axes: [AxisState::ZERO; A],
         };
-        if m <= self.0.len() {
-            self.0.truncate(m);
+        let len = self.offset + m;
+        if len <= self.pieces.len() {
+            self.pieces.truncate(len);
         } else {
-            while self.0.len() < m && self.0.push(empty).is_ok() {}
+            while self.pieces.len() < len && self.pieces.push(empty).is_ok() {}
         }
     }
     fn end(&self, i: usize) -> u32 {
-        self.0.get(i).map_or(0, |p| p.start)
+        self.pieces.get(self.offset + i).map_or(0, |p| p.start)
     }
     fn set_end(&mut self, i: usize, k: u32) {
-        if let Some(p) = self.0.get_mut(i) {
+        if let Some(p) = self.pieces.get_mut(self.offset + i) {
             p.start = k;
         }
     }
@@ -180,10 +195,12 @@ impl<N: Number, const A: usize, const P: usize> Knots<A> for PieceKnots<'_, N, A
         }
     }
     fn split(&self, i: usize) -> bool {
-        self.0.get(i).is_some_and(|p| p.ticks != 0)
+        self.pieces
+            .get(self.offset + i)
+            .is_some_and(|p| p.ticks != 0)
     }
     fn set_split(&mut self, i: usize, s: bool) {
-        if let Some(p) = self.0.get_mut(i) {
+        if let Some(p) = self.pieces.get_mut(self.offset + i) {
             p.ticks = u32::from(s);
         }
     }
@@ -270,7 +287,7 @@ mod tests {
     /// rows of one slot do not overlap.
     fn round_trip<N: Number>() {
         let mut pieces: Vec<Piece<N, 1>, 2> = Vec::new();
-        let mut knots = PieceKnots(&mut pieces);
+        let mut knots = PieceKnots::new(&mut pieces);
         knots.set_len(2);
         let patterns = [
             0.1_f64,

@@ -94,14 +94,48 @@ where
         Ok((s, du))
     }
 
-    /// The exact position at tick `k` (the law's end at the last tick).
-    pub(super) fn position<const A: usize>(&self, k: u32) -> Result<[f64; A], Error> {
-        let t = if k == self.ticks {
+    /// The time-law time of tick `k` (the law's end exactly at the last tick).
+    pub(super) fn time(&self, k: u32) -> f64 {
+        if k == self.ticks {
             self.duration
         } else {
             f64::from(k) * self.per_tick
-        };
-        coords(self.curve.eval(self.param(t)?.0))
+        }
+    }
+
+    /// The exact position at tick `k` (the law's end at the last tick).
+    pub(super) fn position<const A: usize>(&self, k: u32) -> Result<[f64; A], Error> {
+        coords(self.curve.eval(self.param(self.time(k))?.0))
+    }
+
+    /// The second derivative `d²x/dk² = (c''·u̇² + c'·ü) · per_tick²` (units per tick²) at
+    /// time-law time `t` ([`Timing::param_acceleration`]).
+    pub(super) fn second<const A: usize>(&self, t: f64) -> Result<[f64; A], Error> {
+        let (u, du) = self.param(t)?;
+        let ddu = self.timing.param_acceleration(t);
+        let d1: [f64; A] = coords(self.curve.deriv(u, 1))?;
+        let d2: [f64; A] = coords(self.curve.deriv(u, 2))?;
+        let scale = self.per_tick * self.per_tick;
+        let x: [f64; A] = core::array::from_fn(|a| (d2[a] * du * du + d1[a] * ddu) * scale);
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(x)
+        } else {
+            Err(Error::Curve(strak_curves::Error::NonFinite))
+        }
+    }
+
+    /// Calls `f` with every break of the time law ([`Timing::breaks`]) strictly between the
+    /// ticks `first` and `last`, as a fractional tick, once each, in increasing order.
+    pub(super) fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
+        let (lo, hi) = (f64::from(first), f64::from(last));
+        let mut prev = f64::NEG_INFINITY;
+        self.timing.breaks(&mut |t: f64| {
+            let k = t / self.per_tick;
+            if k > lo && k < hi && k - prev >= 1e-6 {
+                f(k);
+                prev = k;
+            }
+        });
     }
 
     /// The slope `dx/dk = c'(u) · du/dt · per_tick` (units per tick) at time-law time `t`.
@@ -160,6 +194,18 @@ where
         fit: &mut SplineFit<A, K>,
         one_tick_pieces: bool,
     ) -> Result<(), Error> {
+        self.knots_on_breaks_in(fit, one_tick_pieces, (0, self.ticks))
+    }
+
+    /// [`knots_on_breaks`](Self::knots_on_breaks) for a fit of the ticks `first ..= last`
+    /// only (its tick `i` is the law's tick `first + i`): the knots of the breaks strictly
+    /// inside that stretch, the neighbouring breaks taken from the whole law.
+    pub(super) fn knots_on_breaks_in<const A: usize, K: Knots<A>>(
+        &self,
+        fit: &mut SplineFit<A, K>,
+        one_tick_pieces: bool,
+        (first, last): (u32, u32),
+    ) -> Result<(), Error> {
         let isolated = |k: f64, before: f64, after: f64| {
             (k - before).abs() >= MIN_BREAK_GAP && (after - k).abs() >= MIN_BREAK_GAP
         };
@@ -170,8 +216,8 @@ where
                 Ok(())
             })?;
         }
-        let ticks_f = f64::from(self.ticks);
-        let mut exact = |k: u32| self.position::<A>(k);
+        let (lo_tick, hi_tick) = (f64::from(first), f64::from(last));
+        let mut exact = |k: u32| self.position::<A>(first + k);
         self.for_each_break(&mut |k, before, after| {
             let (lo, hi) = if all_close {
                 (libm::floor(k), libm::ceil(k))
@@ -181,9 +227,9 @@ where
                 return Ok(());
             };
             for tick in [lo, hi] {
-                if tick >= 1.0 && tick < ticks_f {
+                if tick > lo_tick && tick < hi_tick {
                     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                    fit.insert_knot(tick as u32, &mut exact)?;
+                    fit.insert_knot(tick as u32 - first, &mut exact)?;
                 }
             }
             Ok(())

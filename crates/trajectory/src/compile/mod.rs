@@ -7,12 +7,14 @@ mod options;
 mod peaks;
 mod planned;
 mod spline_fit;
+mod stretch;
 mod tangential;
 #[cfg(test)]
 pub(crate) mod testing;
 
 pub use online::{compile_move, compile_move_into, take_over_into};
 pub use options::{CompileOptions, Tolerance};
+pub use stretch::Stretches;
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
@@ -228,7 +230,7 @@ where
     check_inputs::<A, M::Curve, M::Law>(timing, rate_hz, options)?;
     let period = 1.0 / rate_hz;
     let limits = timing.limits();
-    let mut fit = SplineFit::<A, _>::empty(PieceKnots(&mut path.pieces));
+    let mut fit = SplineFit::<A, _>::empty(PieceKnots::new(&mut path.pieces));
     let (mut stretch, mut min_ticks) = (1.0_f64, 0_u32);
     let (mut exceeded, mut margin) = (Quantity::Velocity, SLOWDOWN_MARGIN);
     for _ in 0..SLOWDOWN_ATTEMPTS {
@@ -464,7 +466,7 @@ fn write_states<N: Number, const A: usize, const P: usize>(
     period: f64,
 ) -> Result<(), Error> {
     fit.write_pieces(|knots, j, coeffs, start, ticks| {
-        let Some(piece) = knots.0.get_mut(j) else {
+        let Some(piece) = knots.piece_mut(j) else {
             return Err(Error::CapacityExceeded {
                 capacity: P,
                 required: j + 1,

@@ -388,7 +388,12 @@ fn cubic_state<R: Real>(axis: &Axis<'_, R>, k: u32, next: u32, period: f64) -> A
 /// through the end position; velocity `v₀ + a₀T·i + q·i²` through the end velocity;
 /// acceleration linear between both. For a piece on one cubic phase whose end is that
 /// phase's end this is the phase itself (up to rounding).
-fn chord_state(s: &Kinematics<f64>, e: &Kinematics<f64>, n: u32, period: f64) -> AxisState<f64> {
+pub(super) fn chord_state(
+    s: &Kinematics<f64>,
+    e: &Kinematics<f64>,
+    n: u32,
+    period: f64,
+) -> AxisState<f64> {
     let n = f64::from(n);
     let tt = period * period;
     let (a, b, c) = (s.position, s.velocity * period, s.acceleration * tt * 0.5);

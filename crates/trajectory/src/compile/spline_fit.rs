@@ -12,6 +12,27 @@
 //! (clamped spline). The system is strictly diagonally dominant, so the Thomas algorithm
 //! (elimination without pivoting, `O(m)`) is stable; its pivots are at least
 //! `h_{j−1} + h_j ≥ 2`.
+//!
+//! A fit may also clamp the second derivative at either end (a stretch of a motion whose
+//! ends are known to the acceleration, so that it joins its neighbours in position, slope
+//! and acceleration). The knot next to a clamped end then is not interpolated but follows
+//! from the slopes. At the start, the first piece's second derivative at 0 is
+//! `2(3δ₀ − 2s₀ − s₁)/h₀ = α`, so
+//!
+//! `y₁ = Y + (h₀/3)·s₁`,  `Y = y₀ + h₀·(α·h₀/2 + 2s₀)/3`,
+//!
+//! and substituting it into the first two rows changes the first diagonal to
+//! `2h₀ + h₁ + h₀²/h₁` and the second row's sub-diagonal to `h₂·(1 + h₀/h₁)` (their right
+//! sides take `Y` for `y₁`). The elimination stays stable: the first multiplier is
+//! `c₀ = h₀/(2h₀ + h₁ + h₀²/h₁)`, so the second pivot is
+//! `2(h₁ + h₂) − h₂·h₀/(h₀ + h₁) > 2h₁ + h₂`, and the rows after it are unchanged. The end
+//! is the mirror image: `y_{m−1} = Y′ − (h_{m−1}/3)·s_{m−1}` with
+//! `Y′ = y_m − h_{m−1}·(2s_m − β·h_{m−1}/2)/3`, the last diagonal
+//! `h_{m−2} + 2h_{m−1} + h_{m−1}²/h_{m−2}` and the super-diagonal of the row before it
+//! `h_{m−3}·(1 + h_{m−1}/h_{m−2})`; the last pivots of the elimination stay positive as
+//! the rows before them are dominant. A free knot's position is checked against the
+//! tolerance like the ticks inside a piece, and a fit with both ends clamped has at least
+//! three pieces, so that the two free knots differ.
 
 use super::knots::Knots;
 use crate::error::Error;
@@ -32,6 +53,11 @@ pub(crate) struct SplineFit<const A: usize, K> {
     start_value: [f64; A],
     start_slope: [f64; A],
     end_slope: [f64; A],
+    /// The clamped second derivatives (units/tick²) at the start and the end, if any.
+    accelerations: [Option<[f64; A]>; 2],
+    /// With a clamped acceleration: the positions of knot 1 and knot `m − 1` (from the
+    /// slopes, see the module docs), in place of the stored ones.
+    free_values: [[f64; A]; 2],
 }
 
 /// The local tick offsets at which a piece of `n` ticks is checked: the quarter points
@@ -68,7 +94,44 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
             start_value: [0.0; A],
             start_slope: [0.0; A],
             end_slope: [0.0; A],
+            accelerations: [None; 2],
+            free_values: [[0.0; A]; 2],
         }
+    }
+
+    /// Clamps the second derivatives (units/tick²) at the start and at the end to the given
+    /// values, where given (module docs). Splits the pieces at their middle ticks until
+    /// there are enough for the clamps (two, three for both).
+    ///
+    /// # Errors
+    /// [`Error::EmptyPath`] for a fit with too few ticks for the clamps (two, three for
+    /// both); [`Error::CapacityExceeded`] when the storage holds too few pieces; errors of
+    /// `exact`.
+    pub(crate) fn clamp_accelerations(
+        &mut self,
+        accelerations: [Option<[f64; A]>; 2],
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        let needed = 1 + accelerations.iter().flatten().count();
+        let ticks = self.knot(self.m);
+        if (ticks as usize) < needed {
+            return Err(Error::EmptyPath);
+        }
+        while self.m < needed {
+            let widest = (0..self.m)
+                .max_by_key(|&j| self.knot(j + 1) - self.knot(j))
+                .unwrap_or(0);
+            let mid = self.knot(widest) + (self.knot(widest + 1) - self.knot(widest)) / 2;
+            self.insert_knot(mid, exact)?;
+        }
+        self.accelerations = accelerations;
+        Ok(())
+    }
+
+    /// Whether knot 1 (`end = 0`) or knot `m − 1` (`end = 1`) has a free position.
+    fn free_knot(&self, end: usize) -> bool {
+        let needed = 1 + self.accelerations.iter().flatten().count();
+        self.accelerations[end].is_some() && self.m >= needed
     }
 
     /// The spline on a uniform initial grid: `⌈ticks / max_len⌉` pieces of at most `max_len`
@@ -236,6 +299,8 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
     pub(crate) fn value(&self, j: usize) -> [f64; A] {
         match j.checked_sub(1) {
             None => self.start_value,
+            Some(0) if self.free_knot(0) => self.free_values[0],
+            Some(i) if i + 2 == self.m && self.free_knot(1) => self.free_values[1],
             Some(i) => self.knots.value(i),
         }
     }
@@ -258,6 +323,22 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
         if m < 2 {
             return;
         }
+        // With clamped accelerations the free knots take `Y`, `Y′` while the rows are built.
+        let (free_start, free_end) = (self.free_knot(0), self.free_knot(1));
+        let h = |j: usize| f64::from(self.knot(j + 1) - self.knot(j));
+        let (h0, h1) = (h(0), h(1));
+        let (hl, hp) = (h(m - 1), h(m - 2));
+        if let (true, Some(alpha)) = (free_start, self.accelerations[0]) {
+            self.free_values[0] = core::array::from_fn(|a| {
+                self.start_value[a] + h0 * (alpha[a] * h0 / 2.0 + 2.0 * self.start_slope[a]) / 3.0
+            });
+        }
+        if let (true, Some(beta)) = (free_end, self.accelerations[1]) {
+            let end = self.knots.value(m - 1);
+            self.free_values[1] = core::array::from_fn(|a| {
+                end[a] - hl * (2.0 * self.end_slope[a] - beta[a] * hl / 2.0) / 3.0
+            });
+        }
         // Rows r = 0 ..= m−2 for the inner knots j = r + 1.
         let mut prev_c = 0.0;
         let mut prev_d = [0.0; A];
@@ -266,7 +347,19 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
             let h_prev = f64::from(self.knot(j) - self.knot(j - 1));
             let h_next = f64::from(self.knot(j + 1) - self.knot(j));
             let (y_prev, y, y_next) = (self.value(j - 1), self.value(j), self.value(j + 1));
-            let (sub, diag, sup) = (h_next, 2.0 * (h_prev + h_next), h_prev);
+            let (mut sub, mut diag, mut sup) = (h_next, 2.0 * (h_prev + h_next), h_prev);
+            if free_start && r == 0 {
+                diag += h0 * h0 / h1 - h1;
+            }
+            if free_start && r == 1 {
+                sub *= 1.0 + h0 / h1;
+            }
+            if free_end && r + 2 == m {
+                diag += hl * hl / hp - hp;
+            }
+            if free_end && r + 3 == m {
+                sup *= 1.0 + hl / hp;
+            }
             let mut rhs = [0.0; A];
             for a in 0..A {
                 let d_prev = (y[a] - y_prev[a]) / h_prev;
@@ -300,6 +393,18 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
                 *x -= c * n;
             }
             self.knots.set_slope(r, slope);
+        }
+        if free_start {
+            let s1 = self.knots.slope(0);
+            for (y, s) in self.free_values[0].iter_mut().zip(s1) {
+                *y += h0 / 3.0 * s;
+            }
+        }
+        if free_end {
+            let s = self.knots.slope(m - 2);
+            for (y, s) in self.free_values[1].iter_mut().zip(s) {
+                *y -= hl / 3.0 * s;
+            }
         }
     }
 
@@ -355,7 +460,10 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
             } else {
                 &mut quarters
             };
-            for i in points {
+            // a free knot's position is checked like an inner tick
+            let free_start = (j == 0 && self.free_knot(0)).then_some(n);
+            let free_end = (j + 1 == self.m && self.free_knot(1)).then_some(0);
+            for i in points.chain(free_start).chain(free_end) {
                 let want = exact(k0 + i)?;
                 let x = f64::from(i);
                 for (c, w) in coeffs.iter().zip(want) {
@@ -631,6 +739,133 @@ mod tests {
                 capacity: 3,
                 required: 4
             })
+        );
+    }
+
+    /// The second derivative (per tick²) of piece `j` at its start and at its end.
+    fn second_derivatives<const A: usize, K: Knots<A>>(
+        fit: &SplineFit<A, K>,
+        j: usize,
+    ) -> [[f64; 2]; A] {
+        let (coeffs, n) = fit.piece(j);
+        let n = f64::from(n);
+        coeffs.map(|[_, _, c, d]| [2.0 * c, 2.0 * c + 6.0 * d * n])
+    }
+
+    /// The clamps of the start, the end and both.
+    const CLAMPS: [[bool; 2]; 3] = [[true, false], [false, true], [true, true]];
+
+    /// A cubic with its own accelerations clamped is reproduced exactly, the free knots
+    /// included.
+    #[test]
+    fn clamped_accelerations_reproduce_a_cubic() {
+        let x = |k: f64| 2.0 - 0.3 * k + 0.01 * k * k - 2e-5 * k * k * k;
+        let dx = |k: f64| -0.3 + 0.02 * k - 6e-5 * k * k;
+        let ddx = |k: f64| 0.02 - 1.2e-4 * k;
+        for [start, end] in CLAMPS {
+            let mut exact = |k: u32| Ok([x(f64::from(k))]);
+            let mut fit: SplineFit<1, ArrayKnots<1, 16>> = SplineFit::new(
+                ArrayKnots::new(),
+                1000,
+                90,
+                [dx(0.0)],
+                [dx(1000.0)],
+                &mut exact,
+            )
+            .unwrap();
+            let clamps = [start.then_some([ddx(0.0)]), end.then_some([ddx(1000.0)])];
+            fit.clamp_accelerations(clamps, &mut exact).unwrap();
+            fit.solve();
+            for j in 0..=fit.pieces() {
+                let k = f64::from(fit.knot(j));
+                assert!(
+                    (fit.value(j)[0] - x(k)).abs() < 1e-11,
+                    "{start} {end}: value {j}"
+                );
+                assert!(
+                    (fit.slope(j)[0] - dx(k)).abs() < 1e-12,
+                    "{start} {end}: slope {j}"
+                );
+            }
+            assert_eq!(fit.mark(1e-9, &mut exact).unwrap(), 0);
+        }
+    }
+
+    /// Clamped accelerations off the function's by what a neighbouring fit's end
+    /// acceleration is off (tolerance / piece²) are met exactly, the fit is C² at every
+    /// knot, and every tick (the free knots included) lies within the tolerance after
+    /// refinement; a single piece is split for the clamps.
+    #[test]
+    fn clamped_accelerations_are_met_within_the_tolerance() {
+        let f = |k: f64| 3.0 * libm::sin(k / 150.0 + 0.3);
+        let ddf = |k: f64| -3.0 * libm::sin(k / 150.0 + 0.3) / (150.0 * 150.0);
+        let slope = |k: f64| libm::cos(k / 150.0 + 0.3) / 50.0;
+        let mut exact = |k: u32| Ok([f(f64::from(k)), -2.0 * f(f64::from(k))]);
+        for [start, end] in CLAMPS {
+            for offset in [0.0, 1e-8, -5e-8] {
+                let accel =
+                    |k: f64, on: bool| on.then_some([ddf(k) + offset, -2.0 * (ddf(k) + offset)]);
+                let clamps = [accel(0.0, start), accel(700.0, end)];
+                let mut fit: SplineFit<2, ArrayKnots<2, 128>> = SplineFit::new(
+                    ArrayKnots::new(),
+                    700,
+                    1000,
+                    [slope(0.0), -2.0 * slope(0.0)],
+                    [slope(700.0), -2.0 * slope(700.0)],
+                    &mut exact,
+                )
+                .unwrap();
+                fit.clamp_accelerations(clamps, &mut exact).unwrap();
+                assert_eq!(fit.pieces(), 1 + usize::from(start) + usize::from(end));
+                fit.subdivide(64, &mut exact).unwrap();
+                fit.refine_every_tick(0.5e-6, 1e-6, &mut exact).unwrap();
+                let last = fit.pieces() - 1;
+                for (clamp, got) in clamps.iter().zip([
+                    second_derivatives(&fit, 0).map(|d| d[0]),
+                    second_derivatives(&fit, last).map(|d| d[1]),
+                ]) {
+                    if let Some(want) = clamp {
+                        for a in 0..2 {
+                            assert!(
+                                (got[a] - want[a]).abs() < 1e-15,
+                                "{start} {end} {offset}: {got:?}"
+                            );
+                        }
+                    }
+                }
+                for j in 1..fit.pieces() {
+                    let (before, after) =
+                        (second_derivatives(&fit, j - 1), second_derivatives(&fit, j));
+                    for a in 0..2 {
+                        assert!((before[a][1] - after[a][0]).abs() < 1e-15, "knot {j}");
+                    }
+                }
+                for j in 0..fit.pieces() {
+                    let (c, n) = fit.piece(j);
+                    for i in 0..=n {
+                        let t = f64::from(i);
+                        let want = exact(fit.knot(j) + i).unwrap();
+                        for a in 0..2 {
+                            let p = c[a][0] + t * (c[a][1] + t * (c[a][2] + t * c[a][3]));
+                            assert!(
+                                (p - want[a]).abs() <= 1e-6,
+                                "{start} {end} {offset}: piece {j} tick {i}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        let mut line = |k: u32| Ok([f64::from(k)]);
+        let mut short: SplineFit<1, ArrayKnots<1, 4>> =
+            SplineFit::new(ArrayKnots::new(), 2, 2, [1.0], [1.0], &mut line).unwrap();
+        assert_eq!(
+            short.clamp_accelerations([Some([0.0]), Some([0.0])], &mut line),
+            Err(Error::EmptyPath)
+        );
+        assert_eq!(
+            short.clamp_accelerations([Some([0.0]), None], &mut line),
+            Ok(())
         );
     }
 

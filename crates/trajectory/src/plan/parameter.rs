@@ -128,6 +128,11 @@ impl Timing for ParameterTiming {
         };
         (u, self.rate)
     }
+
+    /// 0: the parameter runs at a constant rate.
+    fn param_acceleration(&self, _t: f64) -> f64 {
+        0.0
+    }
 }
 
 #[cfg(test)]

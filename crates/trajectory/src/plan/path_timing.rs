@@ -546,6 +546,24 @@ impl<C: ParamCurveDeriv, const N: usize, const Z: usize> Timing for PathTiming<'
         }
     }
 
+    /// `ü = (s̈ − σ′·u̇²)/σ` with `σ = |c'(u)|` and `σ′ = c'·c''/σ` (from `u̇ = ṡ/σ`); 0
+    /// where `|c'(u)| = 0`.
+    fn param_acceleration(&self, t: f64) -> f64 {
+        let st = self.motion.state(t);
+        let (u, speed) = param_at_length(self.curve, &self.table, st.s);
+        let rate = st.v / speed;
+        if !(speed > 0.0 && rate.is_finite()) {
+            return 0.0;
+        }
+        let us = to_param(self.curve, u);
+        let (d1, d2) = (self.curve.deriv(us, 1), self.curve.deriv(us, 2));
+        let dot: f64 = (0..<C::Point as Point>::DIM)
+            .map(|i| d1.coord(i).to_f64() * d2.coord(i).to_f64())
+            .sum();
+        let accel = (st.a - dot / speed * rate * rate) / speed;
+        if accel.is_finite() { accel } else { 0.0 }
+    }
+
     /// The planned laws ([`plan`](Self::plan), [`scurve`](Self::scurve)) promise the path
     /// and per-axis limits they were planned with, less the feed reserve (the jerk only for
     /// the S-curve); [`trapezoid`](Self::trapezoid) the speed and the tangential

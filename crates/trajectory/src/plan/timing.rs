@@ -119,6 +119,36 @@ pub trait Timing {
     /// `(u, du/dt)` at time `t` (clamped to `[0, duration]`).
     fn param(&self, t: f64) -> (f64, f64);
 
+    /// `d²u/dt²` at time `t` (clamped to `[0, duration]`): the stretches of a compile
+    /// ([`Stretches`](crate::Stretches)) start and end on the motion's exact state, its
+    /// acceleration `c''·u̇² + c'·ü` included. The default is the central difference of
+    /// `du/dt` over `10⁻⁶` of the duration (one-sided at the ends), which the stretches
+    /// before and after a tick share, so they still meet there; the planned laws of this
+    /// crate give it exactly.
+    ///
+    /// ```
+    /// use strak_trajectory::Timing;
+    /// /// u = t² on [0, 1].
+    /// struct Square;
+    /// impl Timing for Square {
+    ///     fn duration(&self) -> f64 { 1.0 }
+    ///     fn param(&self, t: f64) -> (f64, f64) { let t = t.clamp(0.0, 1.0); (t * t, 2.0 * t) }
+    /// }
+    /// assert!((Square.param_acceleration(0.5) - 2.0).abs() < 1e-8);
+    /// assert!((Square.param_acceleration(1.0) - 2.0).abs() < 1e-8);
+    /// ```
+    fn param_acceleration(&self, t: f64) -> f64 {
+        let duration = self.duration();
+        let h = 1e-6 * duration;
+        let t = t.clamp(0.0, duration);
+        let (lo, hi) = ((t - h).max(0.0), (t + h).min(duration));
+        if hi > lo {
+            (self.param(hi).1 - self.param(lo).1) / (hi - lo)
+        } else {
+            0.0
+        }
+    }
+
     /// Reports the break times: the times in `(0, duration)` where the motion's jerk (the
     /// third derivative of the path position) jumps while the acceleration is continuous,
     /// e.g. the phase boundaries of an S-curve, by calling `out` once per break in

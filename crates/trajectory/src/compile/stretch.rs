@@ -1,0 +1,387 @@
+//! Compiling a motion stretch by stretch: the pieces of the next few hundred ticks at a time,
+//! each stretch continuing the last in position, velocity and acceleration, so that the
+//! pieces of consecutive stretches play as one path.
+
+use heapless::Vec;
+use strak_curves::{ParamCurveDeriv, Scalar, ScalarOf};
+
+use super::knots::{Knots, PieceKnots};
+use super::law::TickLaw;
+use super::online::chord_state;
+use super::options::{CompileOptions, Tolerance};
+use super::spline_fit::SplineFit;
+use super::{CHECK_FRACTION, ONE_TICK_NOISE, fit_peaks, piece_state, round_state};
+use crate::error::{Error, Quantity};
+use crate::num::Number;
+use crate::online::Kinematics;
+use crate::path::{AxisState, Piece};
+use crate::plan::{Timing, Trajectory};
+
+/// How many times a stretch is fitted again, each time to a quarter of the tolerance, when
+/// its pieces exceed a limit of the law.
+const TIGHTER_FITS: usize = 4;
+
+/// Samples of the law that the extent of a relative tolerance is taken from.
+const EXTENT_SAMPLES: u32 = 256;
+
+/// A trajectory compiled in stretches: each call of [`next_into`](Self::next_into) writes the
+/// pieces of the next stretch of ticks, starting and ending on the motion's exact state
+/// (position, velocity and acceleration, from the law's `u`, `u̇` and
+/// [`ü`](Timing::param_acceleration)), so that the pieces of consecutive stretches join
+/// like the pieces inside one path and a device can compile a long motion into a small
+/// ring of pieces while it plays.
+///
+/// Inside a stretch, the ticks around every jump of the law's jerk ([`Timing::breaks`])
+/// get pieces of one tick that end on the exact state in every chain (position, velocity
+/// and acceleration, as [`compile_move`](crate::compile_move) does at an online move's
+/// switches), so the samples there are the motion's states and their differences the
+/// motion's means over the tick. Between them the motion is smooth, and a C² cubic spline
+/// in ticks clamped at both ends to the exact position, velocity and acceleration follows
+/// it, refined until every tick is within the tolerance (as [`compile`](crate::compile())
+/// fits). A stretch of the spline whose pieces exceed a limit the law promises
+/// ([`Timing::limits`]) is fitted again to a quarter of the tolerance, up to four times,
+/// and is otherwise refused ([`Error::LimitExceeded`]): a stretch cannot be slowed down
+/// alone once those before it have been played.
+///
+/// The motion takes `⌈duration · rate⌉` ticks, the law stretched to end on the last. A
+/// relative tolerance is taken of the extent of the positions at 256 ticks spread over the
+/// motion.
+///
+/// ```
+/// use heapless::Vec;
+/// use strak_curves::Bezier;
+/// use strak_trajectory::{Along, CompileOptions, ParameterTiming, Piece, Stretches};
+/// let curve = Bezier::new([[0.0_f64, 0.0], [50.0, 0.0], [50.0, 50.0]])?;
+/// let law = ParameterTiming::at_rate(&curve, 1.0)?; // one second
+/// let trajectory = Along::new(&curve, &law);
+/// let mut stretches = Stretches::<_, 2>::new(&trajectory, 1_000.0, &CompileOptions::new().with_tolerance(1e-6))?;
+/// let mut pieces: Vec<Piece<f32, 2>, 32> = Vec::new();
+/// let mut ticks = 0;
+/// while stretches.remaining() > 0 {
+///     let n = stretches.next_into(200, &mut pieces)?; // play or store these pieces
+///     assert_eq!(pieces.iter().map(|p| p.ticks()).sum::<u32>(), n);
+///     assert_eq!(pieces[0].start(), ticks);
+///     ticks += n;
+/// }
+/// assert_eq!(ticks, 1_000);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Stretches<'a, M: Trajectory + ?Sized, const A: usize> {
+    law: TickLaw<'a, M::Curve, M::Law>,
+    tolerance: f64,
+    max_piece_ticks: u32,
+    one_tick_pieces: bool,
+    /// The first tick of the next stretch.
+    next: u32,
+}
+
+impl<M: Trajectory + ?Sized, const A: usize> core::fmt::Debug for Stretches<'_, M, A> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Stretches")
+            .field("ticks", &self.law.ticks)
+            .field("next", &self.next)
+            .field("tolerance", &self.tolerance)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
+    /// The stretches of `trajectory` played at `rate_hz`, fitted with `options` (its
+    /// tolerance and piece length; its feed reserve and slow-down are not used).
+    ///
+    /// # Errors
+    /// As [`compile`](crate::compile()) before it fits: [`Error::InvalidLimit`] for bad
+    /// options, [`Error::InvalidRate`], [`Error::AxisMismatch`], [`Error::EmptyPath`],
+    /// [`Error::TooLong`]; [`Error::Curve`] for a law that gives a non-finite value.
+    ///
+    /// ```
+    /// use strak_curves::Bezier;
+    /// use strak_trajectory::{Along, CompileOptions, Error, ParameterTiming, Stretches};
+    /// let curve = Bezier::new([[0.0_f64, 0.0], [1.0, 1.0]])?;
+    /// let law = ParameterTiming::at_rate(&curve, 1.0)?;
+    /// let t = Along::new(&curve, &law);
+    /// assert!(matches!(Stretches::<_, 3>::new(&t, 1_000.0, &CompileOptions::new()), Err(Error::AxisMismatch { .. })));
+    /// assert_eq!(Stretches::<_, 2>::new(&t, 1_000.0, &CompileOptions::new())?.remaining(), 1_000);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn new(trajectory: &'a M, rate_hz: f64, options: &CompileOptions) -> Result<Self, Error> {
+        let (curve, timing) = (trajectory.curve(), trajectory.law());
+        super::check_inputs::<A, M::Curve, M::Law>(timing, rate_hz, options)?;
+        let law = TickLaw::new(curve, timing, rate_hz, 1.0, 0)?;
+        let tolerance = match options.tolerance() {
+            Tolerance::Absolute(t) => t,
+            Tolerance::Relative(r) => r * extent::<M::Curve, M::Law, A>(&law)?,
+        };
+        let one_tick_pieces = law.limits().is_some_and(|l| {
+            let magnitude = extent_and_magnitude::<M::Curve, M::Law, A>(&law).map_or(0.0, |e| e.1);
+            let noise = ScalarOf::<M::Curve>::EPSILON * magnitude;
+            6.0 * noise * rate_hz * rate_hz * rate_hz <= ONE_TICK_NOISE * l.jerk
+        });
+        Ok(Stretches {
+            law,
+            tolerance,
+            max_piece_ticks: options.max_piece_ticks(),
+            one_tick_pieces,
+            next: 0,
+        })
+    }
+
+    /// The ticks of the whole motion.
+    ///
+    /// ```
+    /// # use strak_curves::Bezier;
+    /// # use strak_trajectory::{Along, CompileOptions, ParameterTiming, Stretches};
+    /// # let curve = Bezier::new([[0.0_f64, 0.0], [1.0, 1.0]])?;
+    /// # let law = ParameterTiming::at_rate(&curve, 4.0)?;
+    /// # let t = Along::new(&curve, &law);
+    /// assert_eq!(Stretches::<_, 2>::new(&t, 1_000.0, &CompileOptions::new())?.ticks(), 250);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn ticks(&self) -> u32 {
+        self.law.ticks
+    }
+
+    /// The ticks not yet compiled.
+    ///
+    /// ```
+    /// # use strak_curves::Bezier;
+    /// # use strak_trajectory::{Along, CompileOptions, ParameterTiming, Piece, Stretches};
+    /// # let curve = Bezier::new([[0.0_f64, 0.0], [1.0, 1.0]])?;
+    /// # let law = ParameterTiming::at_rate(&curve, 4.0)?;
+    /// # let t = Along::new(&curve, &law);
+    /// let mut s = Stretches::<_, 2>::new(&t, 1_000.0, &CompileOptions::new())?;
+    /// let mut pieces = heapless::Vec::<Piece<f64, 2>, 8>::new();
+    /// s.next_into(100, &mut pieces)?;
+    /// assert_eq!(s.remaining(), 150);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn remaining(&self) -> u32 {
+        self.law.ticks - self.next
+    }
+
+    /// Compiles the next stretch of at most `max_ticks` ticks (at least two, or the rest
+    /// when fewer remain) into `pieces` (cleared first), each piece's `start` the tick of
+    /// the whole motion it starts at; returns the stretch's ticks (0 once all are compiled).
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the stretch needs more than `P` pieces (compile
+    /// shorter stretches); [`Error::LimitExceeded`] when its pieces exceed a limit of the
+    /// law even at a sixteenth of a quarter of the tolerance; [`Error::OutOfRange`] for a
+    /// value that does not fit `N`; [`Error::Curve`] for a non-finite value of the law.
+    /// On an error `pieces` is empty and the stretch is not consumed.
+    pub fn next_into<N: Number, const P: usize>(
+        &mut self,
+        max_ticks: u32,
+        pieces: &mut Vec<Piece<N, A>, P>,
+    ) -> Result<u32, Error> {
+        pieces.clear();
+        let first = self.next;
+        let rest = self.law.ticks - first;
+        if rest == 0 {
+            return Ok(0);
+        }
+        let mut ticks = max_ticks.max(2).min(rest);
+        if rest - ticks == 1 {
+            ticks -= 1; // never leave a last stretch of one tick (it cannot be clamped)
+        }
+        let result = self.fit_stretch(first, ticks, pieces);
+        if result.is_err() {
+            pieces.clear();
+        }
+        result
+    }
+
+    /// Writes the pieces of ticks `first ..= first + ticks`: spline spans between the
+    /// one-tick pieces around the law's breaks.
+    fn fit_stretch<N: Number, const P: usize>(
+        &mut self,
+        first: u32,
+        ticks: u32,
+        pieces: &mut Vec<Piece<N, A>, P>,
+    ) -> Result<u32, Error> {
+        let last = first + ticks;
+        let (mut from, mut result) = (first, Ok(()));
+        self.law.breaks_between(first, last, &mut |k| {
+            if result.is_err() {
+                return;
+            }
+            let near = libm::round(k);
+            let (lo, hi) = if (k - near).abs() <= 1e-9 * k.max(1.0) {
+                (near, near)
+            } else {
+                (libm::floor(k), libm::ceil(k))
+            };
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let (lo, hi) = (lo as u32, hi as u32);
+            result = self
+                .span(from, lo.max(from), pieces)
+                .and_then(|()| self.chords(lo.max(from), hi.max(from), pieces));
+            from = hi.max(from);
+        });
+        result?;
+        self.span(from, last, pieces)?;
+        self.next = last;
+        Ok(ticks)
+    }
+
+    /// The exact state of every axis at tick `k`, in units, units/s and units/s².
+    fn state(&self, k: u32) -> Result<[Kinematics<f64>; A], Error> {
+        let law = &self.law;
+        let t = law.time(k);
+        let (x, slope, second) = (
+            law.position::<A>(k)?,
+            law.slope::<A>(t)?,
+            law.second::<A>(t)?,
+        );
+        let (p, pp) = (law.period, law.period * law.period);
+        Ok(core::array::from_fn(|a| {
+            Kinematics::new(x[a], slope[a] / p, second[a] / pp)
+        }))
+    }
+
+    /// One-tick pieces from tick `from` to tick `to`, each from the exact state to the
+    /// exact state of the next tick in every chain.
+    fn chords<N: Number, const P: usize>(
+        &self,
+        from: u32,
+        to: u32,
+        pieces: &mut Vec<Piece<N, A>, P>,
+    ) -> Result<(), Error> {
+        if from >= to {
+            return Ok(());
+        }
+        let mut start = self.state(from)?;
+        for k in from..to {
+            let end = self.state(k + 1)?;
+            let mut axes = [AxisState::ZERO; A];
+            for (axis, (s, e)) in axes.iter_mut().zip(start.iter().zip(&end)) {
+                *axis = round_state(&chord_state(s, e, 1, self.law.period))?;
+            }
+            let piece = Piece {
+                axes,
+                start: k,
+                ticks: 1,
+            };
+            pieces.push(piece).map_err(|_| Error::CapacityExceeded {
+                capacity: P,
+                required: P + 1,
+            })?;
+            start = end;
+        }
+        Ok(())
+    }
+
+    /// The spline of ticks `from ..= to`, clamped at both ends to the exact state, fitted
+    /// tighter until its pieces keep the law's limits, written after `pieces`; one-tick
+    /// pieces for a span too short for both clamps.
+    fn span<N: Number, const P: usize>(
+        &self,
+        from: u32,
+        to: u32,
+        pieces: &mut Vec<Piece<N, A>, P>,
+    ) -> Result<(), Error> {
+        if to < from + 3 {
+            return self.chords(from, to, pieces);
+        }
+        let period = self.law.period;
+        let offset = pieces.len();
+        let mut fit = SplineFit::<A, _>::empty(PieceKnots { pieces, offset });
+        let (mut tolerance, mut exceeded) = (self.tolerance, Quantity::Velocity);
+        for _ in 0..=TIGHTER_FITS {
+            self.fit_span(from, to, tolerance, &mut fit)?;
+            let peaks = fit_peaks(&fit, period, false);
+            let quantity = match self.law.limits() {
+                Some(limits) => peaks.slowdown(&limits)?.1,
+                None => None,
+            };
+            let Some(quantity) = quantity else {
+                return write_states(fit, from, period);
+            };
+            exceeded = quantity;
+            tolerance /= 4.0;
+        }
+        Err(Error::LimitExceeded { quantity: exceeded })
+    }
+
+    /// One fit of ticks `from ..= to` to `tolerance`, clamped at both ends.
+    fn fit_span<K: Knots<A>>(
+        &self,
+        from: u32,
+        to: u32,
+        tolerance: f64,
+        fit: &mut SplineFit<A, K>,
+    ) -> Result<(), Error> {
+        let law = &self.law;
+        let mut exact = |k: u32| law.position::<A>(from + k);
+        let (t0, t1) = (law.time(from), law.time(to));
+        fit.init(
+            to - from,
+            to - from,
+            law.slope(t0)?,
+            law.slope(t1)?,
+            &mut exact,
+        )?;
+        let clamps = [Some(law.second::<A>(t0)?), Some(law.second::<A>(t1)?)];
+        fit.clamp_accelerations(clamps, &mut exact)?;
+        law.knots_on_breaks_in(fit, self.one_tick_pieces, (from, to))?;
+        fit.subdivide(self.max_piece_ticks, &mut exact)?;
+        fit.refine_every_tick(tolerance * CHECK_FRACTION, tolerance, &mut exact)
+    }
+}
+
+/// The pieces' forward-difference states in `N`, written over the fit's knots, their
+/// starts counted from `first`.
+fn write_states<N: Number, const A: usize, const P: usize>(
+    fit: SplineFit<A, PieceKnots<'_, N, A, P>>,
+    first: u32,
+    period: f64,
+) -> Result<(), Error> {
+    fit.write_pieces(|knots, j, coeffs, start, ticks| {
+        let Some(piece) = knots.piece_mut(j) else {
+            return Err(Error::CapacityExceeded {
+                capacity: P,
+                required: j + 1,
+            });
+        };
+        piece.start = first + start;
+        piece.ticks = ticks;
+        for (axis, c) in piece.axes.iter_mut().zip(coeffs) {
+            *axis = round_state(&piece_state(c, period))?;
+        }
+        Ok(())
+    })
+}
+
+/// The extent of the positions at [`EXTENT_SAMPLES`] ticks spread over the law (at least
+/// the level of `f64` rounding of their magnitude).
+fn extent<C, T, const A: usize>(law: &TickLaw<'_, C, T>) -> Result<f64, Error>
+where
+    C: ParamCurveDeriv + ?Sized,
+    T: Timing + ?Sized,
+{
+    let (extent, big) = extent_and_magnitude::<C, T, A>(law)?;
+    Ok(extent.max(1e-12 * (1.0 + big)))
+}
+
+/// The largest extent of one coordinate and the largest magnitude, over the positions at
+/// [`EXTENT_SAMPLES`] ticks spread over the law.
+fn extent_and_magnitude<C, T, const A: usize>(law: &TickLaw<'_, C, T>) -> Result<(f64, f64), Error>
+where
+    C: ParamCurveDeriv + ?Sized,
+    T: Timing + ?Sized,
+{
+    let first = law.position::<A>(0)?;
+    let (mut lo, mut hi) = (first, first);
+    let mut big = 0.0_f64;
+    for i in 1..=EXTENT_SAMPLES {
+        #[allow(clippy::cast_possible_truncation)]
+        let k = (u64::from(law.ticks) * u64::from(i) / u64::from(EXTENT_SAMPLES)) as u32;
+        for (a, v) in law.position::<A>(k)?.into_iter().enumerate() {
+            lo[a] = lo[a].min(v);
+            hi[a] = hi[a].max(v);
+            big = big.max(v.abs());
+        }
+    }
+    let extent = lo.iter().zip(hi).fold(0.0_f64, |m, (l, h)| m.max(h - l));
+    Ok((extent, big))
+}
