@@ -30,7 +30,7 @@ const LAYERS: [(&str, u8); 8] = [
 
 /// The modules of `plan` in dependency order (`mod` is the layer's own helpers): a module
 /// names only the modules before it.
-const PLAN_ORDER: [&str; 16] = [
+const PLAN_ORDER: [&str; 17] = [
     "mod",
     "arc_inverse",
     "limits",
@@ -44,6 +44,7 @@ const PLAN_ORDER: [&str; 16] = [
     "joins",
     "speed_limit",
     "transitions",
+    "window",
     "planner",
     "parameter",
     "path_timing",

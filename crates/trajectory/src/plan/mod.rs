@@ -31,6 +31,7 @@ mod timing;
 mod trajectory;
 mod transitions;
 mod trapezoid;
+mod window;
 
 #[cfg(test)]
 mod testcurves;
@@ -73,3 +74,4 @@ pub use parameter::ParameterTiming;
 pub use path_timing::PathTiming;
 pub use timing::{FeedReserve, MotionLimits, Timing};
 pub use trajectory::{Along, Trajectory};
+pub use window::{LookAhead, WindowZone};

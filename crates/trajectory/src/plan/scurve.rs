@@ -40,7 +40,7 @@ use crate::error::Error;
 
 /// Bisection steps: enough to exhaust the `f64` resolution of any bracket (the loop stops
 /// earlier when the midpoint no longer differs from the ends).
-const BISECTION_STEPS: usize = 2200;
+pub(super) const BISECTION_STEPS: usize = 2200;
 
 /// The fastest velocity change by `dv` (≥ 0) from zero to zero acceleration: the duration of
 /// each jerk phase, of the constant-acceleration phase, and the peak acceleration.

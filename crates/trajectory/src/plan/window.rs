@@ -1,0 +1,420 @@
+//! Look-ahead over a path that grows while the motion runs: zones of constant limits are
+//! appended as moves arrive, the boundary speeds of the zones not yet committed are planned
+//! so that the motion can always come to rest at the end of what is known, and the first
+//! zone is committed (its double S) when the motion needs it.
+//!
+//! Why committing is always safe: the boundary speeds come from a forward pass from the
+//! committed speed and a backward pass from rest at the window's end, so the first zone's
+//! end speed is one from which the rest of the window can still brake to rest. Appending
+//! zones only moves the point of rest further on, which can only raise the speeds the
+//! backward pass allows, never lower them; so the speed a committed zone ends at stays one
+//! the next zone can start from, whatever arrives later, and a producer that falls behind
+//! only makes the motion slow down and rest at the end of what it sent.
+
+use heapless::Vec;
+
+use super::motion::ProfileZone;
+use super::scurve::{BISECTION_STEPS, change_distance, fill_zone, reach};
+use crate::error::Error;
+
+/// The boundary speeds of the window's zones: the first starts at `v_entry`, the last ends
+/// at rest, and each zone can go from its start to its end within its length and limits,
+/// ending no faster than its exit cap or the next zone's limit.
+///
+/// Braking distances are not monotone in the end speed: a jerk-limited change from `v0` to
+/// `v1 < v0` covers `D(v1, v0) = (v0 + v1)/2 · T(v0 − v1)`, and braking from `v0` to about
+/// `v0/3` takes longer than braking to rest. So a zone's end speed is a cap, not a target,
+/// and the backward pass asks, for each zone, for the fastest start `B` from which some end
+/// speed at most its cap `c` fits: the largest `v0` with `D(v1, v0) ≤ L` has a single
+/// minimum over `v1` (it falls while `v1` is below half the speed change, or below
+/// `a²/2j` with a phase of constant acceleration, and rises after), so the fastest start is
+/// that of `v1 = 0` or of `v1 = c`. Any start at most `B` is then feasible (to the end that
+/// gave `B`, or cruising), so the starts allowed form `[0, B]` and the forward pass can take,
+/// zone by zone, the fastest end that fits from the start it has and is at most the next
+/// zone's `B` ([`fastest_end`]). With `v_entry` at most the first zone's `B`, which any
+/// entry an earlier pass over fewer zones allowed is, every zone fits.
+fn plan_speeds(zones: &mut [WindowZone], v_entry: f64) {
+    let mut bound = 0.0;
+    for i in (0..zones.len()).rev() {
+        let next_limit = zones.get(i + 1).map_or(0.0, |z| z.v_limit);
+        if let Some(z) = zones.get_mut(i) {
+            let length = z.end - z.start;
+            z.cap = z.exit_cap.min(next_limit).min(bound).min(z.v_limit);
+            let from_rest = reach(0.0, length, z.v_limit, z.a_limit, z.j_limit);
+            let from_cap = reach(z.cap, length, z.v_limit, z.a_limit, z.j_limit);
+            bound = from_rest.max(from_cap);
+        }
+    }
+    let mut v = v_entry;
+    for z in zones.iter_mut() {
+        z.v_start = v;
+        z.v_end = fastest_end(v, z.cap, z.end - z.start, z.a_limit, z.j_limit);
+        v = z.v_end;
+    }
+}
+
+/// The fastest end speed at most `cap` that a zone of `length` entered at `v0` can reach:
+/// accelerating towards `cap` where it lies above `v0`; else `cap` where braking to it
+/// fits, or the fastest slower speed that fits (the distance rises with the end speed from
+/// rest up to the gap of speeds that do not fit, so bisection on `[0, cap]` finds its
+/// edge); rest when nothing fits (not for a start the backward pass allowed).
+fn fastest_end(v0: f64, cap: f64, length: f64, a: f64, j: f64) -> f64 {
+    if cap >= v0 {
+        return reach(v0, length, cap, a, j);
+    }
+    if change_distance(cap, v0, a, j) <= length {
+        return cap;
+    }
+    let (mut lo, mut hi) = (0.0, cap);
+    for _ in 0..BISECTION_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if change_distance(mid, v0, a, j) <= length {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// A zone of the look-ahead window: a stretch of arc length with constant limits, without
+/// phases (those are made when it is committed), so that a window of many zones stays
+/// small (64 bytes).
+///
+/// ```
+/// use strak_trajectory::{Error, WindowZone};
+/// assert!(WindowZone::new((0.0, 10.0), (100.0, 1_000.0, 20_000.0), f64::INFINITY).is_ok());
+/// assert_eq!(WindowZone::new((5.0, 5.0), (100.0, 1_000.0, 20_000.0), 0.0), Err(Error::EmptyPath));
+/// assert_eq!(WindowZone::new((0.0, 1.0), (100.0, 0.0, 20_000.0), 0.0), Err(Error::InvalidLimit));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WindowZone {
+    start: f64,
+    end: f64,
+    v_limit: f64,
+    a_limit: f64,
+    j_limit: f64,
+    exit_cap: f64,
+    /// The largest end speed the window allows (the exit cap, the next zone's limit and
+    /// fastest start).
+    cap: f64,
+    v_start: f64,
+    v_end: f64,
+}
+
+impl WindowZone {
+    /// The zone `[start, end]` of arc length with the speed, acceleration and jerk limits
+    /// `v`, `a`, `j` (`j = ∞`: trapezoidal speed changes) and the largest speed at its end
+    /// `exit_cap` (0 for a stop there, `∞` for none).
+    ///
+    /// # Errors
+    /// [`Error::EmptyPath`] for an empty or reversed extent; [`Error::InvalidLimit`] for a
+    /// limit that is not positive (or a NaN), a non-finite `v` or `a`, or a negative or NaN
+    /// exit cap.
+    ///
+    /// ```
+    /// use strak_trajectory::WindowZone;
+    /// let corner = WindowZone::new((0.0, 2.5), (150.0, 3_000.0, 100_000.0), 0.0)?; // stops at its end
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn new(
+        (start, end): (f64, f64),
+        (v, a, j): (f64, f64, f64),
+        exit_cap: f64,
+    ) -> Result<Self, Error> {
+        if !(end > start && start.is_finite() && end.is_finite()) {
+            return Err(Error::EmptyPath);
+        }
+        let positive = |x: f64| x > 0.0;
+        let finite = |x: f64| positive(x) && x.is_finite();
+        if !(finite(v) && finite(a) && positive(j) && (exit_cap == 0.0 || positive(exit_cap))) {
+            return Err(Error::InvalidLimit);
+        }
+        Ok(WindowZone {
+            start,
+            end,
+            v_limit: v,
+            a_limit: a,
+            j_limit: j,
+            exit_cap,
+            cap: 0.0,
+            v_start: 0.0,
+            v_end: 0.0,
+        })
+    }
+}
+
+/// The look-ahead window: up to `Z` zones not yet committed, in order along the path, and
+/// the state where the committed motion ends (at rest, at arc length 0 and time 0, before
+/// anything is committed). See the module docs of `plan::window` for why a committed zone
+/// never needs to be taken back: the motion can always come to rest at the end of the
+/// zones pushed so far.
+///
+/// Pushing a zone runs the forward/backward pass over the window (`O(Z)`); committing
+/// fills one zone's double S ([`ProfileZone`]) and shifts the window (`O(Z)`).
+///
+/// ```
+/// use strak_trajectory::{LookAhead, WindowZone};
+/// let mut window = LookAhead::<8>::new();
+/// window.push(WindowZone::new((0.0, 10.0), (100.0, 1_000.0, 20_000.0), f64::INFINITY)?)?;
+/// let first = window.commit().unwrap(); // all that is known: it ends at rest
+/// assert_eq!((first.v_start(), first.v_end()), (0.0, 0.0));
+/// window.push(WindowZone::new((10.0, 30.0), (100.0, 1_000.0, 20_000.0), f64::INFINITY)?)?;
+/// window.push(WindowZone::new((30.0, 40.0), (50.0, 1_000.0, 20_000.0), f64::INFINITY)?)?;
+/// let second = window.commit().unwrap(); // from rest, to what the next zone allows
+/// assert_eq!(second.v_start(), 0.0);
+/// assert!(second.v_end() > 0.0 && second.v_end() <= 50.0);
+/// assert_eq!(second.t_start(), first.phases().last().unwrap().end());
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct LookAhead<const Z: usize> {
+    zones: Vec<WindowZone, Z>,
+    /// Where the committed motion ends: time, arc length and speed (the acceleration is 0
+    /// there: zones start and end without acceleration).
+    entry: (f64, f64, f64),
+}
+
+impl<const Z: usize> Default for LookAhead<Z> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const Z: usize> LookAhead<Z> {
+    /// An empty window at rest at arc length 0 and time 0.
+    ///
+    /// ```
+    /// use strak_trajectory::LookAhead;
+    /// assert_eq!(LookAhead::<4>::new().entry(), (0.0, 0.0, 0.0));
+    /// ```
+    pub const fn new() -> Self {
+        LookAhead {
+            zones: Vec::new(),
+            entry: (0.0, 0.0, 0.0),
+        }
+    }
+
+    /// The zones not yet committed.
+    ///
+    /// ```
+    /// use strak_trajectory::LookAhead;
+    /// assert_eq!(LookAhead::<4>::new().len(), 0);
+    /// ```
+    pub fn len(&self) -> usize {
+        self.zones.len()
+    }
+
+    /// Whether no zone waits to be committed.
+    ///
+    /// ```
+    /// use strak_trajectory::LookAhead;
+    /// assert!(LookAhead::<4>::new().is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.zones.is_empty()
+    }
+
+    /// The time, arc length and speed where the committed motion ends.
+    ///
+    /// ```
+    /// use strak_trajectory::{LookAhead, WindowZone};
+    /// let mut window = LookAhead::<4>::new();
+    /// window.push(WindowZone::new((0.0, 1.0), (10.0, 100.0, 1_000.0), f64::INFINITY)?)?;
+    /// let zone = window.commit().unwrap();
+    /// assert_eq!(window.entry(), (zone.phases().last().unwrap().end(), 1.0, 0.0));
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn entry(&self) -> (f64, f64, f64) {
+        self.entry
+    }
+
+    /// Appends a zone, which must start where the window (or, when it is empty, the
+    /// committed motion) ends, and plans the boundary speeds again.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the window holds `Z` zones (commit first);
+    /// [`Error::EmptyPath`] when the zone does not start where the window ends.
+    ///
+    /// ```
+    /// use strak_trajectory::{Error, LookAhead, WindowZone};
+    /// let mut window = LookAhead::<1>::new();
+    /// let limits = (10.0, 100.0, 1_000.0);
+    /// assert_eq!(window.push(WindowZone::new((1.0, 2.0), limits, 0.0)?), Err(Error::EmptyPath));
+    /// window.push(WindowZone::new((0.0, 1.0), limits, 0.0)?)?;
+    /// assert!(matches!(window.push(WindowZone::new((1.0, 2.0), limits, 0.0)?), Err(Error::CapacityExceeded { .. })));
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn push(&mut self, zone: WindowZone) -> Result<(), Error> {
+        let end = self.zones.last().map_or(self.entry.1, |z| z.end);
+        if zone.start != end {
+            return Err(Error::EmptyPath);
+        }
+        self.zones.push(zone).map_err(|_| Error::CapacityExceeded {
+            capacity: Z,
+            required: Z + 1,
+        })?;
+        plan_speeds(&mut self.zones, self.entry.2);
+        Ok(())
+    }
+
+    /// Commits the first zone: its double S from the committed speed to the end speed the
+    /// window allows, as a [`ProfileZone`] with its phases (entered at the committed time
+    /// and arc length); `None` for an empty window.
+    ///
+    /// ```
+    /// use strak_trajectory::LookAhead;
+    /// assert!(LookAhead::<4>::new().commit().is_none());
+    /// ```
+    pub fn commit(&mut self) -> Option<ProfileZone> {
+        if self.zones.is_empty() {
+            return None;
+        }
+        let w = self.zones.remove(0);
+        let (t, s, v) = self.entry;
+        let mut zone = ProfileZone::new(w.start, w.end, w.v_limit, w.a_limit, w.j_limit);
+        zone.exit_cap = w.exit_cap;
+        zone.v_start = v;
+        zone.v_end = w.v_end;
+        zone.t_start = t;
+        fill_zone(&mut zone, s);
+        self.entry = (zone.t_end(), w.end, w.v_end);
+        Some(zone)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::online::testing::Rng;
+    use std::vec::Vec as StdVec;
+
+    /// `n` contiguous random zones from 0: lengths 0.05 to 20, limits across two decades,
+    /// a stop at the end of one in ten, a finite cap at the end of one in five.
+    fn random_zones(rng: &mut Rng, n: usize) -> StdVec<WindowZone> {
+        let mut s = 0.0;
+        (0..n)
+            .map(|_| {
+                let length = if rng.next() < 0.3 {
+                    rng.range(0.05, 0.5)
+                } else {
+                    rng.range(0.5, 20.0)
+                };
+                let cap = match rng.next() {
+                    x if x < 0.1 => 0.0,
+                    x if x < 0.3 => rng.range(0.0, 100.0),
+                    _ => f64::INFINITY,
+                };
+                let limits = (
+                    rng.range(10.0, 200.0),
+                    rng.range(100.0, 3000.0),
+                    rng.range(1e3, 1e5),
+                );
+                let zone = WindowZone::new((s, s + length), limits, cap).unwrap();
+                s += length;
+                zone
+            })
+            .collect()
+    }
+
+    /// The committed zones are one continuous motion (time, arc length, speed; the zones
+    /// meet at zero acceleration) within every zone's limits and cap, sampled at 64 points
+    /// of every phase; returns the duration.
+    fn check_motion(zones: &[ProfileZone]) -> f64 {
+        let (mut t, mut s, mut v) = (0.0, 0.0, 0.0);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()));
+        for z in zones {
+            assert!(close(z.t_start, t) && close(z.start, s) && close(z.v_start, v));
+            for p in z.phases() {
+                for i in 0..=64 {
+                    let st = p.state_at(p.t0 + p.duration * f64::from(i) / 64.0);
+                    assert!(
+                        st.v >= -1e-9 && st.v <= z.v_limit * (1.0 + 1e-9),
+                        "{st:?} {z:?}"
+                    );
+                    assert!(st.a.abs() <= z.a_limit * (1.0 + 1e-9), "{st:?}");
+                    assert!(st.j.abs() <= z.j_limit * (1.0 + 1e-9), "{st:?}");
+                }
+            }
+            let end = z.end_state();
+            assert!(
+                close(end.s, z.end) && close(end.v, z.v_end) && end.a.abs() <= 1e-6 * z.a_limit,
+                "{end:?} {z:?}"
+            );
+            assert!(z.v_end <= z.exit_cap);
+            (t, s, v) = (z.t_end(), z.end, z.v_end);
+        }
+        assert_eq!(v, 0.0, "the motion ends at rest");
+        t
+    }
+
+    /// Zones streamed into a window that commits as soon as it holds more than `ahead`:
+    /// the committed motion, its end speeds per zone.
+    fn stream(zones: &[WindowZone], ahead: usize) -> (StdVec<ProfileZone>, StdVec<f64>) {
+        let mut window = LookAhead::<64>::new();
+        let mut out = StdVec::new();
+        for z in zones {
+            window.push(*z).unwrap();
+            if window.len() > ahead {
+                out.push(window.commit().unwrap());
+            }
+        }
+        while let Some(z) = window.commit() {
+            out.push(z);
+        }
+        let ends = out.iter().map(|z| z.v_end).collect();
+        (out, ends)
+    }
+
+    /// Random zones streamed with every look-ahead from none to all: one continuous motion
+    /// within every zone's limits and caps, at rest at the end (with none ahead, at the end
+    /// of every zone). Printed: how much longer the motion takes with less look-ahead.
+    #[test]
+    fn streamed_zones_keep_the_limits() {
+        let mut rng = Rng(0x5eed_1234_abcd_0001);
+        let mut ratios = [0.0_f64; 4];
+        for _ in 0..200 {
+            let n = 2 + (rng.next() * 40.0) as usize;
+            let zones = random_zones(&mut rng, n);
+            let (whole, _) = stream(&zones, 64);
+            let whole_time = check_motion(&whole);
+            for (k, ahead) in [0, 1, 3, 8].into_iter().enumerate() {
+                let (streamed, ends) = stream(&zones, ahead);
+                ratios[k] = ratios[k].max(check_motion(&streamed) / whole_time);
+                if ahead == 0 {
+                    assert!(ends.iter().all(|&e| e == 0.0));
+                }
+            }
+        }
+        std::println!("largest duration against the whole plan, look-ahead 0, 1, 3, 8: {ratios:?}");
+    }
+
+    /// A window that runs dry comes to rest, and the zones that arrive afterwards start from
+    /// rest where it stopped.
+    #[test]
+    fn a_drained_window_rests_and_resumes() {
+        let limits = (100.0, 1_000.0, 20_000.0);
+        let mut window = LookAhead::<4>::new();
+        window
+            .push(WindowZone::new((0.0, 5.0), limits, f64::INFINITY).unwrap())
+            .unwrap();
+        window
+            .push(WindowZone::new((5.0, 10.0), limits, f64::INFINITY).unwrap())
+            .unwrap();
+        let a = window.commit().unwrap();
+        assert!(a.v_end > 0.0, "a zone with one behind it keeps moving");
+        let b = window.commit().unwrap();
+        assert_eq!(b.v_end, 0.0);
+        assert_eq!(window.entry(), (b.t_end(), 10.0, 0.0));
+        window
+            .push(WindowZone::new((10.0, 20.0), limits, f64::INFINITY).unwrap())
+            .unwrap();
+        let c = window.commit().unwrap();
+        assert_eq!((c.v_start, c.t_start, c.start), (0.0, b.t_end(), 10.0));
+        check_motion(&[a, b, c]);
+    }
+}
