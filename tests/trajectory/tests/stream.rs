@@ -673,3 +673,57 @@ fn param_acceleration_is_the_derivative_of_the_rate() {
     println!("largest difference {worst:.3e} of {scale:.3e}");
     assert!(scale > 0.0 && worst <= 1e-4 * scale, "{worst} of {scale}");
 }
+
+/// A dense chain: a circle of 0.2 mm chords blended within 0.02 mm, where every blend takes
+/// half of each chord (the blends meet with no line between them). It plans and plays
+/// within the tolerance of the chords, and more than twice as fast as exact stops.
+#[test]
+fn dense_chain_of_short_moves() {
+    let points: Vec<[f64; 2]> = (0..=100)
+        .map(|i| {
+            let th = f64::from(i) * 0.02;
+            [10.0 * th.cos(), 10.0 * th.sin()]
+        })
+        .collect();
+    let moves: Vec<Move<2>> = points[1..].iter().map(|p| Move::line(*p)).collect();
+    let limits = Limits::<2>::new(100.0, 3000.0, 100_000.0).unwrap();
+    let time = |tol: f64| {
+        let path = Toolpath::<2, 128>::new(points[0], &moves, tol, 1e-9).unwrap();
+        let plan = PathTiming::<_, 4096, 1024>::plan(&path, &limits, &PlanOptions::new()).unwrap();
+        (
+            path.blends(),
+            ParamCurve::piece_count(&path),
+            plan.duration(),
+        )
+    };
+    let (blends, pieces, blended) = time(0.02);
+    assert_eq!(blends, 99);
+    assert_eq!(
+        pieces, 101,
+        "the first and last chord's outer halves, and the blends"
+    );
+    let (_, _, stopping) = time(0.0);
+    println!("0.2 mm chords: blended {blended:.3} s, exact stops {stopping:.3} s");
+    assert!(2.0 * blended < stopping, "{blended} against {stopping}");
+    let path = Toolpath::<2, 128>::new(points[0], &moves, 0.02, 1e-9).unwrap();
+    let plan = PathTiming::<_, 4096, 1024>::plan(&path, &limits, &PlanOptions::new()).unwrap();
+    let played: Box<Path<f64, 2, 4096>> =
+        compile_boxed(&plan, 1000.0, &CompileOptions::new().with_tolerance(1e-4)).unwrap();
+    let chords: Vec<Polygon<2>> = path
+        .moves()
+        .iter()
+        .map(|m| Polygon::new(m, (0.0, 1.0), 0.0, 1))
+        .collect();
+    let mut sampler = Sampler::new(&*played);
+    let mut worst = 0.0_f64;
+    while !sampler.is_finished() {
+        let x = sampler.next().position;
+        worst = worst.max(
+            chords
+                .iter()
+                .map(|c| c.distance(x))
+                .fold(f64::INFINITY, f64::min),
+        );
+    }
+    assert!(worst <= 0.02 + 1e-4 + played.playback_bound(), "{worst}");
+}

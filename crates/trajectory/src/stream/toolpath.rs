@@ -95,7 +95,7 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
             path.spans.push((begin, end)).map_err(|_| full)?;
             path.first_piece.push(path.pieces).map_err(|_| full)?;
             let blended = matches!(path.junctions.get(i), Some(Junction::Blend(_)));
-            path.pieces += 1 + usize::from(blended);
+            path.pieces += usize::from(has_span((begin, end))) + usize::from(blended);
         }
         Ok(path)
     }
@@ -140,10 +140,12 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
         &self.junctions
     }
 
-    /// Piece `piece` as a move index and whether it is that move's blend.
+    /// Piece `piece` as a move index and whether it is that move's blend (every move has
+    /// a piece: its part between its blends, or, where the blends at both ends take half of
+    /// it each, the blend after it alone).
     fn locate(&self, piece: usize) -> (usize, bool) {
         let i = self.first_piece.partition_point(|&p| p <= piece) - 1;
-        (i, piece > self.first_piece[i])
+        (i, piece > self.first_piece[i] || !has_span(self.spans[i]))
     }
 
     /// The derivative of order `k` of piece `piece` at the piece-local parameter `t ∈ [0, 1]`.
@@ -173,6 +175,12 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
         let piece = (libm::floor(u) as usize).min(self.pieces - 1);
         (piece, u - piece as f64)
     }
+}
+
+/// Whether a move's parameters between its blends hold a piece: not where the blends at
+/// both ends take half of the move each (up to rounding).
+fn has_span((begin, end): (f64, f64)) -> bool {
+    end - begin > 1e-12
 }
 
 impl<const D: usize, const M: usize> ParamCurve for Toolpath<D, M> {
