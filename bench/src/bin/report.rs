@@ -37,7 +37,10 @@ fn main() -> Result<()> {
             _ => bail!("unknown argument {a} (expected --criterion DIR, --qemu DIR, --out FILE)"),
         }
     }
-    let md = generate(&inputs, &Machine::detect())?;
+    let mut md = generate(&inputs, &Machine::detect())?;
+    // the corner comparison is computed here, not read from criterion's results
+    let at = md.find("## Machine").unwrap_or(md.len());
+    md.insert_str(at, &strak_bench::corners::section());
     std::fs::write(&out, md).with_context(|| format!("writing {}", out.display()))?;
     println!("wrote {}", out.display());
     Ok(())
