@@ -194,18 +194,6 @@ where
         fit: &mut SplineFit<A, K>,
         one_tick_pieces: bool,
     ) -> Result<(), Error> {
-        self.knots_on_breaks_in(fit, one_tick_pieces, (0, self.ticks))
-    }
-
-    /// [`knots_on_breaks`](Self::knots_on_breaks) for a fit of the ticks `first ..= last`
-    /// only (its tick `i` is the law's tick `first + i`): the knots of the breaks strictly
-    /// inside that stretch, the neighbouring breaks taken from the whole law.
-    pub(super) fn knots_on_breaks_in<const A: usize, K: Knots<A>>(
-        &self,
-        fit: &mut SplineFit<A, K>,
-        one_tick_pieces: bool,
-        (first, last): (u32, u32),
-    ) -> Result<(), Error> {
         let isolated = |k: f64, before: f64, after: f64| {
             (k - before).abs() >= MIN_BREAK_GAP && (after - k).abs() >= MIN_BREAK_GAP
         };
@@ -216,8 +204,8 @@ where
                 Ok(())
             })?;
         }
-        let (lo_tick, hi_tick) = (f64::from(first), f64::from(last));
-        let mut exact = |k: u32| self.position::<A>(first + k);
+        let ticks_f = f64::from(self.ticks);
+        let mut exact = |k: u32| self.position::<A>(k);
         self.for_each_break(&mut |k, before, after| {
             let (lo, hi) = if all_close {
                 (libm::floor(k), libm::ceil(k))
@@ -227,9 +215,9 @@ where
                 return Ok(());
             };
             for tick in [lo, hi] {
-                if tick > lo_tick && tick < hi_tick {
+                if tick >= 1.0 && tick < ticks_f {
                     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                    fit.insert_knot(tick as u32 - first, &mut exact)?;
+                    fit.insert_knot(tick as u32, &mut exact)?;
                 }
             }
             Ok(())

@@ -3,19 +3,19 @@
 //! pieces of consecutive stretches play as one path.
 
 use heapless::Vec;
-use strak_curves::{ParamCurveDeriv, Scalar, ScalarOf};
+use strak_curves::ParamCurveDeriv;
 
 use super::knots::{Knots, PieceKnots};
 use super::law::TickLaw;
 use super::online::chord_state;
 use super::options::{CompileOptions, Tolerance};
 use super::spline_fit::SplineFit;
-use super::{CHECK_FRACTION, ONE_TICK_NOISE, fit_peaks, piece_state, round_state};
+use super::{CHECK_FRACTION, fit_peaks, piece_state, round_state};
 use crate::error::{Error, Quantity};
 use crate::num::Number;
 use crate::online::Kinematics;
 use crate::path::{AxisState, Piece};
-use crate::plan::{Timing, Trajectory};
+use crate::plan::{MotionLimits, Timing, Trajectory};
 
 /// How many times a stretch is fitted again, each time to a quarter of the tolerance, when
 /// its pieces exceed a limit of the law.
@@ -68,9 +68,7 @@ const EXTENT_SAMPLES: u32 = 256;
 /// ```
 pub struct Stretches<'a, M: Trajectory + ?Sized, const A: usize> {
     law: TickLaw<'a, M::Curve, M::Law>,
-    tolerance: f64,
-    max_piece_ticks: u32,
-    one_tick_pieces: bool,
+    fit: StretchFit,
     /// The first tick of the next stretch.
     next: u32,
 }
@@ -80,7 +78,7 @@ impl<M: Trajectory + ?Sized, const A: usize> core::fmt::Debug for Stretches<'_, 
         f.debug_struct("Stretches")
             .field("ticks", &self.law.ticks)
             .field("next", &self.next)
-            .field("tolerance", &self.tolerance)
+            .field("tolerance", &self.fit.tolerance)
             .finish_non_exhaustive()
     }
 }
@@ -112,18 +110,11 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
             Tolerance::Absolute(t) => t,
             Tolerance::Relative(r) => r * extent::<M::Curve, M::Law, A>(&law)?,
         };
-        let one_tick_pieces = law.limits().is_some_and(|l| {
-            let magnitude = extent_and_magnitude::<M::Curve, M::Law, A>(&law).map_or(0.0, |e| e.1);
-            let noise = ScalarOf::<M::Curve>::EPSILON * magnitude;
-            6.0 * noise * rate_hz * rate_hz * rate_hz <= ONE_TICK_NOISE * l.jerk
-        });
-        Ok(Stretches {
-            law,
+        let fit = StretchFit {
             tolerance,
             max_piece_ticks: options.max_piece_ticks(),
-            one_tick_pieces,
-            next: 0,
-        })
+        };
+        Ok(Stretches { law, fit, next: 0 })
     }
 
     /// The ticks of the whole motion.
@@ -184,24 +175,83 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
         if rest - ticks == 1 {
             ticks -= 1; // never leave a last stretch of one tick (it cannot be clamped)
         }
-        let result = self.fit_stretch(first, ticks, pieces);
-        if result.is_err() {
+        if let Err(e) = self.fit.write(&self.law, first, first + ticks, pieces) {
             pieces.clear();
+            return Err(e);
         }
-        result
+        self.next = first + ticks;
+        Ok(ticks)
     }
+}
 
-    /// Writes the pieces of ticks `first ..= first + ticks`: spline spans between the
-    /// one-tick pieces around the law's breaks.
-    fn fit_stretch<N: Number, const P: usize>(
-        &mut self,
+/// A motion on the tick grid as a stretch is fitted to it: its exact position, slope and
+/// second derivative (per tick and per tick²) at every tick, the jumps of its jerk, and
+/// the limits it promises.
+pub(crate) trait TickMotion<const A: usize> {
+    /// The tick period in seconds.
+    fn period(&self) -> f64;
+    /// The position at tick `k`.
+    fn position(&self, k: u32) -> Result<[f64; A], Error>;
+    /// The slope `dx/dk` at tick `k`.
+    fn slope(&self, k: u32) -> Result<[f64; A], Error>;
+    /// The second derivative `d²x/dk²` at tick `k`.
+    fn second(&self, k: u32) -> Result<[f64; A], Error>;
+    /// Calls `f` with every jump of the jerk strictly between the ticks `first` and `last`,
+    /// as a fractional tick, in increasing order.
+    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64));
+    /// The limits the motion promises, if any.
+    fn limits(&self) -> Option<MotionLimits>;
+}
+
+impl<C, T, const A: usize> TickMotion<A> for TickLaw<'_, C, T>
+where
+    C: ParamCurveDeriv + ?Sized,
+    T: Timing + ?Sized,
+{
+    fn period(&self) -> f64 {
+        self.period
+    }
+    fn position(&self, k: u32) -> Result<[f64; A], Error> {
+        TickLaw::position(self, k)
+    }
+    fn slope(&self, k: u32) -> Result<[f64; A], Error> {
+        TickLaw::slope(self, self.time(k))
+    }
+    fn second(&self, k: u32) -> Result<[f64; A], Error> {
+        TickLaw::second(self, self.time(k))
+    }
+    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
+        TickLaw::breaks_between(self, first, last, f);
+    }
+    fn limits(&self) -> Option<MotionLimits> {
+        TickLaw::limits(self)
+    }
+}
+
+/// How a stretch is fitted: the position tolerance and the longest piece.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StretchFit {
+    pub(crate) tolerance: f64,
+    pub(crate) max_piece_ticks: u32,
+}
+
+impl StretchFit {
+    /// Writes the pieces of ticks `first ..= last` of `motion` after `pieces`: spline
+    /// spans between the one-tick pieces around the motion's breaks, every piece's `start`
+    /// its tick.
+    pub(crate) fn write<M, N, const A: usize, const P: usize>(
+        &self,
+        motion: &M,
         first: u32,
-        ticks: u32,
+        last: u32,
         pieces: &mut Vec<Piece<N, A>, P>,
-    ) -> Result<u32, Error> {
-        let last = first + ticks;
+    ) -> Result<(), Error>
+    where
+        M: TickMotion<A> + ?Sized,
+        N: Number,
+    {
         let (mut from, mut result) = (first, Ok(()));
-        self.law.breaks_between(first, last, &mut |k| {
+        motion.breaks_between(first, last, &mut |k| {
             if result.is_err() {
                 return;
             }
@@ -214,83 +264,39 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
             let (lo, hi) = (lo as u32, hi as u32);
             result = self
-                .span(from, lo.max(from), pieces)
-                .and_then(|()| self.chords(lo.max(from), hi.max(from), pieces));
+                .span(motion, from, lo.max(from), pieces)
+                .and_then(|()| chords(motion, lo.max(from), hi.max(from), pieces));
             from = hi.max(from);
         });
         result?;
-        self.span(from, last, pieces)?;
-        self.next = last;
-        Ok(ticks)
-    }
-
-    /// The exact state of every axis at tick `k`, in units, units/s and units/s².
-    fn state(&self, k: u32) -> Result<[Kinematics<f64>; A], Error> {
-        let law = &self.law;
-        let t = law.time(k);
-        let (x, slope, second) = (
-            law.position::<A>(k)?,
-            law.slope::<A>(t)?,
-            law.second::<A>(t)?,
-        );
-        let (p, pp) = (law.period, law.period * law.period);
-        Ok(core::array::from_fn(|a| {
-            Kinematics::new(x[a], slope[a] / p, second[a] / pp)
-        }))
-    }
-
-    /// One-tick pieces from tick `from` to tick `to`, each from the exact state to the
-    /// exact state of the next tick in every chain.
-    fn chords<N: Number, const P: usize>(
-        &self,
-        from: u32,
-        to: u32,
-        pieces: &mut Vec<Piece<N, A>, P>,
-    ) -> Result<(), Error> {
-        if from >= to {
-            return Ok(());
-        }
-        let mut start = self.state(from)?;
-        for k in from..to {
-            let end = self.state(k + 1)?;
-            let mut axes = [AxisState::ZERO; A];
-            for (axis, (s, e)) in axes.iter_mut().zip(start.iter().zip(&end)) {
-                *axis = round_state(&chord_state(s, e, 1, self.law.period))?;
-            }
-            let piece = Piece {
-                axes,
-                start: k,
-                ticks: 1,
-            };
-            pieces.push(piece).map_err(|_| Error::CapacityExceeded {
-                capacity: P,
-                required: P + 1,
-            })?;
-            start = end;
-        }
-        Ok(())
+        self.span(motion, from, last, pieces)
     }
 
     /// The spline of ticks `from ..= to`, clamped at both ends to the exact state, fitted
-    /// tighter until its pieces keep the law's limits, written after `pieces`; one-tick
+    /// tighter until its pieces keep the motion's limits, written after `pieces`; one-tick
     /// pieces for a span too short for both clamps.
-    fn span<N: Number, const P: usize>(
+    fn span<M, N, const A: usize, const P: usize>(
         &self,
+        motion: &M,
         from: u32,
         to: u32,
         pieces: &mut Vec<Piece<N, A>, P>,
-    ) -> Result<(), Error> {
+    ) -> Result<(), Error>
+    where
+        M: TickMotion<A> + ?Sized,
+        N: Number,
+    {
         if to < from + 3 {
-            return self.chords(from, to, pieces);
+            return chords(motion, from, to, pieces);
         }
-        let period = self.law.period;
+        let period = motion.period();
         let offset = pieces.len();
         let mut fit = SplineFit::<A, _>::empty(PieceKnots { pieces, offset });
         let (mut tolerance, mut exceeded) = (self.tolerance, Quantity::Velocity);
         for _ in 0..=TIGHTER_FITS {
-            self.fit_span(from, to, tolerance, &mut fit)?;
+            self.fit_span(motion, from, to, tolerance, &mut fit)?;
             let peaks = fit_peaks(&fit, period, false);
-            let quantity = match self.law.limits() {
+            let quantity = match motion.limits() {
                 Some(limits) => peaks.slowdown(&limits)?.1,
                 None => None,
             };
@@ -303,30 +309,77 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
         Err(Error::LimitExceeded { quantity: exceeded })
     }
 
-    /// One fit of ticks `from ..= to` to `tolerance`, clamped at both ends.
-    fn fit_span<K: Knots<A>>(
+    /// One fit of ticks `from ..= to` to `tolerance`, clamped at both ends (no break of the
+    /// motion lies inside: [`write`](Self::write) splits the stretch at them).
+    fn fit_span<M, K, const A: usize>(
         &self,
+        motion: &M,
         from: u32,
         to: u32,
         tolerance: f64,
         fit: &mut SplineFit<A, K>,
-    ) -> Result<(), Error> {
-        let law = &self.law;
-        let mut exact = |k: u32| law.position::<A>(from + k);
-        let (t0, t1) = (law.time(from), law.time(to));
-        fit.init(
-            to - from,
-            to - from,
-            law.slope(t0)?,
-            law.slope(t1)?,
-            &mut exact,
-        )?;
-        let clamps = [Some(law.second::<A>(t0)?), Some(law.second::<A>(t1)?)];
+    ) -> Result<(), Error>
+    where
+        M: TickMotion<A> + ?Sized,
+        K: Knots<A>,
+    {
+        let mut exact = |k: u32| motion.position(from + k);
+        let (s0, s1) = (motion.slope(from)?, motion.slope(to)?);
+        fit.init(to - from, to - from, s0, s1, &mut exact)?;
+        let clamps = [Some(motion.second(from)?), Some(motion.second(to)?)];
         fit.clamp_accelerations(clamps, &mut exact)?;
-        law.knots_on_breaks_in(fit, self.one_tick_pieces, (from, to))?;
         fit.subdivide(self.max_piece_ticks, &mut exact)?;
         fit.refine_every_tick(tolerance * CHECK_FRACTION, tolerance, &mut exact)
     }
+}
+
+/// The exact state of every axis of `motion` at tick `k`, in units, units/s and units/s².
+fn state<M: TickMotion<A> + ?Sized, const A: usize>(
+    motion: &M,
+    k: u32,
+) -> Result<[Kinematics<f64>; A], Error> {
+    let (x, slope, second) = (motion.position(k)?, motion.slope(k)?, motion.second(k)?);
+    let (p, pp) = (motion.period(), motion.period() * motion.period());
+    Ok(core::array::from_fn(|a| {
+        Kinematics::new(x[a], slope[a] / p, second[a] / pp)
+    }))
+}
+
+/// One-tick pieces from tick `from` to tick `to` after `pieces`, each from the exact state
+/// to the exact state of the next tick in every chain.
+fn chords<M, N, const A: usize, const P: usize>(
+    motion: &M,
+    from: u32,
+    to: u32,
+    pieces: &mut Vec<Piece<N, A>, P>,
+) -> Result<(), Error>
+where
+    M: TickMotion<A> + ?Sized,
+    N: Number,
+{
+    if from >= to {
+        return Ok(());
+    }
+    let period = motion.period();
+    let mut start = state(motion, from)?;
+    for k in from..to {
+        let end = state(motion, k + 1)?;
+        let mut axes = [AxisState::ZERO; A];
+        for (axis, (s, e)) in axes.iter_mut().zip(start.iter().zip(&end)) {
+            *axis = round_state(&chord_state(s, e, 1, period))?;
+        }
+        let piece = Piece {
+            axes,
+            start: k,
+            ticks: 1,
+        };
+        pieces.push(piece).map_err(|_| Error::CapacityExceeded {
+            capacity: P,
+            required: P + 1,
+        })?;
+        start = end;
+    }
+    Ok(())
 }
 
 /// The pieces' forward-difference states in `N`, written over the fit's knots, their
