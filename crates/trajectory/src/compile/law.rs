@@ -108,36 +108,6 @@ where
         coords(self.curve.eval(self.param(self.time(k))?.0))
     }
 
-    /// The second derivative `d²x/dk² = (c''·u̇² + c'·ü) · per_tick²` (units per tick²) at
-    /// time-law time `t` ([`Timing::param_acceleration`]).
-    pub(super) fn second<const A: usize>(&self, t: f64) -> Result<[f64; A], Error> {
-        let (u, du) = self.param(t)?;
-        let ddu = self.timing.param_acceleration(t);
-        let d1: [f64; A] = coords(self.curve.deriv(u, 1))?;
-        let d2: [f64; A] = coords(self.curve.deriv(u, 2))?;
-        let scale = self.per_tick * self.per_tick;
-        let x: [f64; A] = core::array::from_fn(|a| (d2[a] * du * du + d1[a] * ddu) * scale);
-        if x.iter().all(|v| v.is_finite()) {
-            Ok(x)
-        } else {
-            Err(Error::Curve(strak_curves::Error::NonFinite))
-        }
-    }
-
-    /// Calls `f` with every break of the time law ([`Timing::breaks`]) strictly between the
-    /// ticks `first` and `last`, as a fractional tick, once each, in increasing order.
-    pub(super) fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
-        let (lo, hi) = (f64::from(first), f64::from(last));
-        let mut prev = f64::NEG_INFINITY;
-        self.timing.breaks(&mut |t: f64| {
-            let k = t / self.per_tick;
-            if k > lo && k < hi && k - prev >= 1e-6 {
-                f(k);
-                prev = k;
-            }
-        });
-    }
-
     /// The slope `dx/dk = c'(u) · du/dt · per_tick` (units per tick) at time-law time `t`.
     pub(super) fn slope<const A: usize>(&self, t: f64) -> Result<[f64; A], Error> {
         let (u, du) = self.param(t)?;
@@ -222,6 +192,71 @@ where
             }
             Ok(())
         })
+    }
+}
+
+/// A motion on the tick grid as a stretch is fitted to it: its exact position, slope and
+/// second derivative (per tick and per tick²) at every tick, the jumps of its jerk, and
+/// the limits it promises.
+pub(crate) trait TickMotion<const A: usize> {
+    /// The tick period in seconds.
+    fn period(&self) -> f64;
+    /// The position at tick `k`.
+    fn position(&self, k: u32) -> Result<[f64; A], Error>;
+    /// The slope `dx/dk` at tick `k`.
+    fn slope(&self, k: u32) -> Result<[f64; A], Error>;
+    /// The second derivative `d²x/dk²` at tick `k`.
+    fn second(&self, k: u32) -> Result<[f64; A], Error>;
+    /// Calls `f` with every jump of the jerk strictly between the ticks `first` and `last`,
+    /// as a fractional tick, in increasing order.
+    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64));
+    /// The limits the motion promises, if any.
+    fn limits(&self) -> Option<MotionLimits>;
+}
+
+/// The law's motion: `d²x/dk² = (c''·u̇² + c'·ü) · per_tick²` with `ü` from
+/// [`Timing::param_acceleration`], and the breaks of [`Timing::breaks`].
+impl<C, T, const A: usize> TickMotion<A> for TickLaw<'_, C, T>
+where
+    C: ParamCurveDeriv + ?Sized,
+    T: Timing + ?Sized,
+{
+    fn period(&self) -> f64 {
+        self.period
+    }
+    fn position(&self, k: u32) -> Result<[f64; A], Error> {
+        TickLaw::position(self, k)
+    }
+    fn slope(&self, k: u32) -> Result<[f64; A], Error> {
+        TickLaw::slope(self, self.time(k))
+    }
+    fn second(&self, k: u32) -> Result<[f64; A], Error> {
+        let t = self.time(k);
+        let (u, du) = self.param(t)?;
+        let ddu = self.timing.param_acceleration(t);
+        let d1: [f64; A] = coords(self.curve.deriv(u, 1))?;
+        let d2: [f64; A] = coords(self.curve.deriv(u, 2))?;
+        let scale = self.per_tick * self.per_tick;
+        let x: [f64; A] = core::array::from_fn(|a| (d2[a] * du * du + d1[a] * ddu) * scale);
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(x)
+        } else {
+            Err(Error::Curve(strak_curves::Error::NonFinite))
+        }
+    }
+    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
+        let (lo, hi) = (f64::from(first), f64::from(last));
+        let mut prev = f64::NEG_INFINITY;
+        self.timing.breaks(&mut |t: f64| {
+            let k = t / self.per_tick;
+            if k > lo && k < hi && k - prev >= 1e-6 {
+                f(k);
+                prev = k;
+            }
+        });
+    }
+    fn limits(&self) -> Option<MotionLimits> {
+        TickLaw::limits(self)
     }
 }
 

@@ -25,7 +25,7 @@ use crate::plan::{FeedReserve, MotionLimits, Timing, Trajectory};
 use knots::{Knots, PieceKnots};
 use law::TickLaw;
 use peaks::{LIMIT_SLACK, Peaks};
-use spline_fit::SplineFit;
+use spline_fit::{EndClamps, SplineFit};
 
 /// The largest share of the law's jerk limit that the rounding of the positions (in the
 /// curve's scalar) may put into the jerk of a piece of one tick: `6σ/T³` for a noise `σ`.
@@ -253,7 +253,7 @@ where
             path.header.meta =
                 path_meta(&described, &reserve, rate_hz, duration, tolerance, options)?;
             end_into::<N, _, _, A, _>(curve, &law, &fit, &mut path.header.end)?;
-            write_states(fit, period)?;
+            write_states(fit, 0, period)?;
             path.seal()?;
             return check_playback_bound(&path.header);
         };
@@ -374,8 +374,8 @@ fn relative_tolerance<const A: usize, K: Knots<A>>(r: f64, fit: &SplineFit<A, K>
 
 /// The peaks of the fitted spline's pieces (with the tangential acceleration when
 /// `tangential`: its bound at any feed, [`tangential_peak`]).
-fn fit_peaks<const A: usize, K: Knots<A>>(
-    fit: &SplineFit<A, K>,
+fn fit_peaks<const A: usize, K: Knots<A>, E: EndClamps<A>>(
+    fit: &SplineFit<A, K, E>,
     period: f64,
     tangential: bool,
 ) -> Peaks {
@@ -393,7 +393,10 @@ fn fit_peaks<const A: usize, K: Knots<A>>(
 /// ([`tangential::Tangential`]); in a frame of its own, so that compiling a law without a
 /// tangential limit does not carry its cells on the stack.
 #[inline(never)]
-fn tangential_peak<const A: usize, K: Knots<A>>(fit: &SplineFit<A, K>, period: f64) -> f64 {
+fn tangential_peak<const A: usize, K: Knots<A>, E: EndClamps<A>>(
+    fit: &SplineFit<A, K, E>,
+    period: f64,
+) -> f64 {
     let mut bound = tangential::Tangential::new();
     for j in 0..fit.pieces() {
         let (coeffs, n) = fit.piece(j);
@@ -457,12 +460,13 @@ where
 }
 
 /// The pieces' forward-difference states in `N` (step 6 of [`compile`]), written over the
-/// fit's knots in the path's own pieces.
+/// fit's knots in the path's own pieces, their starts counted from the tick `first`.
 ///
 /// # Errors
 /// [`Error::OutOfRange`] for a value that does not fit `N`.
-fn write_states<N: Number, const A: usize, const P: usize>(
-    fit: SplineFit<A, PieceKnots<'_, N, A, P>>,
+pub(super) fn write_states<N: Number, const A: usize, const P: usize, E: EndClamps<A>>(
+    fit: SplineFit<A, PieceKnots<'_, N, A, P>, E>,
+    first: u32,
     period: f64,
 ) -> Result<(), Error> {
     fit.write_pieces(|knots, j, coeffs, start, ticks| {
@@ -472,7 +476,7 @@ fn write_states<N: Number, const A: usize, const P: usize>(
                 required: j + 1,
             });
         };
-        piece.start = start;
+        piece.start = first + start;
         piece.ticks = ticks;
         for (axis, c) in piece.axes.iter_mut().zip(coeffs) {
             *axis = round_state(&piece_state(c, period))?;

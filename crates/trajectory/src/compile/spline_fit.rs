@@ -42,8 +42,10 @@ use crate::error::Error;
 /// the path being compiled).
 ///
 /// Knot `j` (`0 ..= m`) is at tick `knot(j)`; knot 0 is tick 0 and kept here; the knots
-/// `1 ..= m` are kept in `K`, so nothing is sized `capacity + 1`.
-pub(crate) struct SplineFit<const A: usize, K> {
+/// `1 ..= m` are kept in `K`, so nothing is sized `capacity + 1`. `E` holds the clamped
+/// end accelerations: [`Unclamped`] (nothing, for a fit of a whole motion) or
+/// [`Clamped`].
+pub(crate) struct SplineFit<const A: usize, K, E = Unclamped> {
     /// Number of pieces `m` (1 ..= capacity).
     m: usize,
     /// Knot `j + 1` in slot `j`: its tick, position, slope (units/tick; slot `m − 1` holds
@@ -53,11 +55,63 @@ pub(crate) struct SplineFit<const A: usize, K> {
     start_value: [f64; A],
     start_slope: [f64; A],
     end_slope: [f64; A],
+    ends: E,
+}
+
+/// What a fit keeps of the second derivatives clamped at its ends (`end` 0 is the start,
+/// 1 the end).
+pub(crate) trait EndClamps<const A: usize> {
+    /// Nothing clamped.
+    fn none() -> Self;
+    /// The clamped second derivative (units/tick²) at `end`, if any.
+    fn acceleration(&self, end: usize) -> Option<[f64; A]>;
+    /// The position of the free knot next to `end` (knot 1 or knot `m − 1`).
+    fn free_value(&self, end: usize) -> [f64; A];
+    /// Sets the position of the free knot next to `end`.
+    fn set_free_value(&mut self, end: usize, value: [f64; A]);
+}
+
+/// No clamped ends, and no room for them.
+pub(crate) struct Unclamped;
+
+impl<const A: usize> EndClamps<A> for Unclamped {
+    fn none() -> Self {
+        Unclamped
+    }
+    fn acceleration(&self, _: usize) -> Option<[f64; A]> {
+        None
+    }
+    fn free_value(&self, _: usize) -> [f64; A] {
+        [0.0; A] // never read: without a clamp no knot is free
+    }
+    fn set_free_value(&mut self, _: usize, _: [f64; A]) {}
+}
+
+/// Clamped end accelerations, and the positions of the knots they free.
+pub(crate) struct Clamped<const A: usize> {
     /// The clamped second derivatives (units/tick²) at the start and the end, if any.
     accelerations: [Option<[f64; A]>; 2],
     /// With a clamped acceleration: the positions of knot 1 and knot `m − 1` (from the
     /// slopes, see the module docs), in place of the stored ones.
     free_values: [[f64; A]; 2],
+}
+
+impl<const A: usize> EndClamps<A> for Clamped<A> {
+    fn none() -> Self {
+        Clamped {
+            accelerations: [None; 2],
+            free_values: [[0.0; A]; 2],
+        }
+    }
+    fn acceleration(&self, end: usize) -> Option<[f64; A]> {
+        self.accelerations[end]
+    }
+    fn free_value(&self, end: usize) -> [f64; A] {
+        self.free_values[end]
+    }
+    fn set_free_value(&mut self, end: usize, value: [f64; A]) {
+        self.free_values[end] = value;
+    }
 }
 
 /// The local tick offsets at which a piece of `n` ticks is checked: the quarter points
@@ -84,7 +138,7 @@ pub(crate) fn hermite_coefficients(y0: f64, y1: f64, s0: f64, s1: f64, n: f64) -
     [y0, s0, c, d]
 }
 
-impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
+impl<const A: usize, K: Knots<A>, E: EndClamps<A>> SplineFit<A, K, E> {
     /// A spline without knots over the storage `knots`; [`SplineFit::init`] lays out its
     /// grid.
     pub(crate) fn empty(knots: K) -> Self {
@@ -94,44 +148,15 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
             start_value: [0.0; A],
             start_slope: [0.0; A],
             end_slope: [0.0; A],
-            accelerations: [None; 2],
-            free_values: [[0.0; A]; 2],
+            ends: E::none(),
         }
-    }
-
-    /// Clamps the second derivatives (units/tick²) at the start and at the end to the given
-    /// values, where given (module docs). Splits the pieces at their middle ticks until
-    /// there are enough for the clamps (two, three for both).
-    ///
-    /// # Errors
-    /// [`Error::EmptyPath`] for a fit with too few ticks for the clamps (two, three for
-    /// both); [`Error::CapacityExceeded`] when the storage holds too few pieces; errors of
-    /// `exact`.
-    pub(crate) fn clamp_accelerations(
-        &mut self,
-        accelerations: [Option<[f64; A]>; 2],
-        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
-    ) -> Result<(), Error> {
-        let needed = 1 + accelerations.iter().flatten().count();
-        let ticks = self.knot(self.m);
-        if (ticks as usize) < needed {
-            return Err(Error::EmptyPath);
-        }
-        while self.m < needed {
-            let widest = (0..self.m)
-                .max_by_key(|&j| self.knot(j + 1) - self.knot(j))
-                .unwrap_or(0);
-            let mid = self.knot(widest) + (self.knot(widest + 1) - self.knot(widest)) / 2;
-            self.insert_knot(mid, exact)?;
-        }
-        self.accelerations = accelerations;
-        Ok(())
     }
 
     /// Whether knot 1 (`end = 0`) or knot `m − 1` (`end = 1`) has a free position.
     fn free_knot(&self, end: usize) -> bool {
-        let needed = 1 + self.accelerations.iter().flatten().count();
-        self.accelerations[end].is_some() && self.m >= needed
+        let clamped = |e: usize| self.ends.acceleration(e).is_some();
+        let needed = 1 + usize::from(clamped(0)) + usize::from(clamped(1));
+        clamped(end) && self.m >= needed
     }
 
     /// The spline on a uniform initial grid: `⌈ticks / max_len⌉` pieces of at most `max_len`
@@ -299,8 +324,8 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
     pub(crate) fn value(&self, j: usize) -> [f64; A] {
         match j.checked_sub(1) {
             None => self.start_value,
-            Some(0) if self.free_knot(0) => self.free_values[0],
-            Some(i) if i + 2 == self.m && self.free_knot(1) => self.free_values[1],
+            Some(0) if self.free_knot(0) => self.ends.free_value(0),
+            Some(i) if i + 2 == self.m && self.free_knot(1) => self.ends.free_value(1),
             Some(i) => self.knots.value(i),
         }
     }
@@ -328,16 +353,18 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
         let h = |j: usize| f64::from(self.knot(j + 1) - self.knot(j));
         let (h0, h1) = (h(0), h(1));
         let (hl, hp) = (h(m - 1), h(m - 2));
-        if let (true, Some(alpha)) = (free_start, self.accelerations[0]) {
-            self.free_values[0] = core::array::from_fn(|a| {
+        if let (true, Some(alpha)) = (free_start, self.ends.acceleration(0)) {
+            let y = core::array::from_fn(|a| {
                 self.start_value[a] + h0 * (alpha[a] * h0 / 2.0 + 2.0 * self.start_slope[a]) / 3.0
             });
+            self.ends.set_free_value(0, y);
         }
-        if let (true, Some(beta)) = (free_end, self.accelerations[1]) {
+        if let (true, Some(beta)) = (free_end, self.ends.acceleration(1)) {
             let end = self.knots.value(m - 1);
-            self.free_values[1] = core::array::from_fn(|a| {
+            let y = core::array::from_fn(|a| {
                 end[a] - hl * (2.0 * self.end_slope[a] - beta[a] * hl / 2.0) / 3.0
             });
+            self.ends.set_free_value(1, y);
         }
         // Rows r = 0 ..= m−2 for the inner knots j = r + 1.
         let mut prev_c = 0.0;
@@ -395,16 +422,14 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
             self.knots.set_slope(r, slope);
         }
         if free_start {
-            let s1 = self.knots.slope(0);
-            for (y, s) in self.free_values[0].iter_mut().zip(s1) {
-                *y += h0 / 3.0 * s;
-            }
+            let (y, s1) = (self.ends.free_value(0), self.knots.slope(0));
+            self.ends
+                .set_free_value(0, core::array::from_fn(|a| y[a] + h0 / 3.0 * s1[a]));
         }
         if free_end {
-            let s = self.knots.slope(m - 2);
-            for (y, s) in self.free_values[1].iter_mut().zip(s) {
-                *y -= hl / 3.0 * s;
-            }
+            let (y, s) = (self.ends.free_value(1), self.knots.slope(m - 2));
+            self.ends
+                .set_free_value(1, core::array::from_fn(|a| y[a] - hl / 3.0 * s[a]));
         }
     }
 
@@ -587,6 +612,37 @@ impl<const A: usize, K: Knots<A>> SplineFit<A, K> {
     }
 }
 
+impl<const A: usize, K: Knots<A>> SplineFit<A, K, Clamped<A>> {
+    /// Clamps the second derivatives (units/tick²) at the start and at the end to the given
+    /// values, where given (module docs). Splits the pieces at their middle ticks until
+    /// there are enough for the clamps (two, three for both).
+    ///
+    /// # Errors
+    /// [`Error::EmptyPath`] for a fit with too few ticks for the clamps (two, three for
+    /// both); [`Error::CapacityExceeded`] when the storage holds too few pieces; errors of
+    /// `exact`.
+    pub(crate) fn clamp_accelerations(
+        &mut self,
+        accelerations: [Option<[f64; A]>; 2],
+        exact: &mut impl FnMut(u32) -> Result<[f64; A], Error>,
+    ) -> Result<(), Error> {
+        let needed = 1 + accelerations.iter().flatten().count();
+        let ticks = self.knot(self.m);
+        if (ticks as usize) < needed {
+            return Err(Error::EmptyPath);
+        }
+        while self.m < needed {
+            let widest = (0..self.m)
+                .max_by_key(|&j| self.knot(j + 1) - self.knot(j))
+                .unwrap_or(0);
+            let mid = self.knot(widest) + (self.knot(widest + 1) - self.knot(widest)) / 2;
+            self.insert_knot(mid, exact)?;
+        }
+        self.ends.accelerations = accelerations;
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -743,8 +799,8 @@ mod tests {
     }
 
     /// The second derivative (per tick²) of piece `j` at its start and at its end.
-    fn second_derivatives<const A: usize, K: Knots<A>>(
-        fit: &SplineFit<A, K>,
+    fn second_derivatives<const A: usize, K: Knots<A>, E: EndClamps<A>>(
+        fit: &SplineFit<A, K, E>,
         j: usize,
     ) -> [[f64; 2]; A] {
         let (coeffs, n) = fit.piece(j);
@@ -764,7 +820,7 @@ mod tests {
         let ddx = |k: f64| 0.02 - 1.2e-4 * k;
         for [start, end] in CLAMPS {
             let mut exact = |k: u32| Ok([x(f64::from(k))]);
-            let mut fit: SplineFit<1, ArrayKnots<1, 16>> = SplineFit::new(
+            let mut fit: SplineFit<1, ArrayKnots<1, 16>, Clamped<1>> = SplineFit::new(
                 ArrayKnots::new(),
                 1000,
                 90,
@@ -806,7 +862,7 @@ mod tests {
                 let accel =
                     |k: f64, on: bool| on.then_some([ddf(k) + offset, -2.0 * (ddf(k) + offset)]);
                 let clamps = [accel(0.0, start), accel(700.0, end)];
-                let mut fit: SplineFit<2, ArrayKnots<2, 128>> = SplineFit::new(
+                let mut fit: SplineFit<2, ArrayKnots<2, 128>, Clamped<2>> = SplineFit::new(
                     ArrayKnots::new(),
                     700,
                     1000,
@@ -857,7 +913,7 @@ mod tests {
             }
         }
         let mut line = |k: u32| Ok([f64::from(k)]);
-        let mut short: SplineFit<1, ArrayKnots<1, 4>> =
+        let mut short: SplineFit<1, ArrayKnots<1, 4>, Clamped<1>> =
             SplineFit::new(ArrayKnots::new(), 2, 2, [1.0], [1.0], &mut line).unwrap();
         assert_eq!(
             short.clamp_accelerations([Some([0.0]), Some([0.0])], &mut line),
@@ -872,7 +928,7 @@ mod tests {
     #[test]
     fn capacity_is_reported() {
         let mut exact = |k: u32| Ok([f64::from(k)]);
-        let fit = SplineFit::new(
+        let fit = SplineFit::<1, _>::new(
             ArrayKnots::<1, 3>::new(),
             1000,
             256,
@@ -889,7 +945,7 @@ mod tests {
         );
         let f = |k: f64| libm::sin(k / 10.0);
         let mut exact = |k: u32| Ok([f(f64::from(k))]);
-        let mut fit = SplineFit::new(
+        let mut fit = SplineFit::<1, _>::new(
             ArrayKnots::<1, 8>::new(),
             1000,
             256,

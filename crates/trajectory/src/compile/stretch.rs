@@ -6,16 +6,16 @@ use heapless::Vec;
 use strak_curves::ParamCurveDeriv;
 
 use super::knots::{Knots, PieceKnots};
-use super::law::TickLaw;
+use super::law::{TickLaw, TickMotion};
 use super::online::chord_state;
 use super::options::{CompileOptions, Tolerance};
-use super::spline_fit::SplineFit;
-use super::{CHECK_FRACTION, fit_peaks, piece_state, round_state};
+use super::spline_fit::{Clamped, SplineFit};
+use super::{CHECK_FRACTION, fit_peaks, round_state, write_states};
 use crate::error::{Error, Quantity};
 use crate::num::Number;
 use crate::online::Kinematics;
 use crate::path::{AxisState, Piece};
-use crate::plan::{MotionLimits, Timing, Trajectory};
+use crate::plan::{Timing, Trajectory};
 
 /// How many times a stretch is fitted again, each time to a quarter of the tolerance, when
 /// its pieces exceed a limit of the law.
@@ -184,50 +184,6 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
     }
 }
 
-/// A motion on the tick grid as a stretch is fitted to it: its exact position, slope and
-/// second derivative (per tick and per tick²) at every tick, the jumps of its jerk, and
-/// the limits it promises.
-pub(crate) trait TickMotion<const A: usize> {
-    /// The tick period in seconds.
-    fn period(&self) -> f64;
-    /// The position at tick `k`.
-    fn position(&self, k: u32) -> Result<[f64; A], Error>;
-    /// The slope `dx/dk` at tick `k`.
-    fn slope(&self, k: u32) -> Result<[f64; A], Error>;
-    /// The second derivative `d²x/dk²` at tick `k`.
-    fn second(&self, k: u32) -> Result<[f64; A], Error>;
-    /// Calls `f` with every jump of the jerk strictly between the ticks `first` and `last`,
-    /// as a fractional tick, in increasing order.
-    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64));
-    /// The limits the motion promises, if any.
-    fn limits(&self) -> Option<MotionLimits>;
-}
-
-impl<C, T, const A: usize> TickMotion<A> for TickLaw<'_, C, T>
-where
-    C: ParamCurveDeriv + ?Sized,
-    T: Timing + ?Sized,
-{
-    fn period(&self) -> f64 {
-        self.period
-    }
-    fn position(&self, k: u32) -> Result<[f64; A], Error> {
-        TickLaw::position(self, k)
-    }
-    fn slope(&self, k: u32) -> Result<[f64; A], Error> {
-        TickLaw::slope(self, self.time(k))
-    }
-    fn second(&self, k: u32) -> Result<[f64; A], Error> {
-        TickLaw::second(self, self.time(k))
-    }
-    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
-        TickLaw::breaks_between(self, first, last, f);
-    }
-    fn limits(&self) -> Option<MotionLimits> {
-        TickLaw::limits(self)
-    }
-}
-
 /// How a stretch is fitted: the position tolerance and the longest piece.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StretchFit {
@@ -291,7 +247,7 @@ impl StretchFit {
         }
         let period = motion.period();
         let offset = pieces.len();
-        let mut fit = SplineFit::<A, _>::empty(PieceKnots { pieces, offset });
+        let mut fit = SplineFit::<A, _, Clamped<A>>::empty(PieceKnots { pieces, offset });
         let (mut tolerance, mut exceeded) = (self.tolerance, Quantity::Velocity);
         for _ in 0..=TIGHTER_FITS {
             self.fit_span(motion, from, to, tolerance, &mut fit)?;
@@ -317,7 +273,7 @@ impl StretchFit {
         from: u32,
         to: u32,
         tolerance: f64,
-        fit: &mut SplineFit<A, K>,
+        fit: &mut SplineFit<A, K, Clamped<A>>,
     ) -> Result<(), Error>
     where
         M: TickMotion<A> + ?Sized,
@@ -380,29 +336,6 @@ where
         start = end;
     }
     Ok(())
-}
-
-/// The pieces' forward-difference states in `N`, written over the fit's knots, their
-/// starts counted from `first`.
-fn write_states<N: Number, const A: usize, const P: usize>(
-    fit: SplineFit<A, PieceKnots<'_, N, A, P>>,
-    first: u32,
-    period: f64,
-) -> Result<(), Error> {
-    fit.write_pieces(|knots, j, coeffs, start, ticks| {
-        let Some(piece) = knots.piece_mut(j) else {
-            return Err(Error::CapacityExceeded {
-                capacity: P,
-                required: j + 1,
-            });
-        };
-        piece.start = first + start;
-        piece.ticks = ticks;
-        for (axis, c) in piece.axes.iter_mut().zip(coeffs) {
-            *axis = round_state(&piece_state(c, period))?;
-        }
-        Ok(())
-    })
 }
 
 /// The extent of the positions at [`EXTENT_SAMPLES`] ticks spread over the law (at least

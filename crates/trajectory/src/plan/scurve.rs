@@ -40,7 +40,7 @@ use crate::error::Error;
 
 /// Bisection steps: enough to exhaust the `f64` resolution of any bracket (the loop stops
 /// earlier when the midpoint no longer differs from the ends).
-pub(super) const BISECTION_STEPS: usize = 2200;
+const BISECTION_STEPS: usize = 2200;
 
 /// The fastest velocity change by `dv` (≥ 0) from zero to zero acceleration: the duration of
 /// each jerk phase, of the constant-acceleration phase, and the peak acceleration.
@@ -99,13 +99,19 @@ pub(super) fn reach(v_from: f64, length: f64, cap: f64, a: f64, j: f64) -> f64 {
     if cap <= v_from || change_distance(v_from, cap, a, j) <= length {
         return cap;
     }
-    let (mut lo, mut hi) = (v_from, cap);
+    last_fitting(v_from, cap, |v| change_distance(v_from, v, a, j) <= length)
+}
+
+/// The edge of `fits` on `[lo, hi]` by bisection, from below: a speed where `fits` holds
+/// (`lo` itself when no midpoint does), for a `fits` that holds at `lo` and fails at `hi`
+/// and changes once between them. It stops when the interval cannot be halved in `f64`.
+pub(super) fn last_fitting(mut lo: f64, mut hi: f64, fits: impl Fn(f64) -> bool) -> f64 {
     for _ in 0..BISECTION_STEPS {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        if change_distance(v_from, mid, a, j) <= length {
+        if fits(mid) {
             lo = mid;
         } else {
             hi = mid;
@@ -122,19 +128,7 @@ pub(super) fn peak_speed(v0: f64, v1: f64, v_lim: f64, length: f64, a: f64, j: f
     if v_lim <= floor || need(v_lim) <= length {
         return v_lim.max(floor);
     }
-    let (mut lo, mut hi) = (floor, v_lim);
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if need(mid) <= length {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
+    last_fitting(floor, v_lim, |vp| need(vp) <= length)
 }
 
 /// Fills the phases of `zone` (whose `v_start`, `v_end`, limits and `t_start` are set) with

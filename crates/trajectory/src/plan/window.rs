@@ -14,7 +14,7 @@
 use heapless::Vec;
 
 use super::motion::ProfileZone;
-use super::scurve::{BISECTION_STEPS, change_distance, fill_zone, reach};
+use super::scurve::{change_distance, fill_zone, last_fitting, reach};
 use crate::error::Error;
 
 /// The boundary speeds of the window's zones: the first starts at `v_entry`, the last ends
@@ -65,19 +65,7 @@ fn fastest_end(v0: f64, cap: f64, length: f64, a: f64, j: f64) -> f64 {
     if change_distance(cap, v0, a, j) <= length {
         return cap;
     }
-    let (mut lo, mut hi) = (0.0, cap);
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if change_distance(mid, v0, a, j) <= length {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
+    last_fitting(0.0, cap, |v| change_distance(v, v0, a, j) <= length)
 }
 
 /// A zone of the look-ahead window: a stretch of arc length with constant limits, without
