@@ -23,8 +23,8 @@ const LAYERS: [(&str, u8); 8] = [
     ("online", 1),
     ("path", 2),
     ("plan", 3),
-    ("stream", 4),
-    ("compile", 5),
+    ("compile", 4),
+    ("stream", 5),
     ("play", 6),
 ];
 

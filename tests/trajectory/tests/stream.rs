@@ -3,10 +3,12 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
+use strak_curves::heapless::Deque;
 use strak_curves::{ParamCurve, ParamCurveDeriv, Plane, Point, Turn};
 use strak_trajectory::{
     Along, AxisState, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Path, PathTiming,
-    Piece, PlanOptions, REVERSAL_ANGLE, Sampler, Shape, Stretches, Timing, Toolpath, junction,
+    Piece, PlanOptions, REVERSAL_ANGLE, Sampler, Shape, Stream, StreamOptions, Stretches, Timing,
+    Toolpath, junction,
 };
 use strak_trajectory_tests::compile_boxed;
 
@@ -726,4 +728,300 @@ fn dense_chain_of_short_moves() {
         );
     }
     assert!(worst <= 0.02 + 1e-4 + played.playback_bound(), "{worst}");
+}
+
+/// The ticks of a stream as played: positions, velocities and accelerations per tick, the
+/// largest steps of position, velocity and acceleration where one piece meets the next,
+/// and the number of pieces.
+#[derive(Default)]
+struct Played {
+    x: Vec<[f64; 3]>,
+    v: Vec<[f64; 3]>,
+    a: Vec<[f64; 3]>,
+    seam: [f64; 3],
+    pieces: usize,
+}
+
+impl Played {
+    /// Plays `piece` after the ones before, recording where it meets them.
+    fn play(&mut self, piece: &Piece<f64, 3>, end: &mut Option<[AxisState<f64>; 3]>) {
+        if let Some(end) = end {
+            for (e, s) in end.iter().zip(piece.axes()) {
+                self.seam[0] = self.seam[0].max((e.position - s.position).abs());
+                self.seam[1] = self.seam[1].max((e.velocity - s.velocity).abs());
+                self.seam[2] = self.seam[2].max((e.acceleration - s.acceleration).abs());
+            }
+        }
+        let mut state = *piece.axes();
+        for _ in 0..piece.ticks() {
+            self.x.push(state.map(|s| s.position));
+            self.v.push(state.map(|s| s.velocity));
+            self.a.push(state.map(|s| s.acceleration));
+            state.iter_mut().for_each(AxisState::step);
+        }
+        self.pieces += 1;
+        *end = Some(state);
+    }
+
+    /// The largest speed, acceleration and jerk from differences of the played ticks.
+    fn peaks(&self, rate: f64) -> [f64; 3] {
+        let mut peaks = [0.0_f64; 3];
+        for k in 1..self.x.len() {
+            peaks[0] = peaks[0].max(self.x[k].minus(self.x[k - 1]).norm() * rate);
+            peaks[1] = peaks[1].max(self.v[k].minus(self.v[k - 1]).norm() * rate);
+            peaks[2] = peaks[2].max(self.a[k].minus(self.a[k - 1]).norm() * rate);
+        }
+        peaks
+    }
+}
+
+/// Runs a stream over `moves`: pushes up to `batch` moves before each poll (then finishes
+/// it), and plays every piece the polls compile.
+fn run_stream<const Q: usize, const Z: usize>(
+    stream: &mut Stream<3, Q, Z>,
+    moves: &[Move<3>],
+    batch: usize,
+) -> Played {
+    let mut pieces = Deque::<Piece<f64, 3>, 64>::new();
+    let (mut played, mut end, mut next) = (Played::default(), None, 0);
+    for _ in 0..1_000_000 {
+        for _ in 0..batch {
+            let Some(mv) = moves.get(next) else { break };
+            match stream.push(mv) {
+                Ok(()) => next += 1,
+                Err(Error::CapacityExceeded { .. } | Error::ZoneCapacityExceeded { .. }) => break,
+                Err(e) => panic!("move {next}: {e}"),
+            }
+        }
+        if next == moves.len() {
+            stream.finish().unwrap();
+        }
+        let ticks = stream.poll(&mut pieces).unwrap();
+        while let Some(piece) = pieces.pop_front() {
+            played.play(&piece, &mut end);
+        }
+        if ticks == 0 && next == moves.len() && stream.is_idle() {
+            if let Some(end) = end {
+                // the state the last piece ends in, where the sampler holds still
+                played.x.push(end.map(|s| s.position));
+                played.v.push(end.map(|s| s.velocity));
+                played.a.push(end.map(|s| s.acceleration));
+            }
+            return played;
+        }
+    }
+    panic!("the stream does not end");
+}
+
+/// The moves of `contour`.
+fn contour_moves() -> Vec<Move<3>> {
+    let ccw = Shape::ArcCenter {
+        center: [70.0, 30.0],
+        plane: Plane::XY,
+        turn: Turn::CounterClockwise,
+    };
+    vec![
+        Move::line([20.0, 0.0, 0.0]),
+        Move::line([40.0, 1.75, 0.0]),
+        Move::line([50.0, 20.0, 0.0]).with_feed(80.0),
+        Move::line([30.0, 10.0, 0.0]),
+        Move::line([50.0, 20.0, 0.0]), // a reversal: an exact stop
+        Move::line([70.0, 20.0, 0.0]),
+        Move::new([80.0, 30.0, 5.0], ccw),
+        Move::line([80.0, 50.0, 5.0]),
+        Move::new(
+            [60.0, 60.0, 0.0],
+            Shape::Bezier {
+                c1: [80.0, 60.0, 5.0],
+                c2: [70.0, 65.0, 0.0],
+            },
+        ),
+    ]
+}
+
+/// The largest distance of the played ticks from the programmed moves.
+fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
+    let mut from = [0.0; 3];
+    let programmed: Vec<Polygon<3>> = moves
+        .iter()
+        .map(|mv| {
+            let m = MoveCurve::new(from, mv, 1e-9).unwrap();
+            from = mv.to;
+            Polygon::new(
+                &m,
+                (0.0, 1.0),
+                m.second_derivative_bound(),
+                4 * CURVE_SAMPLES,
+            )
+        })
+        .collect();
+    x.iter()
+        .map(|&p| {
+            programmed
+                .iter()
+                .map(|g| g.distance(p))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A stream of lines (corners of 5° to 145°, a reversal), a tangent arc with a helical rise
+/// and a Bézier, with a slower feed on one line, pushed at once and played: the pieces
+/// meet without a seam, the speed, acceleration and jerk from the played ticks stay within
+/// the promised limits, every tick lies within the tolerance of the programmed moves, and
+/// the motion ends at rest on the last move's end.
+#[test]
+fn a_stream_plays_within_the_limits_and_the_tolerance() {
+    let (rate, tol, fit) = (1000.0, 0.05, 1e-5);
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let options = StreamOptions::new(rate)
+        .with_tolerance(tol)
+        .with_fit_tolerance(fit);
+    let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
+    let moves = contour_moves();
+    let played = run_stream(&mut stream, &moves, moves.len());
+    let stats = stream.stats();
+    let peaks = played.peaks(rate);
+    let worst = distance_from_moves(&moves, &played.x);
+    println!(
+        "{} ticks, {} pieces, {stats:?}; seams {:.1e} {:.1e} {:.1e}; v {:.3} a {:.1} j {:.0}; distance {worst:.5}",
+        played.x.len(),
+        played.pieces,
+        played.seam[0],
+        played.seam[1],
+        played.seam[2],
+        peaks[0],
+        peaks[1],
+        peaks[2]
+    );
+    assert_eq!((stats.moves, stats.blends, stats.stops), (9, 7, 1));
+    assert!(stats.max_deviation <= tol);
+    let seam = played.seam;
+    assert!(
+        seam[0] < 1e-9 && seam[1] < 1e-7 && seam[2] < 1e-4,
+        "{seam:?}"
+    );
+    let slack = 1.0 + 1e-9;
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    assert!(peaks[0] <= 200.0 * slack, "{peaks:?}");
+    assert!(peaks[1] <= keep * 3000.0 * slack, "{peaks:?}");
+    assert!(peaks[2] <= keep * 100_000.0 * slack, "{peaks:?}");
+    assert!(worst <= tol + fit, "{worst}");
+    assert!(worst > tol / 4.0, "the corners are blended: {worst}");
+    let last = played.x.last().unwrap();
+    assert!(last.minus(moves[8].to).norm() < 1e-9, "{last:?}");
+    assert!(played.v.last().unwrap().norm() < 1e-9);
+}
+
+/// A zig-zag of lines of 8 to 12 mm whose producer pushes a move per poll (64 ms of motion)
+/// for ten moves, then one per eight polls, slower than the motion needs: the stream
+/// blends while it has moves, runs dry, rests at the end of what it has, and starts again
+/// from rest when the next move arrives; through all of it the
+/// speed, acceleration and jerk from the played ticks stay within the limits, every tick
+/// lies within the tolerance of the moves, and the motion ends on the last move's end.
+#[test]
+fn a_starved_stream_rests_and_resumes_within_the_limits() {
+    let (rate, tol) = (1000.0, 0.02);
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let options = StreamOptions::new(rate).with_tolerance(tol);
+    let moves: Vec<Move<3>> = (1..=20)
+        .map(|i| {
+            let x = 7.5 * f64::from(i);
+            let y = if i % 2 == 0 {
+                0.0
+            } else {
+                5.0 + f64::from(i % 3)
+            };
+            Move::line([x, y, 0.0])
+        })
+        .collect();
+    let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
+    let mut pieces = Deque::<Piece<f64, 3>, 64>::new();
+    let (mut played, mut end, mut next) = (Played::default(), None, 0);
+    for poll in 0.. {
+        let every = if next < 10 { 1 } else { 8 };
+        if poll % every == 0 && next < moves.len() {
+            stream.push(&moves[next]).unwrap();
+            next += 1;
+        }
+        let ticks = stream.poll(&mut pieces).unwrap();
+        while let Some(piece) = pieces.pop_front() {
+            played.play(&piece, &mut end);
+        }
+        if next == moves.len() {
+            stream.finish().unwrap();
+            if ticks == 0 && stream.is_idle() {
+                break;
+            }
+        }
+        assert!(poll < 100_000);
+    }
+    let end = end.unwrap();
+    played.x.push(end.map(|s| s.position));
+    played.v.push(end.map(|s| s.velocity));
+    played.a.push(end.map(|s| s.acceleration));
+    let stats = stream.stats();
+    let peaks = played.peaks(rate);
+    let rests = played
+        .v
+        .windows(2)
+        .filter(|w| w[0].norm() > 1e-9 && w[1].norm() <= 1e-9)
+        .count();
+    let worst = distance_from_moves(&moves, &played.x);
+    println!(
+        "{} ticks, {stats:?}, {rests} rests; v {:.3} a {:.1} j {:.0}; distance {worst:.5}",
+        played.x.len(),
+        peaks[0],
+        peaks[1],
+        peaks[2]
+    );
+    assert!(stats.starved >= 3 && rests >= 3, "{stats:?} {rests}");
+    assert!(stats.blends >= 5, "{stats:?}");
+    assert_eq!(stats.blends + stats.starved, 20, "{stats:?}");
+    let slack = 1.0 + 1e-9;
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    assert!(peaks[0] <= 200.0 * slack, "{peaks:?}");
+    assert!(peaks[1] <= keep * 3000.0 * slack, "{peaks:?}");
+    assert!(peaks[2] <= keep * 100_000.0 * slack, "{peaks:?}");
+    assert!(worst <= tol + 1e-5, "{worst}");
+    let seam = played.seam;
+    assert!(
+        seam[0] < 1e-9 && seam[1] < 1e-7 && seam[2] < 1e-4,
+        "{seam:?}"
+    );
+    assert!(played.x.last().unwrap().minus(moves[19].to).norm() < 1e-9);
+}
+
+/// Each move's feed bounds the speed along it: two collinear lines at 150 and 50 units/s
+/// pass straight, the speed comes down to 50 before the second begins and cruises there.
+#[test]
+fn each_move_keeps_its_feed() {
+    let rate = 1000.0;
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let mut stream = Stream::<3, 8, 64>::new(
+        [0.0; 3],
+        limits,
+        StreamOptions::new(rate).with_tolerance(0.01),
+    )
+    .unwrap();
+    let moves = [
+        Move::line([30.0, 0.0, 0.0]).with_feed(150.0),
+        Move::line([60.0, 0.0, 0.0]).with_feed(50.0),
+    ];
+    let played = run_stream(&mut stream, &moves, 2);
+    let speeds: Vec<(f64, f64)> = played
+        .x
+        .windows(2)
+        .map(|w| (w[0][0], w[1].minus(w[0]).norm() * rate))
+        .collect();
+    let first = speeds.iter().map(|s| s.1).fold(0.0, f64::max);
+    let second = speeds
+        .iter()
+        .filter(|s| s.0 >= 30.0)
+        .map(|s| s.1)
+        .fold(0.0, f64::max);
+    println!("fastest {first:.4} on the first line, {second:.6} on the second");
+    assert!(first <= 150.0 * (1.0 + 1e-9) && first > 149.0, "{first}");
+    assert!(second <= 50.0 * (1.0 + 1e-9) && second > 49.9, "{second}");
+    assert_eq!(stream.stats().blends, 0);
 }

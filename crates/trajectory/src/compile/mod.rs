@@ -16,6 +16,9 @@ pub use online::{compile_move, compile_move_into, take_over_into};
 pub use options::{CompileOptions, Tolerance};
 pub use stretch::Stretches;
 
+pub(crate) use law::TickMotion;
+pub(crate) use stretch::StretchFit;
+
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use crate::error::{Error, Quantity, Units};

@@ -75,3 +75,8 @@ pub use path_timing::PathTiming;
 pub use timing::{FeedReserve, MotionLimits, Timing};
 pub use trajectory::{Along, Trajectory};
 pub use window::{LookAhead, WindowZone};
+
+pub(crate) use motion::PHASES_PER_ZONE;
+pub(crate) use path_timing::arc_table_into;
+pub(crate) use speed_limit::zones_into;
+pub(crate) use window::SegmentZones;

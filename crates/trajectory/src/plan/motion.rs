@@ -11,7 +11,7 @@ const MAX_DURATION: f64 = u32::MAX as f64 / RATE_RANGE.0;
 
 /// The most phases one zone of a profile has: jerk up, constant acceleration, jerk down,
 /// cruise, and the three mirrored phases of the deceleration ("double S", seven phases).
-pub(super) const PHASES_PER_ZONE: usize = 7;
+pub(crate) const PHASES_PER_ZONE: usize = 7;
 
 /// The kinematic state along the path at one instant: arc length `s`, speed `v = ṡ`,
 /// acceleration `a = s̈` and jerk `j = s⃛`.

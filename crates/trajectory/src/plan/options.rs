@@ -1,6 +1,8 @@
 //! The settings of the planner: the profile shape, sampling, zones, the shares of the limits
 //! the turning of the path and feed changes may take, corners, and the control rate.
 
+use super::limits::Limits;
+use super::timing::MotionLimits;
 use crate::error::Error;
 use crate::num::RATE_RANGE;
 
@@ -238,12 +240,36 @@ impl PlanOptions {
         self.rate
     }
 
+    /// What a motion planned under `limits` with these options keeps to at feed 1: the
+    /// velocities, and the accelerations and jerk less the feed share these options leave
+    /// free for feed ramps (no jerk limit for trapezoids).
+    pub(crate) fn promised<const A: usize>(&self, limits: &Limits<A>) -> MotionLimits {
+        let keep = 1.0 - self.feed_share();
+        let jerk = match self.shape {
+            ProfileShape::SCurve => keep * limits.jerk(),
+            ProfileShape::Trapezoid => f64::INFINITY,
+        };
+        let mut promised = MotionLimits::new(limits.velocity(), keep * limits.acceleration(), jerk);
+        let axes = limits
+            .axis_velocity()
+            .into_iter()
+            .zip(limits.axis_acceleration());
+        let slots = promised
+            .axis_velocity
+            .iter_mut()
+            .zip(promised.axis_acceleration.iter_mut());
+        for ((pv, pa), (v, a)) in slots.zip(axes) {
+            (*pv, *pa) = (v, keep * a);
+        }
+        promised
+    }
+
     /// Checks the settings.
     ///
     /// # Errors
     /// [`Error::InvalidRate`] for a rate outside 100 Hz ..= 100 kHz (or NaN);
     /// [`Error::InvalidLimit`] for any other setting out of range.
-    pub(super) fn validate(&self) -> Result<(), Error> {
+    pub(crate) fn validate(&self) -> Result<(), Error> {
         if !(self.rate >= RATE_RANGE.0 && self.rate <= RATE_RANGE.1) {
             return Err(Error::InvalidRate);
         }

@@ -5,7 +5,7 @@ use strak_curves::{ArcLengthTable, MAX_DIM, ParamCurve, ParamCurveDeriv, Point, 
 use super::arc_inverse::param_at_length;
 use super::limits::Limits;
 use super::motion::{MotionProfile, Phase};
-use super::options::{PlanOptions, ProfileShape};
+use super::options::PlanOptions;
 use super::planner::plan_motion_into;
 use super::timing::{FeedReserve, MotionLimits, Timing};
 use super::trajectory::Trajectory;
@@ -82,7 +82,7 @@ fn param_on_side<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
 /// the noise of the curve's scalar: `32·ε_S·(u_end − u_start)·max(1, max|c'|)` (`ε_S` the
 /// scalar's resolution, `max|c'|` over the 65 chord ends), since each speed value carries a
 /// rounding error of a few `ε_S·max(1, |c'|)`.
-fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
+pub(crate) fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
     curve: &C,
     table: &mut ArcLengthTable<f64, N>,
 ) -> Result<(), Error> {
@@ -462,28 +462,7 @@ impl<'a, C: ParamCurveDeriv, const N: usize, const Z: usize> PathTiming<'a, C, N
         options.validate()?;
         arc_table_into(curve, &mut self.table)?;
         plan_motion_into(curve, &self.table, limits, options, &mut self.motion)?;
-        // What holds at feed 1: the plan leaves the feed share of the acceleration and jerk
-        // free for feed ramps.
-        let keep = 1.0 - options.feed_share();
-        let jerk = match options.shape() {
-            ProfileShape::SCurve => keep * limits.jerk(),
-            ProfileShape::Trapezoid => f64::INFINITY,
-        };
-        let mut promised = MotionLimits::new(limits.velocity(), keep * limits.acceleration(), jerk);
-        for (i, (v, a)) in limits
-            .axis_velocity()
-            .into_iter()
-            .zip(limits.axis_acceleration())
-            .enumerate()
-        {
-            if let (Some(pv), Some(pa)) = (
-                promised.axis_velocity.get_mut(i),
-                promised.axis_acceleration.get_mut(i),
-            ) {
-                (*pv, *pa) = (v, keep * a);
-            }
-        }
-        self.limits = Some(promised);
+        self.limits = Some(options.promised(limits));
         self.rate = options.rate();
         let mut axis_acceleration = [f64::INFINITY; MAX_DIM];
         for (r, a) in axis_acceleration.iter_mut().zip(limits.axis_acceleration()) {

@@ -72,6 +72,7 @@ where
     C: ParamCurveDeriv,
 {
     let planned = limits.without_reserve(options.feed_share());
+    motion.zones.clear();
     zones_into(curve, table, &planned, options, &mut motion.zones)?;
     fill_zones(&mut motion.zones);
     motion.seal(table.length())?;

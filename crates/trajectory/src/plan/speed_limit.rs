@@ -305,8 +305,44 @@ impl Grid {
     }
 }
 
+/// Where zones go as they are closed: a plan's own zones, or the zones of one segment of a
+/// streamed path on their way into a look-ahead window.
+pub(crate) trait ZoneSink {
+    /// The most zones it holds.
+    fn capacity(&self) -> usize;
+    /// Appends the zone `span` (arc lengths) with the speed, acceleration and jerk limits
+    /// `limits` and the speed cap `exit_cap` at its end, and returns the number of zones it
+    /// takes (0 where the sink merges it into the one before); nothing is stored when it is
+    /// full (the builder counts the zones needed).
+    fn push(&mut self, span: (f64, f64), limits: (f64, f64, f64), exit_cap: f64) -> usize;
+    /// Lowers the exit cap of the last zone to at most `cap`.
+    fn cap_last(&mut self, cap: f64);
+}
+
+impl<const Z: usize> ZoneSink for Vec<ProfileZone, Z> {
+    fn capacity(&self) -> usize {
+        Z
+    }
+    fn push(
+        &mut self,
+        (start, end): (f64, f64),
+        (v, a, j): (f64, f64, f64),
+        exit_cap: f64,
+    ) -> usize {
+        let mut zone = ProfileZone::new(start, end, v, a, j);
+        zone.exit_cap = exit_cap;
+        let _ = Vec::push(self, zone);
+        1
+    }
+    fn cap_last(&mut self, cap: f64) {
+        if let Some(last) = self.last_mut() {
+            last.exit_cap = last.exit_cap.min(cap);
+        }
+    }
+}
+
 /// The zones being collected, in order along the path.
-struct ZoneBuilder<'a, const A: usize, const Z: usize> {
+struct ZoneBuilder<'a, const A: usize, S: ZoneSink> {
     limits: &'a Limits<A>,
     /// The path jerk limit (`∞` for trapezoids).
     jerk: f64,
@@ -317,22 +353,19 @@ struct ZoneBuilder<'a, const A: usize, const Z: usize> {
     /// Arc lengths closer than this are the same point.
     same: f64,
     open: Option<Open<A>>,
-    /// The zones closed so far, in the plan's own storage.
-    out: &'a mut Vec<ProfileZone, Z>,
+    /// The zones closed so far.
+    out: &'a mut S,
     /// Zones closed so far (beyond the capacity only the count goes on).
     required: usize,
 }
 
-impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
+impl<const A: usize, S: ZoneSink> ZoneBuilder<'_, A, S> {
     /// Closes the open zone at `s_end` with the speed cap `exit_cap` at its end.
     fn close(&mut self, s_end: f64, exit_cap: f64) {
         if let Some(open) = &self.open {
-            self.required += 1;
             let zl = zone_limits(&open.worst, self.limits, self.jerk, self.share, self.rate);
-            let mut zone =
-                ProfileZone::new(open.s_start, s_end, open.worst.v, zl.acceleration, zl.jerk);
-            zone.exit_cap = exit_cap;
-            let _ = self.out.push(zone);
+            let limits = (open.worst.v, zl.acceleration, zl.jerk);
+            self.required += self.out.push((open.s_start, s_end), limits, exit_cap);
         }
     }
 
@@ -379,21 +412,23 @@ impl<const A: usize, const Z: usize> ZoneBuilder<'_, A, Z> {
                 v_high: worst.v,
                 worst,
             });
-        } else if let Some(last) = self.out.last_mut() {
+        } else {
             // at the start of the open zone: the end of the previous one
-            last.exit_cap = last.exit_cap.min(cap);
+            self.out.cap_last(cap);
         }
     }
 
     /// Closes the last zone at the path's `length`.
     ///
     /// # Errors
-    /// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed `Z`.
+    /// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed the
+    /// sink's capacity.
     fn finish(mut self, length: f64) -> Result<(), Error> {
         self.close(length, f64::INFINITY);
-        if self.required > Z {
+        let capacity = self.out.capacity();
+        if self.required > capacity {
             return Err(Error::ZoneCapacityExceeded {
-                capacity: Z,
+                capacity,
                 required: self.required,
             });
         }
@@ -456,8 +491,8 @@ struct Joins<const A: usize> {
 /// Marks the points of the current sampling interval (limits `worst`) where the speed is
 /// capped, in order along the path: the joins before `u_end` (all that are left for
 /// `None`) and the interval's `cusps`.
-fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usize>(
-    zones: &mut ZoneBuilder<'_, A, Z>,
+fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, S: ZoneSink>(
+    zones: &mut ZoneBuilder<'_, A, S>,
     curve: &C,
     table: &ArcLengthTable<f64, N>,
     joins: &mut Joins<A>,
@@ -490,18 +525,18 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, const Z: usiz
 /// interval at its ends and midpoint, taking the worst), groups consecutive intervals into
 /// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
 /// smallest, and ends a zone at every join and cusp whose speed cap binds (see
-/// [`PlanOptions`] and `plan/joins.rs`). Writes the zones into `out`, in place (arc
-/// lengths from `table`, limits and exit caps set, no phases).
+/// [`PlanOptions`] and `plan/joins.rs`). Writes the zones into `out`, which is empty (arc
+/// lengths from `table`, limits and exit caps).
 ///
 /// # Errors
-/// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed `Z`;
-/// [`Error::Curve`] for non-finite derivatives.
-pub(super) fn zones_into<C, const A: usize, const N: usize, const Z: usize>(
+/// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed the
+/// capacity of `out`; [`Error::Curve`] for non-finite derivatives.
+pub(crate) fn zones_into<C, const A: usize, const N: usize, S: ZoneSink>(
     curve: &C,
     table: &ArcLengthTable<f64, N>,
     limits: &Limits<A>,
     options: &PlanOptions,
-    out: &mut Vec<ProfileZone, Z>,
+    out: &mut S,
 ) -> Result<(), Error>
 where
     C: ParamCurveDeriv,
@@ -511,7 +546,6 @@ where
         ProfileShape::SCurve => limits.jerk(),
         ProfileShape::Trapezoid => f64::INFINITY,
     };
-    out.clear();
     let (u0, u1) = table.domain();
     let grid = Grid {
         u0,
@@ -524,7 +558,7 @@ where
         count: curve.piece_count().saturating_sub(1),
         next: 0,
     };
-    let mut zones = ZoneBuilder::<A, Z> {
+    let mut zones = ZoneBuilder::<A, S> {
         limits,
         jerk,
         share,

@@ -15,6 +15,7 @@ use heapless::Vec;
 
 use super::motion::ProfileZone;
 use super::scurve::{change_distance, fill_zone, last_fitting, reach};
+use super::speed_limit::ZoneSink;
 use crate::error::Error;
 
 /// The boundary speeds of the window's zones: the first starts at `v_entry`, the last ends
@@ -121,7 +122,16 @@ impl WindowZone {
         if !(finite(v) && finite(a) && positive(j) && (exit_cap == 0.0 || positive(exit_cap))) {
             return Err(Error::InvalidLimit);
         }
-        Ok(WindowZone {
+        Ok(WindowZone::unchecked((start, end), (v, a, j), exit_cap))
+    }
+
+    /// The zone of [`new`](Self::new), its values not checked.
+    const fn unchecked(
+        (start, end): (f64, f64),
+        (v, a, j): (f64, f64, f64),
+        exit_cap: f64,
+    ) -> Self {
+        WindowZone {
             start,
             end,
             v_limit: v,
@@ -131,7 +141,7 @@ impl WindowZone {
             cap: 0.0,
             v_start: 0.0,
             v_end: 0.0,
-        })
+        }
     }
 }
 
@@ -237,16 +247,62 @@ impl<const Z: usize> LookAhead<Z> {
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn push(&mut self, zone: WindowZone) -> Result<(), Error> {
-        let end = self.zones.last().map_or(self.entry.1, |z| z.end);
-        if zone.start != end {
-            return Err(Error::EmptyPath);
+        self.extend(core::slice::from_ref(&zone))
+    }
+
+    /// Appends `zones` (in order along the path, the first starting where the window ends)
+    /// and plans the window's speeds again, once.
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when they do not all fit (nothing is appended);
+    /// [`Error::EmptyPath`] when one does not start where the one before ends (nothing is
+    /// appended).
+    ///
+    /// ```
+    /// use strak_trajectory::{LookAhead, WindowZone};
+    /// let mut window = LookAhead::<4>::new();
+    /// let limits = (10.0, 100.0, 1_000.0);
+    /// let zones = [WindowZone::new((0.0, 1.0), limits, 0.0)?, WindowZone::new((1.0, 3.0), limits, 0.0)?];
+    /// window.extend(&zones)?;
+    /// assert_eq!(window.len(), 2);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn extend(&mut self, zones: &[WindowZone]) -> Result<(), Error> {
+        let required = self.zones.len() + zones.len();
+        if required > Z {
+            return Err(Error::CapacityExceeded {
+                capacity: Z,
+                required,
+            });
         }
-        self.zones.push(zone).map_err(|_| Error::CapacityExceeded {
-            capacity: Z,
-            required: Z + 1,
-        })?;
+        let mut end = self.zones.last().map_or(self.entry.1, |z| z.end);
+        for zone in zones {
+            if zone.start != end {
+                return Err(Error::EmptyPath);
+            }
+            end = zone.end;
+        }
+        for zone in zones {
+            let _ = self.zones.push(*zone);
+        }
         plan_speeds(&mut self.zones, self.entry.2);
         Ok(())
+    }
+
+    /// Moves the window's entry time on to `t` while the committed motion rests at its end
+    /// (it holds still until then); nothing when it moves, or `t` is earlier.
+    ///
+    /// ```
+    /// use strak_trajectory::LookAhead;
+    /// let mut window = LookAhead::<4>::new();
+    /// window.hold_until(2.5);
+    /// assert_eq!(window.entry(), (2.5, 0.0, 0.0));
+    /// ```
+    pub fn hold_until(&mut self, t: f64) {
+        let (t0, s, v) = self.entry;
+        if v == 0.0 && t > t0 {
+            self.entry = (t, s, v);
+        }
     }
 
     /// Commits the first zone: its double S from the committed speed to the end speed the
@@ -271,6 +327,116 @@ impl<const Z: usize> LookAhead<Z> {
         fill_zone(&mut zone, s);
         self.entry = (zone.t_end(), w.end, w.v_end);
         Some(zone)
+    }
+}
+
+/// The zones of one segment of a streamed path on their way into a window. The speed-limit
+/// sampling places them by the arc lengths of a table of the segment; they are scaled onto
+/// the segment's exact length and shifted to where it starts on the path (the last one
+/// ends exactly at the segment's end).
+///
+/// A zone that its own speed limit crosses in fewer than [`MIN_ZONE_TICKS`] ticks is merged
+/// with its neighbour in the segment, under the lower limits of both: a zone is entered and
+/// left without acceleration, so in so short a zone the motion could change its speed only
+/// by a sliver, in jerk phases shorter than a tick.
+pub(crate) struct SegmentZones<const K: usize> {
+    zones: Vec<WindowZone, K>,
+    /// The zones held before the segment being placed.
+    base: usize,
+    start: f64,
+    length: f64,
+    table_length: f64,
+    /// The control period in seconds.
+    period: f64,
+}
+
+/// The fewest ticks in which a zone of a segment is crossed at its speed limit (else it is
+/// merged with its neighbour).
+const MIN_ZONE_TICKS: f64 = 16.0;
+
+impl<const K: usize> SegmentZones<K> {
+    /// No zones.
+    pub(crate) const fn new() -> Self {
+        SegmentZones {
+            zones: Vec::new(),
+            base: 0,
+            start: 0.0,
+            length: 0.0,
+            table_length: 1.0,
+            period: 0.0,
+        }
+    }
+
+    /// The zones that follow are of a segment at the arc length `start` of the path, of
+    /// exact length `length` and table length `table_length`, played at the control period
+    /// `period`.
+    pub(crate) fn place(&mut self, start: f64, length: f64, table_length: f64, period: f64) {
+        self.base = self.zones.len();
+        (self.start, self.length) = (start, length);
+        (self.table_length, self.period) = (table_length, period);
+    }
+
+    /// Whether `zone` is crossed at its speed limit in fewer than [`MIN_ZONE_TICKS`] ticks.
+    fn short(&self, zone: &WindowZone) -> bool {
+        zone.end - zone.start < zone.v_limit * self.period * MIN_ZONE_TICKS
+    }
+
+    /// The arc length of the path at the table's arc length `s`.
+    fn at(&self, s: f64) -> f64 {
+        if s >= self.table_length {
+            self.start + self.length
+        } else {
+            self.start + s * (self.length / self.table_length)
+        }
+    }
+
+    /// The last zone ends at rest (an exact stop).
+    pub(crate) fn stop_at_end(&mut self) {
+        if let Some(last) = self.zones.last_mut() {
+            last.exit_cap = 0.0;
+        }
+    }
+
+    /// The zones.
+    pub(crate) fn zones(&self) -> &[WindowZone] {
+        &self.zones
+    }
+}
+
+impl<const K: usize> ZoneSink for SegmentZones<K> {
+    fn capacity(&self) -> usize {
+        K - self.base
+    }
+    fn push(
+        &mut self,
+        (start, end): (f64, f64),
+        (v, a, j): (f64, f64, f64),
+        exit_cap: f64,
+    ) -> usize {
+        let zone = WindowZone::unchecked((self.at(start), self.at(end)), (v, a, j), exit_cap);
+        let merge = self.zones.len() > self.base
+            && self.zones.last().is_some_and(|last| {
+                last.exit_cap == f64::INFINITY && (self.short(last) || self.short(&zone))
+            });
+        match self.zones.last_mut() {
+            Some(last) if merge => {
+                last.end = zone.end;
+                last.v_limit = last.v_limit.min(zone.v_limit);
+                last.a_limit = last.a_limit.min(zone.a_limit);
+                last.j_limit = last.j_limit.min(zone.j_limit);
+                last.exit_cap = zone.exit_cap;
+                0
+            }
+            _ => {
+                let _ = self.zones.push(zone);
+                1
+            }
+        }
+    }
+    fn cap_last(&mut self, cap: f64) {
+        if let Some(last) = self.zones.last_mut() {
+            last.exit_cap = last.exit_cap.min(cap);
+        }
     }
 }
 

@@ -1,10 +1,15 @@
 //! Streaming moves: the moves of a toolpath as they arrive (lines, circular arcs and helices,
-//! cubic Béziers) and the curvature-continuous blends that replace their corners.
+//! cubic Béziers), the curvature-continuous blends that replace their corners, and the
+//! stream that plans them in a look-ahead window and compiles them a stretch at a time.
 
 mod blend;
+mod committed;
 mod moves;
+mod queue;
+mod segment;
 mod toolpath;
 
 pub use blend::{Blend, Junction, REVERSAL_ANGLE, junction};
 pub use moves::{Move, MoveCurve, Shape};
+pub use queue::{PieceQueue, Stream, StreamOptions, StreamStats};
 pub use toolpath::Toolpath;

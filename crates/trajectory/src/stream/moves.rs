@@ -3,14 +3,14 @@
 
 use strak_curves::{
     Bezier, CircularArc, ParamCurve, ParamCurveDeriv, Plane, Point, Turn, arc_length,
-    param_at_length,
+    arc_length_between, param_at_length,
 };
 
 use crate::error::Error;
 
 /// The relative accuracy of the arc lengths of curved moves (spirals and Béziers; the
 /// lengths of lines, circles and helices are closed forms).
-const LENGTH_ACCURACY: f64 = 1e-12;
+pub(super) const LENGTH_ACCURACY: f64 = 1e-12;
 
 /// The geometry of a move: what it traces from the end of the move before to its
 /// [`Move::to`].
@@ -288,6 +288,25 @@ impl<const D: usize> MoveCurve<D> {
             None => Ok(param_at_length(
                 self,
                 s,
+                LENGTH_ACCURACY * self.chord_bound(),
+            )?),
+        }
+    }
+
+    /// The arc length from the start to the parameter `u` (clamped to `[0, 1]`).
+    ///
+    /// # Errors
+    /// [`Error::Curve`] when the arc length of a spiral or a Bézier does not converge.
+    pub(crate) fn length_to(&self, u: f64) -> Result<f64, Error> {
+        let u = u.clamp(0.0, 1.0);
+        match self.speed {
+            Some(_) if u >= 1.0 => Ok(self.length),
+            Some(speed) => Ok(speed * u),
+            None if u >= 1.0 => Ok(self.length),
+            None => Ok(arc_length_between(
+                self,
+                0.0,
+                u,
                 LENGTH_ACCURACY * self.chord_bound(),
             )?),
         }

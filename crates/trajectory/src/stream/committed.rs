@@ -1,0 +1,177 @@
+//! The committed motion of a stream on the tick grid: the phases of the zones the window has
+//! committed, along the segments of the path, as the stretch fit takes it.
+//!
+//! With the arc length `s(t)` of the phases, `v = ṡ`, `a = s̈` and the frame `x(s)`,
+//! `T = x_s`, `κN = x_ss` of the segment under `s`, the motion is
+//!
+//! ```text
+//! x(t) = x(s(t)),   ẋ = v·T,   ẍ = a·T + v²·κN
+//! ```
+//!
+//! and per tick of `h` seconds the slope is `ẋ·h` and the second derivative `ẍ·h²`.
+
+use heapless::Deque;
+
+use super::segment::{Frame, Segment};
+use crate::compile::TickMotion;
+use crate::error::Error;
+use crate::plan::{MotionLimits, MotionState, PHASES_PER_ZONE, Phase};
+
+/// The most phases committed and not yet compiled past: two zones' worth and room for one
+/// more.
+pub(super) const PHASES: usize = 3 * PHASES_PER_ZONE;
+
+/// Bisection steps locating a join of segments in a phase: to well below a nanosecond.
+const JOIN_BISECTION_STEPS: usize = 48;
+
+/// The committed motion of a stream: its phases in time order and the segments they run
+/// along, on the grid of `period` seconds, within the limits `limits`, up to `end`.
+pub(super) struct Committed<'a, const D: usize, const Q: usize> {
+    pub(super) segments: &'a Deque<Segment<D>, Q>,
+    pub(super) phases: &'a Deque<Phase, PHASES>,
+    pub(super) period: f64,
+    pub(super) limits: MotionLimits,
+    /// The end of the committed motion: time, arc length and speed.
+    pub(super) end: (f64, f64, f64),
+}
+
+impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
+    /// The state at time `t`: in the last phase that starts at or before it. After a phase
+    /// that ends at rest the motion holds still until the next phase, exactly where that
+    /// one starts (or at the committed end `end`, the end of its last zone): the rounding
+    /// of a zone's phases leaves their end within about `1e-9` of the zone's own.
+    pub(super) fn state(&self, t: f64) -> MotionState {
+        let mut found = None;
+        let mut next = None;
+        for p in self.phases.iter() {
+            if p.t0 <= t || found.is_none() {
+                found = Some(p);
+            } else {
+                next = Some(p);
+                break;
+            }
+        }
+        let Some(p) = found else {
+            return MotionState::default();
+        };
+        let st = p.state_at(t);
+        if t < p.end() || st.v > 0.0 {
+            return st;
+        }
+        let s = match next {
+            Some(q) => q.s0,
+            None if self.end.2 == 0.0 => self.end.1,
+            None => st.s,
+        };
+        MotionState {
+            s,
+            ..MotionState::default()
+        }
+    }
+
+    /// The state at tick `k`.
+    fn state_at_tick(&self, k: u32) -> MotionState {
+        self.state(f64::from(k) * self.period)
+    }
+
+    /// Calls `emit` with the times in the phase `p` at which the path passes from one
+    /// segment to the next, in order (by bisection: `s` does not fall within a phase).
+    fn joins_in(&self, p: &Phase, emit: &mut impl FnMut(f64)) {
+        let end = p.state_at(p.end()).s;
+        for join in self.segments.iter().skip(1).map(|g| g.start) {
+            if join >= end {
+                break;
+            }
+            if join < p.s0 {
+                continue;
+            }
+            let (mut a, mut b) = (p.t0, p.end());
+            for _ in 0..JOIN_BISECTION_STEPS {
+                let mid = 0.5 * (a + b);
+                if p.state_at(mid).s < join {
+                    a = mid;
+                } else {
+                    b = mid;
+                }
+            }
+            emit(b);
+        }
+    }
+
+    /// The frame of the path at the arc length `s`: of the first segment that ends at or
+    /// after it (the last one beyond the end).
+    fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
+        let segment = self
+            .segments
+            .iter()
+            .find(|g| s <= g.end())
+            .or_else(|| self.segments.back());
+        segment.ok_or(Error::EmptyPath)?.frame(s)
+    }
+}
+
+impl<const D: usize, const Q: usize> TickMotion<D> for Committed<'_, D, Q> {
+    fn period(&self) -> f64 {
+        self.period
+    }
+
+    fn position(&self, k: u32) -> Result<[f64; D], Error> {
+        Ok(self.frame(self.state_at_tick(k).s)?.point)
+    }
+
+    fn slope(&self, k: u32) -> Result<[f64; D], Error> {
+        let st = self.state_at_tick(k);
+        let f = self.frame(st.s)?;
+        let h = self.period;
+        Ok(f.tangent.map(|t| t * st.v * h))
+    }
+
+    fn second(&self, k: u32) -> Result<[f64; D], Error> {
+        let st = self.state_at_tick(k);
+        let f = self.frame(st.s)?;
+        let hh = self.period * self.period;
+        Ok(core::array::from_fn(|i| {
+            (f.tangent[i] * st.a + f.normal[i] * st.v * st.v) * hh
+        }))
+    }
+
+    /// The times where the jerk changes: the starts of the phases whose jerk differs from
+    /// the motion's before them, the ends of the phases after which it rests, and the joins
+    /// of segments (where the derivative of the curvature steps, and with it `x⃛`).
+    fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
+        let (lo, hi) = (f64::from(first), f64::from(last));
+        let mut latest = lo;
+        let mut emit = |t: f64| {
+            let k = t / self.period;
+            if k > latest && k < hi {
+                f(k);
+                latest = k;
+            }
+        };
+        let mut prev: Option<&Phase> = None;
+        for p in self.phases.iter() {
+            let before = match prev {
+                Some(q) if p.t0 > q.end() => {
+                    if q.j != 0.0 {
+                        emit(q.end());
+                    }
+                    0.0
+                }
+                Some(q) => q.j,
+                None => 0.0,
+            };
+            if p.j != before {
+                emit(p.t0);
+            }
+            self.joins_in(p, &mut emit);
+            prev = Some(p);
+        }
+        if let Some(q) = prev.filter(|q| q.j != 0.0) {
+            emit(q.end());
+        }
+    }
+
+    fn limits(&self) -> Option<MotionLimits> {
+        Some(self.limits)
+    }
+}

@@ -1,0 +1,615 @@
+//! The stream: moves pushed one by one while the machine runs, their corners blended,
+//! planned in a look-ahead window over the blended path and compiled a stretch of ticks at
+//! a time into pieces for the sampler.
+//!
+//! # How a move flows through
+//!
+//! 1. [`Stream::push`] keeps the newest move pending until the next one arrives: only then
+//!    is its end junction known ([`junction`]). The part of the pending move between its
+//!    blends, and the blend after it, become segments of the path; each segment's speed
+//!    limits are sampled into zones ([`PlanOptions`]: curvature, turning jerk, per-axis
+//!    limits, the moves' feeds) and appended to the window ([`LookAhead`]), which keeps a
+//!    plan that comes to rest at the end of the path known so far.
+//! 2. [`Stream::poll`] compiles the next stretch of ticks: it commits zones from the front of
+//!    the window as the stretch needs them, and fits the stretch's pieces to the committed
+//!    motion (a stretch starts and ends on the motion's exact state, so stretches join
+//!    without a seam).
+//! 3. When the stretch needs the window's last zone while a move is still pending (the
+//!    producer has fallen behind), the pending move is finished with an exact stop at its
+//!    end: the motion comes to rest there within the limits, and the next move starts from
+//!    rest. [`Stream::finish`] does the same at the end of a program.
+
+use heapless::{Deque, Vec};
+use strak_curves::{ArcLengthTable, ParamCurve};
+
+use super::blend::{Junction, junction};
+use super::committed::{Committed, PHASES};
+use super::moves::{Move, MoveCurve};
+use super::segment::Segment;
+use crate::compile::StretchFit;
+use crate::error::Error;
+use crate::num::Number;
+use crate::path::Piece;
+use crate::plan::{
+    Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones,
+    arc_table_into, zones_into,
+};
+
+/// Samples of a segment's arc-length table (its zones' arc lengths are scaled onto the
+/// segment's exact length, so the table only places the zone boundaries).
+const TABLE_SAMPLES: usize = 32;
+
+/// The most zones of one segment.
+const SEGMENT_ZONES: usize = 24;
+
+/// The share of the promised acceleration and jerk the window plans with: the pieces fitted
+/// to the planned motion carry rounding noise in their jerk (about `ε·|x|/(j·T³)` relative,
+/// `1e-10` at 10 units from the origin), which stays below the margin's `1e-6`.
+const FIT_MARGIN: f64 = 1.0 - 1e-6;
+
+/// The most pieces of one stretch; a stretch that needs more is halved.
+const STRETCH_PIECES: usize = 24;
+
+/// Where a stream's pieces go: a queue the sampler plays from.
+///
+/// ```
+/// use heapless::Deque;
+/// use strak_trajectory::{Piece, PieceQueue};
+/// let queue = Deque::<Piece<f32, 2>, 8>::new();
+/// assert_eq!(queue.room(), 8);
+/// ```
+pub trait PieceQueue<N, const A: usize> {
+    /// How many more pieces it takes.
+    fn room(&self) -> usize;
+    /// Appends `piece` (the stream calls it only when there is room).
+    fn push_piece(&mut self, piece: Piece<N, A>);
+}
+
+impl<N, const A: usize, const P: usize> PieceQueue<N, A> for Deque<Piece<N, A>, P> {
+    fn room(&self) -> usize {
+        P - self.len()
+    }
+    fn push_piece(&mut self, piece: Piece<N, A>) {
+        let _ = self.push_back(piece);
+    }
+}
+
+/// How a stream blends, plans and compiles.
+///
+/// ```
+/// use strak_trajectory::{PlanOptions, StreamOptions};
+/// let o = StreamOptions::new(1_000.0).with_tolerance(0.02);
+/// assert_eq!((o.tolerance(), o.plan().rate()), (0.02, 1_000.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StreamOptions {
+    tolerance: f64,
+    arc_tolerance: f64,
+    fit_tolerance: f64,
+    max_piece_ticks: u32,
+    stretch_ticks: u32,
+    plan: PlanOptions,
+}
+
+impl StreamOptions {
+    /// Exact stops at every corner, arcs' ends within `1e-6` units of their circles, the
+    /// compiled pieces within `1e-5` units of the motion, pieces of at most 256 ticks,
+    /// stretches of 64 ticks, and the default [`PlanOptions`] at the control rate `rate_hz`.
+    pub const fn new(rate_hz: f64) -> Self {
+        StreamOptions {
+            tolerance: 0.0,
+            arc_tolerance: 1e-6,
+            fit_tolerance: 1e-5,
+            max_piece_ticks: 256,
+            stretch_ticks: 64,
+            plan: PlanOptions::new().with_rate(rate_hz),
+        }
+    }
+
+    /// The corner blend tolerance `ε` in units (G64 P); 0 for exact stops (G61).
+    ///
+    /// ```
+    /// # use strak_trajectory::StreamOptions;
+    /// assert_eq!(StreamOptions::new(1_000.0).with_tolerance(0.05).tolerance(), 0.05);
+    /// ```
+    pub const fn with_tolerance(mut self, units: f64) -> Self {
+        self.tolerance = units;
+        self
+    }
+
+    /// How far an arc's end may lie off the circle through its start (units).
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Stream, StreamOptions};
+    /// let o = StreamOptions::new(1_000.0).with_arc_tolerance(f64::NAN);
+    /// assert!(Stream::<2, 8, 32>::new([0.0; 2], Limits::new(1.0, 1.0, 1.0)?, o).is_err());
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub const fn with_arc_tolerance(mut self, units: f64) -> Self {
+        self.arc_tolerance = units;
+        self
+    }
+
+    /// How far the compiled pieces may lie from the planned motion at any tick (units).
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Stream, StreamOptions};
+    /// let o = StreamOptions::new(1_000.0).with_fit_tolerance(0.0);
+    /// assert!(Stream::<2, 8, 32>::new([0.0; 2], Limits::new(1.0, 1.0, 1.0)?, o).is_err());
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub const fn with_fit_tolerance(mut self, units: f64) -> Self {
+        self.fit_tolerance = units;
+        self
+    }
+
+    /// The planner's options (control rate, centripetal and feed shares, zone tolerance).
+    ///
+    /// ```
+    /// # use strak_trajectory::{PlanOptions, StreamOptions};
+    /// let o = StreamOptions::new(1_000.0).with_plan(PlanOptions::new().with_rate(2_000.0));
+    /// assert_eq!(o.plan().rate(), 2_000.0);
+    /// ```
+    pub const fn with_plan(mut self, plan: PlanOptions) -> Self {
+        self.plan = plan;
+        self
+    }
+
+    /// The ticks [`Stream::poll`] compiles at most per call.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Stream, StreamOptions};
+    /// let o = StreamOptions::new(1_000.0).with_stretch_ticks(0);
+    /// assert!(Stream::<2, 8, 32>::new([0.0; 2], Limits::new(1.0, 1.0, 1.0)?, o).is_err());
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub const fn with_stretch_ticks(mut self, ticks: u32) -> Self {
+        self.stretch_ticks = ticks;
+        self
+    }
+
+    /// The corner blend tolerance.
+    ///
+    /// ```
+    /// # use strak_trajectory::StreamOptions;
+    /// assert_eq!(StreamOptions::new(1_000.0).tolerance(), 0.0); // exact stops
+    /// ```
+    pub const fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// The planner's options.
+    ///
+    /// ```
+    /// # use strak_trajectory::StreamOptions;
+    /// assert_eq!(StreamOptions::new(500.0).plan().rate(), 500.0);
+    /// ```
+    pub const fn plan(&self) -> &PlanOptions {
+        &self.plan
+    }
+}
+
+/// What a stream has done so far.
+///
+/// ```
+/// use strak_trajectory::StreamStats;
+/// assert_eq!(StreamStats::default().moves, 0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StreamStats {
+    /// Moves pushed.
+    pub moves: usize,
+    /// Corners blended.
+    pub blends: usize,
+    /// Exact stops at corners (a zero tolerance, a near-reversal).
+    pub stops: usize,
+    /// Rests at the end of a move because the next one had not arrived.
+    pub starved: usize,
+    /// The largest deviation bound of a blend from its corner.
+    pub max_deviation: f64,
+}
+
+/// The newest move, whose end junction is not yet known: its curve, the parameter where its
+/// part after the blend before it starts, and its feed.
+#[derive(Clone, Copy, Debug)]
+struct Pending<const D: usize> {
+    curve: MoveCurve<D>,
+    from: f64,
+    feed: f64,
+}
+
+/// A stream of moves in `D` axes: at most `Q` segments (each move's part between its blends,
+/// and each blend) and `Z` zones in the look-ahead window.
+///
+/// ```
+/// use heapless::Deque;
+/// use strak_trajectory::{Limits, Move, Piece, Stream, StreamOptions};
+/// let limits = Limits::new(100.0, 2_000.0, 50_000.0)?;
+/// let options = StreamOptions::new(1_000.0).with_tolerance(0.05);
+/// let mut stream = Stream::<2, 16, 64>::new([0.0, 0.0], limits, options)?;
+/// stream.push(&Move::line([10.0, 0.0]))?;
+/// stream.push(&Move::line([10.0, 10.0]))?;
+/// stream.finish()?;
+/// let mut pieces = Deque::<Piece<f32, 2>, 64>::new();
+/// let mut ticks = 0;
+/// loop {
+///     let n = stream.poll(&mut pieces)?;
+///     ticks += n;
+///     pieces.clear(); // a sampler plays them
+///     if n == 0 { break; }
+/// }
+/// assert!(ticks > 200 && stream.stats().blends == 1);
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
+    /// The limits the window plans with (the feed reserve taken off).
+    planned: Limits<D>,
+    /// What the compiled motion keeps to.
+    promised: MotionLimits,
+    options: StreamOptions,
+    fit: StretchFit,
+    segments: Deque<Segment<D>, Q>,
+    pending: Option<Pending<D>>,
+    /// Where the next move starts.
+    end: [f64; D],
+    /// The arc length of the path up to the pending move's part.
+    length: f64,
+    window: LookAhead<Z>,
+    committed: Deque<Phase, PHASES>,
+    /// The first tick not yet compiled.
+    next_tick: u32,
+    stats: StreamStats,
+}
+
+impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
+    /// A stream at rest at `start`, under the machine's `limits`.
+    ///
+    /// ```
+    /// use strak_trajectory::{Limits, Stream, StreamOptions};
+    /// let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let stream = Stream::<2, 8, 32>::new([1.0, 2.0], limits, StreamOptions::new(1_000.0))?;
+    /// assert!(stream.is_idle());
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidLimit`] for invalid options (a negative or non-finite tolerance,
+    /// stretches of no tick, invalid [`PlanOptions`]).
+    pub fn new(start: [f64; D], limits: Limits<D>, options: StreamOptions) -> Result<Self, Error> {
+        options.plan.validate()?;
+        let finite = |x: f64| x.is_finite() && x >= 0.0;
+        if !(finite(options.tolerance)
+            && finite(options.arc_tolerance)
+            && options.fit_tolerance > 0.0
+            && finite(options.fit_tolerance)
+            && options.stretch_ticks > 0
+            && options.max_piece_ticks > 0)
+        {
+            return Err(Error::InvalidLimit);
+        }
+        if !start.iter().all(|x| x.is_finite()) {
+            return Err(Error::Curve(strak_curves::Error::NonFinite));
+        }
+        Ok(Stream {
+            planned: limits.without_reserve(1.0 - (1.0 - options.plan.feed_share()) * FIT_MARGIN),
+            promised: options.plan.promised(&limits),
+            options,
+            fit: StretchFit {
+                tolerance: options.fit_tolerance,
+                max_piece_ticks: options.max_piece_ticks,
+            },
+            segments: Deque::new(),
+            pending: None,
+            end: start,
+            length: 0.0,
+            window: LookAhead::new(),
+            committed: Deque::new(),
+            next_tick: 0,
+            stats: StreamStats::default(),
+        })
+    }
+
+    /// What the stream has done so far.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Move, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([1.0, 0.0]))?;
+    /// stream.push(&Move::line([1.0, 1.0]))?; // a corner: an exact stop at tolerance 0
+    /// assert_eq!((stream.stats().moves, stream.stats().stops), (2, 1));
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn stats(&self) -> StreamStats {
+        self.stats
+    }
+
+    /// The first tick not yet compiled: the ticks compiled so far.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// assert_eq!(stream.ticks(), 0);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn ticks(&self) -> u32 {
+        self.next_tick
+    }
+
+    /// Whether everything pushed is compiled and the motion has come to rest.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Move, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([1.0, 0.0]))?;
+    /// assert!(!stream.is_idle());
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn is_idle(&self) -> bool {
+        self.pending.is_none() && self.window.is_empty() && {
+            let (t, _, _) = self.window.entry();
+            f64::from(self.next_tick) * self.period() >= t
+        }
+    }
+
+    fn period(&self) -> f64 {
+        1.0 / self.options.plan.rate()
+    }
+
+    /// Appends the move `mv`, from the end of the move before (or the start).
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the segments or the window are full (poll, then push
+    /// again; nothing changed); the errors of [`MoveCurve::new`] and [`junction`] for a bad
+    /// move (nothing changed).
+    ///
+    /// ```
+    /// # use strak_trajectory::{Error, Limits, Move, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// assert_eq!(stream.push(&Move::line([0.0, 0.0])), Err(Error::DegenerateMove));
+    /// assert_eq!(stream.stats().moves, 0);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn push(&mut self, mv: &Move<D>) -> Result<(), Error> {
+        let curve = MoveCurve::new(self.end, mv, self.options.arc_tolerance)?;
+        let feed = mv.feed.unwrap_or(f64::INFINITY);
+        let Some(prev) = self.pending else {
+            self.pending = Some(Pending {
+                curve,
+                from: 0.0,
+                feed,
+            });
+            self.end = curve.eval(1.0);
+            self.stats.moves += 1;
+            return Ok(());
+        };
+        let corner = junction(&prev.curve, &curve, self.options.tolerance)?;
+        let (leave, from) = match &corner {
+            Junction::Blend(b) => (b.leave(), b.join()),
+            _ => (1.0, 0.0),
+        };
+        let mut added = Vec::<Segment<D>, 2>::new();
+        let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
+        let mut s = self.length;
+        if leave - prev.from > 1e-12 {
+            let span = Segment::span(&prev.curve, (prev.from, leave), s, prev.feed)?;
+            self.zones_of(&span, &mut zones)?;
+            if matches!(corner, Junction::Stop) {
+                zones.stop_at_end();
+            }
+            s = span.end();
+            let _ = added.push(span);
+        }
+        if let Junction::Blend(b) = &corner {
+            let blend = Segment::blend(b, s, prev.feed.min(feed))?;
+            self.zones_of(&blend, &mut zones)?;
+            s = blend.end();
+            let _ = added.push(blend);
+        }
+        self.room_for(added.len(), zones.zones().len())?;
+        self.append(&added, &zones)?;
+        self.length = s;
+        self.pending = Some(Pending { curve, from, feed });
+        self.end = curve.eval(1.0);
+        self.stats.moves += 1;
+        match corner {
+            Junction::Blend(b) => {
+                self.stats.blends += 1;
+                self.stats.max_deviation = self.stats.max_deviation.max(b.deviation());
+            }
+            Junction::Stop => self.stats.stops += 1,
+            Junction::Straight => {}
+        }
+        Ok(())
+    }
+
+    /// Finishes the pending move with a stop at its end: the motion comes to rest at the end
+    /// of what was pushed (a later move starts from rest there).
+    ///
+    /// # Errors
+    /// [`Error::CapacityExceeded`] when the segments or the window are full (poll, then
+    /// finish again).
+    ///
+    /// ```
+    /// # use heapless::Deque;
+    /// # use strak_trajectory::{Limits, Move, Piece, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([1.0, 0.0]))?;
+    /// stream.finish()?;
+    /// let mut pieces = Deque::<Piece<f64, 2>, 32>::new();
+    /// while stream.poll(&mut pieces)? > 0 {}
+    /// assert_eq!(stream.stats().starved, 0); // the end was known
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn finish(&mut self) -> Result<(), Error> {
+        let Some(prev) = self.pending else {
+            return Ok(());
+        };
+        let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
+        let span = Segment::span(&prev.curve, (prev.from, 1.0), self.length, prev.feed)?;
+        self.zones_of(&span, &mut zones)?;
+        zones.stop_at_end();
+        self.room_for(1, zones.zones().len())?;
+        self.append(&[span], &zones)?;
+        self.length = span.end();
+        self.pending = None;
+        Ok(())
+    }
+
+    /// The zones of `segment` appended to `out`.
+    fn zones_of<const K: usize>(
+        &self,
+        segment: &Segment<D>,
+        out: &mut SegmentZones<K>,
+    ) -> Result<(), Error> {
+        let mut table = ArcLengthTable::<f64, TABLE_SAMPLES>::EMPTY;
+        arc_table_into(segment, &mut table)?;
+        let limits = self.planned.with_velocity_at_most(segment.feed);
+        out.place(segment.start, segment.length, table.length(), self.period());
+        let options = self.options.plan.with_samples(TABLE_SAMPLES);
+        zones_into(segment, &table, &limits, &options, out)
+    }
+
+    /// An error unless `segments` more segments and `zones` more zones fit.
+    fn room_for(&self, segments: usize, zones: usize) -> Result<(), Error> {
+        if self.segments.len() + segments > Q {
+            return Err(Error::CapacityExceeded {
+                capacity: Q,
+                required: self.segments.len() + segments,
+            });
+        }
+        if self.window.len() + zones > Z {
+            return Err(Error::ZoneCapacityExceeded {
+                capacity: Z,
+                required: self.window.len() + zones,
+            });
+        }
+        Ok(())
+    }
+
+    /// Appends segments and their zones (room checked).
+    fn append(
+        &mut self,
+        segments: &[Segment<D>],
+        zones: &SegmentZones<{ 2 * SEGMENT_ZONES }>,
+    ) -> Result<(), Error> {
+        for g in segments {
+            let _ = self.segments.push_back(*g);
+        }
+        self.window.extend(zones.zones())
+    }
+
+    /// Compiles the next stretch of at most the options' stretch ticks into `out`, committing
+    /// zones from the window as it needs them; returns the ticks compiled (0 when nothing is
+    /// left to compile, or `out` has too little room).
+    ///
+    /// # Errors
+    /// [`Error::LimitExceeded`] when a stretch's pieces exceed the promised limits even at a
+    /// tighter fit; [`Error::OutOfRange`] for a value that does not fit `N`;
+    /// [`Error::Curve`] for a segment whose arc length does not converge.
+    ///
+    /// ```
+    /// # use heapless::Deque;
+    /// # use strak_trajectory::{Limits, Move, Piece, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([10.0, 0.0]))?;
+    /// let mut pieces = Deque::<Piece<f32, 2>, 32>::new();
+    /// assert_eq!(stream.poll(&mut pieces)?, 64); // a stretch of 64 ticks
+    /// assert_eq!(stream.stats().starved, 1); // no move after it: it stops at its end
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn poll<N: Number>(&mut self, out: &mut impl PieceQueue<N, D>) -> Result<u32, Error> {
+        if out.room() < STRETCH_PIECES {
+            return Ok(0);
+        }
+        let first = self.next_tick;
+        let last = self.cover(first.saturating_add(self.options.stretch_ticks))?;
+        if last <= first {
+            return Ok(0);
+        }
+        let mut ticks = last - first;
+        let mut pieces = Vec::<Piece<N, D>, STRETCH_PIECES>::new();
+        loop {
+            pieces.clear();
+            let motion = self.motion();
+            match self.fit.write(&motion, first, first + ticks, &mut pieces) {
+                Ok(()) => break,
+                Err(Error::CapacityExceeded { .. }) if ticks > 2 => ticks /= 2,
+                Err(e) => return Err(e),
+            }
+        }
+        for piece in pieces {
+            out.push_piece(piece);
+        }
+        self.next_tick = first + ticks;
+        self.drop_played();
+        Ok(ticks)
+    }
+
+    /// The committed motion.
+    fn motion(&self) -> Committed<'_, D, Q> {
+        Committed {
+            segments: &self.segments,
+            phases: &self.committed,
+            period: self.period(),
+            limits: self.promised,
+            end: self.window.entry(),
+        }
+    }
+
+    /// Commits zones until the committed motion reaches tick `want`, and returns the last
+    /// tick it covers, at most `want`: the end of the committed motion (the tick after it
+    /// when it rests there).
+    fn cover(&mut self, want: u32) -> Result<u32, Error> {
+        let period = self.period();
+        loop {
+            let (t_end, _, v_end) = self.window.entry();
+            if t_end >= f64::from(want) * period {
+                return Ok(want);
+            }
+            let last_zone = self.window.len() <= 1;
+            if last_zone && self.pending.is_some() {
+                self.finish()?;
+                self.stats.starved += 1;
+                continue;
+            }
+            if self.window.is_empty() {
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let end = libm::ceil(t_end / period - 1e-9) as u32;
+                return Ok(end.min(want));
+            }
+            if self.committed.len() + PHASES_PER_ZONE > PHASES {
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let end = libm::floor(t_end / period) as u32;
+                return Ok(end.min(want));
+            }
+            let now = f64::from(self.next_tick) * period;
+            if v_end == 0.0 && t_end < now {
+                self.window.hold_until(now);
+            }
+            if let Some(zone) = self.window.commit() {
+                for p in zone.phases() {
+                    let _ = self.committed.push_back(*p);
+                }
+            }
+        }
+    }
+
+    /// Drops the phases and segments the compiled ticks have passed.
+    fn drop_played(&mut self) {
+        let t = f64::from(self.next_tick) * self.period();
+        while self.committed.len() > 1 && self.committed.iter().nth(1).is_some_and(|p| p.t0 <= t) {
+            self.committed.pop_front();
+        }
+        let s = self.motion().state(t).s;
+        while self.segments.len() > 1 && self.segments.front().is_some_and(|g| g.end() < s) {
+            self.segments.pop_front();
+        }
+    }
+}

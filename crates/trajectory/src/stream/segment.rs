@@ -1,0 +1,235 @@
+//! The segments of a streamed path: the part of a move between its blends, or a blend; each
+//! with its arc length and its frame by arc length (point, unit tangent, curvature vector).
+
+use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv, Point, arc_length, param_at_length};
+
+use super::blend::Blend;
+use super::moves::MoveCurve;
+use crate::error::Error;
+
+/// The relative accuracy of a blend's arc lengths: positions along it within `1e-10` of its
+/// length (the adaptive quadrature cannot always reach much closer to the rounding of
+/// `f64` within its bounds).
+const BLEND_LENGTH_ACCURACY: f64 = 1e-10;
+
+/// What a segment traces.
+// A blend's six control points take about as much room as a move for three axes; the lint
+// sizes them for no axis.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Copy, Debug)]
+enum Trace<const D: usize> {
+    /// The move `curve` over its parameters `from ..= to`; `offset` is its arc length
+    /// before `from`.
+    Span {
+        curve: MoveCurve<D>,
+        from: f64,
+        to: f64,
+        offset: f64,
+    },
+    /// A corner blend, over `[0, 1]`.
+    Blend(Bezier<[f64; D], 6>),
+}
+
+/// A segment of the blended path, placed at the arc length `start` of the whole stream.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Segment<const D: usize> {
+    trace: Trace<D>,
+    /// The arc length of the stream where the segment starts.
+    pub(crate) start: f64,
+    /// Its arc length.
+    pub(crate) length: f64,
+    /// Its speed limit (the feeds of the moves it belongs to).
+    pub(crate) feed: f64,
+}
+
+/// The point of a path at an arc length, its unit tangent `T = dx/ds` and its curvature
+/// vector `κN = d²x/ds²`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Frame<const D: usize> {
+    pub(crate) point: [f64; D],
+    pub(crate) tangent: [f64; D],
+    pub(crate) normal: [f64; D],
+}
+
+impl<const D: usize> Segment<D> {
+    /// The part `from ..= to` of the move `curve`, starting at the stream's arc length
+    /// `start`, with the speed limit `feed`.
+    ///
+    /// # Errors
+    /// [`Error::Curve`] when the arc length of a curved move does not converge.
+    pub(crate) fn span(
+        curve: &MoveCurve<D>,
+        (from, to): (f64, f64),
+        start: f64,
+        feed: f64,
+    ) -> Result<Self, Error> {
+        let offset = curve.length_to(from)?;
+        let length = curve.length_to(to)? - offset;
+        let trace = Trace::Span {
+            curve: *curve,
+            from,
+            to,
+            offset,
+        };
+        Ok(Segment {
+            trace,
+            start,
+            length,
+            feed,
+        })
+    }
+
+    /// The corner blend `blend`, starting at the stream's arc length `start`, with the
+    /// speed limit `feed`.
+    ///
+    /// # Errors
+    /// [`Error::Curve`] when its arc length does not converge.
+    pub(crate) fn blend(blend: &Blend<D>, start: f64, feed: f64) -> Result<Self, Error> {
+        let curve = *blend.curve();
+        let length = arc_length(&curve, BLEND_LENGTH_ACCURACY * blend.trim())?;
+        Ok(Segment {
+            trace: Trace::Blend(curve),
+            start,
+            length,
+            feed,
+        })
+    }
+
+    /// The arc length of the stream where the segment ends.
+    pub(crate) fn end(&self) -> f64 {
+        self.start + self.length
+    }
+
+    /// The parameter at the arc length `s` from the segment's start (clamped to it).
+    fn param(&self, s: f64) -> Result<f64, Error> {
+        let s = s.clamp(0.0, self.length);
+        match &self.trace {
+            Trace::Span {
+                curve,
+                from,
+                to,
+                offset,
+            } => Ok(curve.param_at(offset + s)?.clamp(*from, *to)),
+            Trace::Blend(b) => Ok(param_at_length(b, s, BLEND_LENGTH_ACCURACY * self.length)?),
+        }
+    }
+
+    /// The frame at the stream's arc length `s` (clamped to the segment): `T = c'/σ` and
+    /// `κN = (c'' − (c'·c''/σ²)·c')/σ²` with `σ = |c'|` (do Carmo, *Differential Geometry
+    /// of Curves and Surfaces*, §1-5); at a point where `c' = 0` (a cusp, passed at rest)
+    /// both are zero.
+    ///
+    /// # Errors
+    /// [`Error::Curve`] when the arc-length inversion does not converge.
+    pub(crate) fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
+        let u = self.param(s - self.start)?;
+        let (d1, d2) = (self.deriv(u, 1), self.deriv(u, 2));
+        let speed2 = d1.dot(d1);
+        let mut frame = Frame {
+            point: self.eval(u),
+            tangent: [0.0; D],
+            normal: [0.0; D],
+        };
+        if speed2 > 0.0 {
+            let sigma = libm::sqrt(speed2);
+            let along = d1.dot(d2) / speed2;
+            frame.tangent = d1.times(1.0 / sigma);
+            frame.normal = d2.minus(d1.times(along)).times(1.0 / speed2);
+        }
+        Ok(frame)
+    }
+}
+
+impl<const D: usize> ParamCurve for Segment<D> {
+    type Point = [f64; D];
+
+    fn domain(&self) -> (f64, f64) {
+        match &self.trace {
+            Trace::Span { from, to, .. } => (*from, *to),
+            Trace::Blend(_) => (0.0, 1.0),
+        }
+    }
+
+    fn eval(&self, u: f64) -> [f64; D] {
+        match &self.trace {
+            Trace::Span { curve, .. } => curve.eval(u),
+            Trace::Blend(b) => b.eval(u),
+        }
+    }
+}
+
+impl<const D: usize> ParamCurveDeriv for Segment<D> {
+    fn deriv(&self, u: f64, k: usize) -> [f64; D] {
+        match &self.trace {
+            Trace::Span { curve, .. } => curve.deriv(u, k),
+            Trace::Blend(b) => b.deriv(u, k),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stream::{Junction, Move, junction};
+
+    fn close(a: [f64; 2], b: [f64; 2], tol: f64) -> bool {
+        a.minus(b).norm() <= tol
+    }
+
+    /// A span of a quarter circle and a blend: lengths, frames against the circle's own
+    /// and against differences of the points by arc length.
+    #[test]
+    fn frames_by_arc_length() {
+        let arc = Move::new(
+            [0.0, 2.0],
+            crate::stream::Shape::ArcCenter {
+                center: [0.0, 0.0],
+                plane: strak_curves::Plane::XY,
+                turn: strak_curves::Turn::CounterClockwise,
+            },
+        );
+        let curve = MoveCurve::new([2.0, 0.0], &arc, 1e-12).unwrap();
+        let seg = Segment::span(&curve, (0.25, 0.75), 10.0, 100.0).unwrap();
+        let quarter = core::f64::consts::PI; // of the circle of radius 2
+        assert!((seg.length - quarter / 2.0).abs() < 1e-12);
+        let f = seg.frame(10.0 + quarter / 4.0).unwrap();
+        let r = core::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(f.point, [2.0 * r, 2.0 * r], 1e-12), "{f:?}");
+        assert!(close(f.tangent, [-r, r], 1e-12));
+        assert!(close(f.normal, [-r / 2.0, -r / 2.0], 1e-12)); // κ = 1/2 towards the centre
+
+        let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0).unwrap();
+        let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0).unwrap();
+        let Junction::Blend(blend) = junction(&a, &b, 0.1).unwrap() else {
+            panic!("a right angle blends")
+        };
+        let seg = Segment::blend(&blend, 3.0, 50.0).unwrap();
+        assert!(seg.length > 0.0 && seg.end() == 3.0 + seg.length);
+        let h = 1e-4;
+        for i in 1..10 {
+            let s = 3.0 + seg.length * f64::from(i) / 10.0;
+            let (p0, p1, p2) = (
+                seg.frame(s - h).unwrap().point,
+                seg.frame(s).unwrap(),
+                seg.frame(s + h).unwrap().point,
+            );
+            let tangent = p2.minus(p0).times(0.5 / h);
+            let normal = p2.minus(p1.point.times(2.0)).plus(p0).times(1.0 / (h * h));
+            assert!(close(tangent, p1.tangent, 1e-7), "{i}");
+            assert!(
+                close(normal, p1.normal, 1e-4 * (1.0 + p1.normal.norm())),
+                "{i}"
+            );
+        }
+        assert!(close(
+            seg.frame(3.0).unwrap().point,
+            blend.curve().eval(0.0),
+            1e-15
+        ));
+        assert!(close(
+            seg.frame(seg.end()).unwrap().point,
+            blend.curve().eval(1.0),
+            1e-12
+        ));
+    }
+}
