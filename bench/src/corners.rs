@@ -9,8 +9,14 @@
 
 use std::fmt::Write as _;
 
+use std::time::Instant;
 use strak_curves::{ParamCurve, Plane, Turn};
-use strak_trajectory::{Junction, Limits, Move, PathTiming, PlanOptions, Shape, Timing, Toolpath};
+
+use strak_curves::heapless::Deque;
+use strak_trajectory::{
+    Junction, Limits, Move, PathTiming, Piece, PlanOptions, Shape, Stream, StreamOptions, Timing,
+    Toolpath,
+};
 
 /// The machine: speed, acceleration and jerk limits (mm, s), and the blend tolerance (mm).
 const V: f64 = 200.0;
@@ -102,6 +108,44 @@ pub fn strak(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64) {
         })
         .fold(0.0, f64::max);
     (plan.duration(), deviation)
+}
+
+/// The control rate of the streamed motion (Hz).
+const RATE: f64 = 1_000.0;
+
+/// strak's stream over the moves, corners blended within `tolerance`: the motion's
+/// duration (s), and the moves per second it plans and compiles on this machine (the
+/// pieces in `f32`, wall-clock time of one run).
+pub fn streamed(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64) {
+    let limits = Limits::<2>::new(V, A, J).expect("limits");
+    let options = StreamOptions::new(RATE)
+        .with_tolerance(tolerance)
+        .with_plan(PlanOptions::new().with_rate(RATE).with_feed_share(0.0));
+    let mut stream = Stream::<2, 64, 1024>::new(start, limits, options).expect("stream");
+    let mut pieces = Deque::<Piece<f32, 2>, 64>::new();
+    let begin = Instant::now();
+    let mut next = 0;
+    loop {
+        while let Some(m) = moves.get(next) {
+            if stream.push(m).is_err() {
+                break;
+            }
+            next += 1;
+        }
+        if next == moves.len() {
+            let _ = stream.finish(); // when the queue is full: again after the next poll
+        }
+        let ticks = stream.poll(&mut pieces).expect("poll");
+        pieces.clear();
+        if ticks == 0 && next == moves.len() && stream.is_idle() {
+            break;
+        }
+    }
+    let seconds = begin.elapsed().as_secs_f64();
+    (
+        f64::from(stream.ticks()) / RATE,
+        moves.len() as f64 / seconds,
+    )
 }
 
 /// A circle of radius 10 mm in chords of 0.2 mm.

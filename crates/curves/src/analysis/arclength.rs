@@ -267,6 +267,28 @@ pub fn arc_length<C: ParamCurveDeriv>(curve: &C, accuracy: f64) -> Result<f64, E
     length_between(curve, start.to_f64(), end.to_f64(), accuracy)
 }
 
+/// The arc length between the parameters `a` and `b` by one 8-point Gauss–Legendre rule
+/// (exact where the speed `|c'|` is a polynomial of degree 15 or less), without error
+/// control: for intervals on which [`arc_length_between`] or a comparison of the rule with
+/// its two halves has shown it accurate enough. `a` and `b` are clamped to the domain, and
+/// the curve is evaluated as one piece.
+///
+/// ```
+/// use strak_curves::{Bezier, gauss_length};
+/// let quadratic = Bezier::new([[0.0, 0.0], [1.0, 2.0], [4.0, 0.0]])?; // its speed is not a polynomial
+/// let whole = gauss_length(&quadratic, 0.0, 1.0);
+/// let halves = gauss_length(&quadratic, 0.0, 0.5) + gauss_length(&quadratic, 0.5, 1.0);
+/// assert!((whole - halves).abs() < 1e-9);
+/// let line = Bezier::new([[0.0, 0.0], [3.0, 4.0]])?;
+/// assert!((gauss_length(&line, 0.25, 0.75) - 2.5).abs() < 1e-15);
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+pub fn gauss_length<C: ParamCurveDeriv>(curve: &C, a: f64, b: f64) -> f64 {
+    let (lo, hi) = curve.domain();
+    let clamp = |u: f64| u.clamp(lo.to_f64(), hi.to_f64());
+    gauss(curve, clamp(a), clamp(b), lo, hi)
+}
+
 /// The arc length between the parameters `u0` and `u1` (both clamped to the domain) within
 /// `accuracy`: `s(u1) − s(u0)`, negative when `u1 < u0`.
 ///

@@ -77,6 +77,5 @@ pub use trajectory::{Along, Trajectory};
 pub use window::{LookAhead, WindowZone};
 
 pub(crate) use motion::PHASES_PER_ZONE;
-pub(crate) use path_timing::arc_table_into;
-pub(crate) use speed_limit::zones_into;
+pub(crate) use speed_limit::{ArcLengths, zones_into};
 pub(crate) use window::SegmentZones;

@@ -82,7 +82,7 @@ fn param_on_side<C: ParamCurve>(curve: &C, u: f64) -> ScalarOf<C> {
 /// the noise of the curve's scalar: `32·ε_S·(u_end − u_start)·max(1, max|c'|)` (`ε_S` the
 /// scalar's resolution, `max|c'|` over the 65 chord ends), since each speed value carries a
 /// rounding error of a few `ε_S·max(1, |c'|)`.
-pub(crate) fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
+fn arc_table_into<C: ParamCurveDeriv, const N: usize>(
     curve: &C,
     table: &mut ArcLengthTable<f64, N>,
 ) -> Result<(), Error> {

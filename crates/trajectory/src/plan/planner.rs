@@ -8,7 +8,7 @@ use super::limits::Limits;
 use super::motion::{MotionProfile, ProfileZone};
 use super::options::PlanOptions;
 use super::scurve::{fill_zone, reach};
-use super::speed_limit::zones_into;
+use super::speed_limit::{TableArcs, zones_into};
 use super::transitions::carry_acceleration;
 use crate::error::Error;
 
@@ -73,7 +73,8 @@ where
 {
     let planned = limits.without_reserve(options.feed_share());
     motion.zones.clear();
-    zones_into(curve, table, &planned, options, &mut motion.zones)?;
+    let arcs = TableArcs { curve, table };
+    zones_into(curve, &arcs, &planned, options, &mut motion.zones)?;
     fill_zones(&mut motion.zones);
     motion.seal(table.length())?;
     if motion.duration() * options.rate() > f64::from(u32::MAX) {

@@ -436,21 +436,51 @@ impl<const A: usize, S: ZoneSink> ZoneBuilder<'_, A, S> {
     }
 }
 
+/// The arc lengths along a curve as the speed-limit sampling places its zones by them.
+pub(crate) trait ArcLengths {
+    /// The parameter domain, in `f64`.
+    fn domain(&self) -> (f64, f64);
+    /// The length.
+    fn length(&self) -> f64;
+    /// The arc length at the parameter `u`.
+    fn length_at(&self, u: f64) -> f64;
+    /// The parameter at the arc length `s` at which the motion is.
+    fn param_at(&self, s: f64) -> f64;
+}
+
+/// A plan's arc lengths: the table of its curve, inverted as the motion is
+/// ([`param_at_length`]).
+pub(crate) struct TableArcs<'a, C, const N: usize> {
+    pub(crate) curve: &'a C,
+    pub(crate) table: &'a ArcLengthTable<f64, N>,
+}
+
+impl<C: ParamCurveDeriv, const N: usize> ArcLengths for TableArcs<'_, C, N> {
+    fn domain(&self) -> (f64, f64) {
+        self.table.domain()
+    }
+    fn length(&self) -> f64 {
+        self.table.length()
+    }
+    fn length_at(&self, u: f64) -> f64 {
+        self.table.length_at(u)
+    }
+    fn param_at(&self, s: f64) -> f64 {
+        param_at_length(self.curve, self.table, s).0
+    }
+}
+
 /// How many times [`arc_at`] moves its arc length up by one unit of `f64` at most.
 const ARC_NUDGES: usize = 8;
 
-/// The arc length at which the motion's parameter ([`param_at_length`], the root of the
-/// table's interpolant `s(u)`) reaches `u`: `length_at(u)`, moved up by a few units of
-/// `f64` where rounding leaves the root below `u`. A motion that rests at this `s` rests at
-/// `u` itself (a cusp is passed at rest).
-fn arc_at<C: ParamCurveDeriv, const N: usize>(
-    curve: &C,
-    table: &ArcLengthTable<f64, N>,
-    u: f64,
-) -> f64 {
-    let mut s = table.length_at(u);
+/// The arc length at which the motion's parameter ([`ArcLengths::param_at`]) reaches `u`:
+/// `length_at(u)`, moved up by a few units of `f64` where rounding leaves the parameter
+/// below `u`. A motion that rests at this `s` rests at `u` itself (a cusp is passed at
+/// rest).
+fn arc_at<L: ArcLengths>(arcs: &L, u: f64) -> f64 {
+    let mut s = arcs.length_at(u);
     for _ in 0..ARC_NUDGES {
-        if param_at_length(curve, table, s).0 >= u || s >= table.length() {
+        if arcs.param_at(s) >= u || s >= arcs.length() {
             break;
         }
         s = s.next_up();
@@ -491,10 +521,10 @@ struct Joins<const A: usize> {
 /// Marks the points of the current sampling interval (limits `worst`) where the speed is
 /// capped, in order along the path: the joins before `u_end` (all that are left for
 /// `None`) and the interval's `cusps`.
-fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, S: ZoneSink>(
+fn mark_points<C: ParamCurveDeriv, const A: usize, L: ArcLengths, S: ZoneSink>(
     zones: &mut ZoneBuilder<'_, A, S>,
     curve: &C,
-    table: &ArcLengthTable<f64, N>,
+    arcs: &L,
     joins: &mut Joins<A>,
     mut cusps: [Option<f64>; 2],
     u_end: Option<f64>,
@@ -513,10 +543,10 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, S: ZoneSink>(
         };
         if let (true, Some(uj)) = (join_first, u_join) {
             let cap = joins.rule.cap(curve, joins.next);
-            zones.cap_at(|| arc_at(curve, table, uj), cap, worst);
+            zones.cap_at(|| arc_at(arcs, uj), cap, worst);
             joins.next += 1;
         } else if let Some(uc) = cusps.iter_mut().find_map(Option::take) {
-            zones.cap_at(|| arc_at(curve, table, uc), 0.0, worst);
+            zones.cap_at(|| arc_at(arcs, uc), 0.0, worst);
         }
     }
 }
@@ -526,14 +556,14 @@ fn mark_points<C: ParamCurveDeriv, const A: usize, const N: usize, S: ZoneSink>(
 /// zones while the largest limit in a zone stays within `1 + zone_tolerance` of the
 /// smallest, and ends a zone at every join and cusp whose speed cap binds (see
 /// [`PlanOptions`] and `plan/joins.rs`). Writes the zones into `out`, which is empty (arc
-/// lengths from `table`, limits and exit caps).
+/// lengths from `arcs`, limits and exit caps).
 ///
 /// # Errors
 /// [`Error::ZoneCapacityExceeded`] with the number of zones needed when they exceed the
 /// capacity of `out`; [`Error::Curve`] for non-finite derivatives.
-pub(crate) fn zones_into<C, const A: usize, const N: usize, S: ZoneSink>(
+pub(crate) fn zones_into<C, const A: usize, L: ArcLengths, S: ZoneSink>(
     curve: &C,
-    table: &ArcLengthTable<f64, N>,
+    arcs: &L,
     limits: &Limits<A>,
     options: &PlanOptions,
     out: &mut S,
@@ -546,7 +576,7 @@ where
         ProfileShape::SCurve => limits.jerk(),
         ProfileShape::Trapezoid => f64::INFINITY,
     };
-    let (u0, u1) = table.domain();
+    let (u0, u1) = arcs.domain();
     let grid = Grid {
         u0,
         u1,
@@ -564,7 +594,7 @@ where
         share,
         rate: options.rate(),
         ratio: 1.0 + options.zone_tolerance(),
-        same: 1e-12 * table.length(),
+        same: 1e-12 * arcs.length(),
         open: None,
         out,
         required: 0,
@@ -577,7 +607,7 @@ where
         for l in [&prev, &mid, &next].into_iter().flatten() {
             worst.merge(l);
         }
-        zones.interval(table.length_at(grid.at(2 * k)), worst);
+        zones.interval(arcs.length_at(grid.at(2 * k)), worst);
         let u_next = grid.at(2 * k + 2);
         let cusps = cusps_in(
             curve,
@@ -585,10 +615,10 @@ where
             [(grid.at(2 * k + 1), mid.as_ref()), (u_next, next.as_ref())],
         );
         let u_end = (k + 1 < grid.m).then_some(u_next);
-        mark_points(&mut zones, curve, table, &mut joins, cusps, u_end, worst);
+        mark_points(&mut zones, curve, arcs, &mut joins, cusps, u_end, worst);
         prev = next;
     }
-    zones.finish(table.length())
+    zones.finish(arcs.length())
 }
 
 #[cfg(test)]

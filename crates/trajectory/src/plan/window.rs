@@ -34,20 +34,33 @@ use crate::error::Error;
 /// zone by zone, the fastest end that fits from the start it has and is at most the next
 /// zone's `B` ([`fastest_end`]). With `v_entry` at most the first zone's `B`, which any
 /// entry an earlier pass over fewer zones allowed is, every zone fits.
+///
+/// A zone's cap and fastest start depend only on the zones after it, so when zones are
+/// appended the backward pass stops at the first zone whose cap and fastest start come out
+/// as before (the zones before it keep theirs), and the forward pass starts again there.
 fn plan_speeds(zones: &mut [WindowZone], v_entry: f64) {
     let mut bound = 0.0;
+    let mut from = 0;
     for i in (0..zones.len()).rev() {
         let next_limit = zones.get(i + 1).map_or(0.0, |z| z.v_limit);
         if let Some(z) = zones.get_mut(i) {
             let length = z.end - z.start;
-            z.cap = z.exit_cap.min(next_limit).min(bound).min(z.v_limit);
+            let cap = z.exit_cap.min(next_limit).min(bound).min(z.v_limit);
             let from_rest = reach(0.0, length, z.v_limit, z.a_limit, z.j_limit);
-            let from_cap = reach(z.cap, length, z.v_limit, z.a_limit, z.j_limit);
+            let from_cap = reach(cap, length, z.v_limit, z.a_limit, z.j_limit);
             bound = from_rest.max(from_cap);
+            if cap == z.cap && bound == z.bound {
+                from = i;
+                break;
+            }
+            (z.cap, z.bound) = (cap, bound);
         }
     }
-    let mut v = v_entry;
-    for z in zones.iter_mut() {
+    let mut v = match from.checked_sub(1).and_then(|i| zones.get(i)) {
+        Some(z) => z.v_end,
+        None => v_entry,
+    };
+    for z in zones.iter_mut().skip(from) {
         z.v_start = v;
         z.v_end = fastest_end(v, z.cap, z.end - z.start, z.a_limit, z.j_limit);
         v = z.v_end;
@@ -71,7 +84,7 @@ fn fastest_end(v0: f64, cap: f64, length: f64, a: f64, j: f64) -> f64 {
 
 /// A zone of the look-ahead window: a stretch of arc length with constant limits, without
 /// phases (those are made when it is committed), so that a window of many zones stays
-/// small (64 bytes).
+/// small (80 bytes).
 ///
 /// ```
 /// use strak_trajectory::{Error, WindowZone};
@@ -90,6 +103,9 @@ pub struct WindowZone {
     /// The largest end speed the window allows (the exit cap, the next zone's limit and
     /// fastest start).
     cap: f64,
+    /// The fastest start from which the window after it can be kept to (NaN before the
+    /// first plan).
+    bound: f64,
     v_start: f64,
     v_end: f64,
 }
@@ -139,6 +155,7 @@ impl WindowZone {
             j_limit: j,
             exit_cap,
             cap: 0.0,
+            bound: f64::NAN,
             v_start: 0.0,
             v_end: 0.0,
         }

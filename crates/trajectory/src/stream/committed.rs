@@ -10,6 +10,8 @@
 //!
 //! and per tick of `h` seconds the slope is `ẋ·h` and the second derivative `ẍ·h²`.
 
+use core::cell::Cell;
+
 use heapless::Deque;
 
 use super::segment::{Frame, Segment};
@@ -33,6 +35,9 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize> {
     pub(super) limits: MotionLimits,
     /// The end of the committed motion: time, arc length and speed.
     pub(super) end: (f64, f64, f64),
+    /// The last tick evaluated, its state and frame: a stretch asks for the position,
+    /// slope and second derivative of the same tick in turn.
+    pub(super) last: Cell<Option<(u32, MotionState, Frame<D>)>>,
 }
 
 impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
@@ -69,9 +74,17 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
         }
     }
 
-    /// The state at tick `k`.
-    fn state_at_tick(&self, k: u32) -> MotionState {
-        self.state(f64::from(k) * self.period)
+    /// The state and the frame at tick `k`.
+    fn at_tick(&self, k: u32) -> Result<(MotionState, Frame<D>), Error> {
+        if let Some((tick, st, f)) = self.last.get()
+            && tick == k
+        {
+            return Ok((st, f));
+        }
+        let st = self.state(f64::from(k) * self.period);
+        let f = self.frame(st.s)?;
+        self.last.set(Some((k, st, f)));
+        Ok((st, f))
     }
 
     /// Calls `emit` with the times in the phase `p` at which the path passes from one
@@ -116,19 +129,17 @@ impl<const D: usize, const Q: usize> TickMotion<D> for Committed<'_, D, Q> {
     }
 
     fn position(&self, k: u32) -> Result<[f64; D], Error> {
-        Ok(self.frame(self.state_at_tick(k).s)?.point)
+        Ok(self.at_tick(k)?.1.point)
     }
 
     fn slope(&self, k: u32) -> Result<[f64; D], Error> {
-        let st = self.state_at_tick(k);
-        let f = self.frame(st.s)?;
+        let (st, f) = self.at_tick(k)?;
         let h = self.period;
         Ok(f.tangent.map(|t| t * st.v * h))
     }
 
     fn second(&self, k: u32) -> Result<[f64; D], Error> {
-        let st = self.state_at_tick(k);
-        let f = self.frame(st.s)?;
+        let (st, f) = self.at_tick(k)?;
         let hh = self.period * self.period;
         Ok(core::array::from_fn(|i| {
             (f.tangent[i] * st.a + f.normal[i] * st.v * st.v) * hh

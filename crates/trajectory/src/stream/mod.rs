@@ -2,6 +2,7 @@
 //! cubic Béziers), the curvature-continuous blends that replace their corners, and the
 //! stream that plans them in a look-ahead window and compiles them a stretch at a time.
 
+mod arc_map;
 mod blend;
 mod committed;
 mod moves;

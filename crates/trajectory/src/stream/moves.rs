@@ -293,6 +293,12 @@ impl<const D: usize> MoveCurve<D> {
         }
     }
 
+    /// Whether the speed `|c'|` is constant (lines, circles, helices): the parameter is then
+    /// proportional to the arc length.
+    pub(crate) fn has_constant_speed(&self) -> bool {
+        self.speed.is_some()
+    }
+
     /// The arc length from the start to the parameter `u` (clamped to `[0, 1]`).
     ///
     /// # Errors

@@ -19,8 +19,10 @@
 //!    end: the motion comes to rest there within the limits, and the next move starts from
 //!    rest. [`Stream::finish`] does the same at the end of a program.
 
+use core::cell::Cell;
+
 use heapless::{Deque, Vec};
-use strak_curves::{ArcLengthTable, ParamCurve};
+use strak_curves::ParamCurve;
 
 use super::blend::{Junction, junction};
 use super::committed::{Committed, PHASES};
@@ -31,13 +33,11 @@ use crate::error::Error;
 use crate::num::Number;
 use crate::path::Piece;
 use crate::plan::{
-    Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones,
-    arc_table_into, zones_into,
+    Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones, zones_into,
 };
 
-/// Samples of a segment's arc-length table (its zones' arc lengths are scaled onto the
-/// segment's exact length, so the table only places the zone boundaries).
-const TABLE_SAMPLES: usize = 32;
+/// The speed-limit samples of a segment whose loads vary (a blend, a Bézier move).
+const LOAD_SAMPLES: usize = 32;
 
 /// The most zones of one segment.
 const SEGMENT_ZONES: usize = 24;
@@ -467,12 +467,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         segment: &Segment<D>,
         out: &mut SegmentZones<K>,
     ) -> Result<(), Error> {
-        let mut table = ArcLengthTable::<f64, TABLE_SAMPLES>::EMPTY;
-        arc_table_into(segment, &mut table)?;
         let limits = self.planned.with_velocity_at_most(segment.feed);
-        out.place(segment.start, segment.length, table.length(), self.period());
-        let options = self.options.plan.with_samples(TABLE_SAMPLES);
-        zones_into(segment, &table, &limits, &options, out)
+        out.place(segment.start, segment.length, segment.length, self.period());
+        let samples = if segment.uniform() { 1 } else { LOAD_SAMPLES };
+        let options = self.options.plan.with_samples(samples);
+        zones_into(segment, segment, &limits, &options, out)
     }
 
     /// An error unless `segments` more segments and `zones` more zones fit.
@@ -560,6 +559,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             period: self.period(),
             limits: self.promised,
             end: self.window.entry(),
+            last: Cell::new(None),
         }
     }
 

@@ -1,11 +1,16 @@
 //! The segments of a streamed path: the part of a move between its blends, or a blend; each
 //! with its arc length and its frame by arc length (point, unit tangent, curvature vector).
 
-use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv, Point, arc_length, param_at_length};
+use strak_curves::{
+    ParamCurve, ParamCurveDeriv, Point, arc_length, arc_length_between, basis::MonomialCurve,
+    param_at_length,
+};
 
+use super::arc_map::ArcMap;
 use super::blend::Blend;
 use super::moves::MoveCurve;
 use crate::error::Error;
+use crate::plan::ArcLengths;
 
 /// The relative accuracy of a blend's arc lengths: positions along it within `1e-10` of its
 /// length (the adaptive quadrature cannot always reach much closer to the rounding of
@@ -19,15 +24,19 @@ const BLEND_LENGTH_ACCURACY: f64 = 1e-10;
 #[derive(Clone, Copy, Debug)]
 enum Trace<const D: usize> {
     /// The move `curve` over its parameters `from ..= to`; `offset` is its arc length
-    /// before `from`.
+    /// before `from`; `map` its arc lengths where they are not proportional to the
+    /// parameter (else, or where the map is refused, the move's own inversion).
     Span {
         curve: MoveCurve<D>,
         from: f64,
         to: f64,
         offset: f64,
+        map: Option<ArcMap>,
     },
-    /// A corner blend, over `[0, 1]`.
-    Blend(Bezier<[f64; D], 6>),
+    /// A corner blend, over `[0, 1]`, in the monomial basis (Horner's rule evaluates its
+    /// derivative in a fifth of de Casteljau's work), with its arc lengths (`None`:
+    /// adaptive inversion).
+    Blend(MonomialCurve<[f64; D], 6>, Option<ArcMap>),
 }
 
 /// A segment of the blended path, placed at the arc length `start` of the whole stream.
@@ -64,12 +73,19 @@ impl<const D: usize> Segment<D> {
         feed: f64,
     ) -> Result<Self, Error> {
         let offset = curve.length_to(from)?;
-        let length = curve.length_to(to)? - offset;
+        let map = (!curve.has_constant_speed())
+            .then(|| ArcMap::new(curve, (from, to)))
+            .flatten();
+        let length = match &map {
+            Some(map) => map.length(),
+            None => curve.length_to(to)? - offset,
+        };
         let trace = Trace::Span {
             curve: *curve,
             from,
             to,
             offset,
+            map,
         };
         Ok(Segment {
             trace,
@@ -85,10 +101,14 @@ impl<const D: usize> Segment<D> {
     /// # Errors
     /// [`Error::Curve`] when its arc length does not converge.
     pub(crate) fn blend(blend: &Blend<D>, start: f64, feed: f64) -> Result<Self, Error> {
-        let curve = *blend.curve();
-        let length = arc_length(&curve, BLEND_LENGTH_ACCURACY * blend.trim())?;
+        let curve = blend.curve().to_monomial()?;
+        let map = ArcMap::new(&curve, (0.0, 1.0));
+        let length = match &map {
+            Some(map) => map.length(),
+            None => arc_length(&curve, BLEND_LENGTH_ACCURACY * blend.trim())?,
+        };
         Ok(Segment {
-            trace: Trace::Blend(curve),
+            trace: Trace::Blend(curve, map),
             start,
             length,
             feed,
@@ -100,17 +120,32 @@ impl<const D: usize> Segment<D> {
         self.start + self.length
     }
 
+    /// Whether its speed limits are the same everywhere: a line, circle or helix, whose
+    /// curvature and torsion are constant.
+    pub(crate) fn uniform(&self) -> bool {
+        matches!(&self.trace, Trace::Span { curve, .. } if curve.has_constant_speed())
+    }
+
     /// The parameter at the arc length `s` from the segment's start (clamped to it).
     fn param(&self, s: f64) -> Result<f64, Error> {
         let s = s.clamp(0.0, self.length);
         match &self.trace {
             Trace::Span {
                 curve,
+                map: Some(map),
+                ..
+            } => Ok(map.param(curve, s)),
+            Trace::Span {
+                curve,
                 from,
                 to,
                 offset,
+                map: None,
             } => Ok(curve.param_at(offset + s)?.clamp(*from, *to)),
-            Trace::Blend(b) => Ok(param_at_length(b, s, BLEND_LENGTH_ACCURACY * self.length)?),
+            Trace::Blend(b, Some(map)) => Ok(map.param(b, s)),
+            Trace::Blend(b, None) => {
+                Ok(param_at_length(b, s, BLEND_LENGTH_ACCURACY * self.length)?)
+            }
         }
     }
 
@@ -140,20 +175,59 @@ impl<const D: usize> Segment<D> {
     }
 }
 
+/// The segment's own arc lengths, by which the speed-limit sampling places its zones (where
+/// an adaptive length does not converge, the parameter's share of the length stands in: it
+/// only moves a zone boundary).
+impl<const D: usize> ArcLengths for Segment<D> {
+    fn domain(&self) -> (f64, f64) {
+        ParamCurve::domain(self)
+    }
+
+    fn length(&self) -> f64 {
+        self.length
+    }
+
+    fn length_at(&self, u: f64) -> f64 {
+        let (lo, hi) = ParamCurve::domain(self);
+        let share = || self.length * ((u - lo) / (hi - lo)).clamp(0.0, 1.0);
+        match &self.trace {
+            Trace::Span {
+                curve,
+                map: Some(map),
+                ..
+            } => map.length_at(curve, u),
+            Trace::Span { curve, offset, .. } => {
+                curve.length_to(u).map_or_else(|_| share(), |s| s - offset)
+            }
+            Trace::Blend(b, Some(map)) => map.length_at(b, u),
+            Trace::Blend(b, None) => {
+                arc_length_between(b, 0.0, u, BLEND_LENGTH_ACCURACY * self.length)
+                    .unwrap_or_else(|_| share())
+            }
+        }
+    }
+
+    fn param_at(&self, s: f64) -> f64 {
+        let (lo, hi) = ParamCurve::domain(self);
+        self.param(s)
+            .unwrap_or_else(|_| lo + (hi - lo) * (s / self.length).clamp(0.0, 1.0))
+    }
+}
+
 impl<const D: usize> ParamCurve for Segment<D> {
     type Point = [f64; D];
 
     fn domain(&self) -> (f64, f64) {
         match &self.trace {
             Trace::Span { from, to, .. } => (*from, *to),
-            Trace::Blend(_) => (0.0, 1.0),
+            Trace::Blend(..) => (0.0, 1.0),
         }
     }
 
     fn eval(&self, u: f64) -> [f64; D] {
         match &self.trace {
             Trace::Span { curve, .. } => curve.eval(u),
-            Trace::Blend(b) => b.eval(u),
+            Trace::Blend(b, _) => b.eval(u),
         }
     }
 }
@@ -162,7 +236,7 @@ impl<const D: usize> ParamCurveDeriv for Segment<D> {
     fn deriv(&self, u: f64, k: usize) -> [f64; D] {
         match &self.trace {
             Trace::Span { curve, .. } => curve.deriv(u, k),
-            Trace::Blend(b) => b.deriv(u, k),
+            Trace::Blend(b, _) => b.deriv(u, k),
         }
     }
 }
