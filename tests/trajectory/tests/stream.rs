@@ -6,9 +6,9 @@ use proptest::test_runner::{Config, TestRunner};
 use strak_curves::heapless::Deque;
 use strak_curves::{ParamCurve, ParamCurveDeriv, Plane, Point, Turn};
 use strak_trajectory::{
-    Along, AxisState, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Path, PathTiming,
-    Piece, PlanOptions, REVERSAL_ANGLE, Sampler, Shape, Stream, StreamOptions, Stretches, Timing,
-    Toolpath, junction,
+    Along, AxisState, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Number, Path,
+    PathTiming, Piece, PlanOptions, Q40, REVERSAL_ANGLE, Sampler, Shape, Stream, StreamOptions,
+    Stretches, Timing, Toolpath, junction,
 };
 use strak_trajectory_tests::compile_boxed;
 
@@ -743,24 +743,31 @@ struct Played {
 }
 
 impl Played {
-    /// Plays `piece` after the ones before, recording where it meets them.
-    fn play(&mut self, piece: &Piece<f64, 3>, end: &mut Option<[AxisState<f64>; 3]>) {
+    /// Plays `piece` after the ones before (forward differencing in `N`), recording where
+    /// it meets them.
+    fn play<N: Number>(&mut self, piece: &Piece<N, 3>, end: &mut Option<[AxisState<N>; 3]>) {
+        let f = |x: N| x.to_f64();
         if let Some(end) = end {
             for (e, s) in end.iter().zip(piece.axes()) {
-                self.seam[0] = self.seam[0].max((e.position - s.position).abs());
-                self.seam[1] = self.seam[1].max((e.velocity - s.velocity).abs());
-                self.seam[2] = self.seam[2].max((e.acceleration - s.acceleration).abs());
+                self.seam[0] = self.seam[0].max((f(e.position) - f(s.position)).abs());
+                self.seam[1] = self.seam[1].max((f(e.velocity) - f(s.velocity)).abs());
+                self.seam[2] = self.seam[2].max((f(e.acceleration) - f(s.acceleration)).abs());
             }
         }
         let mut state = *piece.axes();
         for _ in 0..piece.ticks() {
-            self.x.push(state.map(|s| s.position));
-            self.v.push(state.map(|s| s.velocity));
-            self.a.push(state.map(|s| s.acceleration));
+            self.record(&state);
             state.iter_mut().for_each(AxisState::step);
         }
         self.pieces += 1;
         *end = Some(state);
+    }
+
+    /// Records the state of one tick.
+    fn record<N: Number>(&mut self, state: &[AxisState<N>; 3]) {
+        self.x.push(state.map(|s| s.position.to_f64()));
+        self.v.push(state.map(|s| s.velocity.to_f64()));
+        self.a.push(state.map(|s| s.acceleration.to_f64()));
     }
 
     /// The largest speed, acceleration and jerk from differences of the played ticks.
@@ -777,12 +784,12 @@ impl Played {
 
 /// Runs a stream over `moves`: pushes up to `batch` moves before each poll (then finishes
 /// it), and plays every piece the polls compile.
-fn run_stream<const Q: usize, const Z: usize>(
+fn run_stream<N: Number, const Q: usize, const Z: usize>(
     stream: &mut Stream<3, Q, Z>,
     moves: &[Move<3>],
     batch: usize,
 ) -> Played {
-    let mut pieces = Deque::<Piece<f64, 3>, 64>::new();
+    let mut pieces = Deque::<Piece<N, 3>, 64>::new();
     let (mut played, mut end, mut next) = (Played::default(), None, 0);
     for _ in 0..1_000_000 {
         for _ in 0..batch {
@@ -802,10 +809,7 @@ fn run_stream<const Q: usize, const Z: usize>(
         }
         if ticks == 0 && next == moves.len() && stream.is_idle() {
             if let Some(end) = end {
-                // the state the last piece ends in, where the sampler holds still
-                played.x.push(end.map(|s| s.position));
-                played.v.push(end.map(|s| s.velocity));
-                played.a.push(end.map(|s| s.acceleration));
+                played.record(&end); // where the last piece ends and the sampler holds still
             }
             return played;
         }
@@ -839,7 +843,10 @@ fn contour_moves() -> Vec<Move<3>> {
     ]
 }
 
-/// The largest distance of the played ticks from the programmed moves.
+/// The largest distance of the played ticks from the programmed moves: an upper bound,
+/// which exceeds the distance by at most twice the [`largest_sag`] of the moves (a point of
+/// a move lies within the sag of its polygon, and the polygon's distance gets the sag
+/// added).
 fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
     let mut from = [0.0; 3];
     let programmed: Vec<Polygon<3>> = moves
@@ -865,6 +872,25 @@ fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The largest departure of the polygons of [`distance_from_moves`] from their moves.
+fn largest_sag(moves: &[Move<3>]) -> f64 {
+    let mut from = [0.0; 3];
+    moves
+        .iter()
+        .map(|mv| {
+            let m = MoveCurve::new(from, mv, 1e-9).unwrap();
+            from = mv.to;
+            Polygon::new(
+                &m,
+                (0.0, 1.0),
+                m.second_derivative_bound(),
+                4 * CURVE_SAMPLES,
+            )
+            .sag
+        })
+        .fold(0.0, f64::max)
+}
+
 /// A stream of lines (corners of 5° to 145°, a reversal), a tangent arc with a helical rise
 /// and a Bézier, with a slower feed on one line, pushed at once and played: the pieces
 /// meet without a seam, the speed, acceleration and jerk from the played ticks stay within
@@ -879,7 +905,7 @@ fn a_stream_plays_within_the_limits_and_the_tolerance() {
         .with_fit_tolerance(fit);
     let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
     let moves = contour_moves();
-    let played = run_stream(&mut stream, &moves, moves.len());
+    let played = run_stream::<f64, 32, 256>(&mut stream, &moves, moves.len());
     let stats = stream.stats();
     let peaks = played.peaks(rate);
     let worst = distance_from_moves(&moves, &played.x);
@@ -956,10 +982,7 @@ fn a_starved_stream_rests_and_resumes_within_the_limits() {
         }
         assert!(poll < 100_000);
     }
-    let end = end.unwrap();
-    played.x.push(end.map(|s| s.position));
-    played.v.push(end.map(|s| s.velocity));
-    played.a.push(end.map(|s| s.acceleration));
+    played.record(&end.unwrap());
     let stats = stream.stats();
     let peaks = played.peaks(rate);
     let rests = played
@@ -1008,7 +1031,7 @@ fn each_move_keeps_its_feed() {
         Move::line([30.0, 0.0, 0.0]).with_feed(150.0),
         Move::line([60.0, 0.0, 0.0]).with_feed(50.0),
     ];
-    let played = run_stream(&mut stream, &moves, 2);
+    let played = run_stream::<f64, 8, 64>(&mut stream, &moves, 2);
     let speeds: Vec<(f64, f64)> = played
         .x
         .windows(2)
@@ -1024,4 +1047,123 @@ fn each_move_keeps_its_feed() {
     assert!(first <= 150.0 * (1.0 + 1e-9) && first > 149.0, "{first}");
     assert!(second <= 50.0 * (1.0 + 1e-9) && second > 49.9, "{second}");
     assert_eq!(stream.stats().blends, 0);
+}
+
+/// The relative allowance of the played peaks over the limits in each number format:
+/// forward differencing over a piece of up to 256 ticks adds up to `256·ε·|a|` to the
+/// acceleration channel (`ε` the format's resolution relative to the value: `2⁻²⁴` in
+/// `f32`), and a jerk from differences of that channel twice that over a tick; the speed
+/// and acceleration channels stay within a tenth of that share. `Q40` rounds to `2⁻⁴⁰`
+/// units, `f64` leaves the comparison's own rounding.
+fn format_allowance<N: Number>() -> (f64, f64) {
+    match N::NAME {
+        "f32" => (1e-4, 4e-3),
+        "Q40" => (1e-6, 1e-5),
+        _ => (1e-9, 1e-9),
+    }
+}
+
+/// Streams `moves` (bad ones skipped) blended within `tolerance` and checks the played
+/// ticks in `N`: speed and acceleration from their channels and jerk from differences of
+/// the acceleration channel within the promised limits (plus the format's allowance); in
+/// `f64` the speed from differences of positions and the seams as well; every tick within
+/// the tolerance of the moves (plus the fit's and the format's position error); the end
+/// on the last move's end.
+fn check_random_stream<N: Number>(moves: &[Move<3>], tolerance: f64) -> Result<(), TestCaseError> {
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let options = StreamOptions::new(1000.0).with_tolerance(tolerance);
+    let mut stream = Stream::<3, 32, 512>::new([0.0; 3], limits, options).unwrap();
+    let mut accepted = Vec::new();
+    for mv in moves {
+        if stream.push(mv).is_ok() {
+            accepted.push(*mv);
+        }
+    }
+    prop_assume!(!accepted.is_empty());
+    let played = run_stream::<N, 32, 512>(&mut stream, &[], 0);
+    let (channel, jerk) = format_allowance::<N>();
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    let peak = |xs: &[[f64; 3]]| xs.iter().map(|x| x.norm()).fold(0.0, f64::max);
+    let (v, a) = (peak(&played.v), peak(&played.a));
+    let j = played
+        .a
+        .windows(2)
+        .map(|w| w[1].minus(w[0]).norm() * 1000.0)
+        .fold(0.0, f64::max);
+    let what = || format!("{} {tolerance}: v {v} a {a} j {j}", N::NAME);
+    prop_assert!(v <= 200.0 * (1.0 + channel), "{}", what());
+    prop_assert!(a <= keep * 3000.0 * (1.0 + channel), "{}", what());
+    prop_assert!(j <= keep * 100_000.0 * (1.0 + jerk), "{}", what());
+    let far = peak(&played.x).max(1.0);
+    let position = match N::NAME {
+        "f64" => {
+            let fd = played.peaks(1000.0)[0];
+            prop_assert!(fd <= 200.0 * (1.0 + 1e-9), "{} {fd}", what());
+            let seam = played.seam;
+            prop_assert!(seam[0] < 1e-9 && seam[1] < 1e-7, "{seam:?}");
+            1e-9
+        }
+        "Q40" => 1e-9,
+        _ => 256.0 * f64::from(f32::EPSILON) * far,
+    };
+    let sampled: Vec<[f64; 3]> = played.x.iter().step_by(3).copied().collect();
+    let worst = distance_from_moves(&accepted, &sampled);
+    let bound = tolerance + 1e-5 + position + 2.0 * largest_sag(&accepted);
+    prop_assert!(worst <= bound, "{} distance {worst} > {bound}", what());
+    let last = played.x.last().unwrap();
+    let end = accepted.last().unwrap().to;
+    prop_assert!(
+        last.minus(end).norm() <= 1e-9 + position,
+        "{} end {last:?}",
+        what()
+    );
+    Ok(())
+}
+
+/// Random streams of lines (some of 0.05 to 0.5 mm), arcs about a centre with a helical
+/// rise, arcs of a radius and Béziers, some with a feed of their own, blended within 0,
+/// 0.01 or 0.05 mm and played in `f64`, `f32` and `Q40` (random seeds per run; a failure
+/// is reported with its inputs).
+#[test]
+fn random_streams_keep_the_limits_in_every_number_format() {
+    let strategy = (
+        proptest::collection::vec((0_u8..5, unit10()), 2..10),
+        0_usize..3,
+        0_usize..3,
+    );
+    let config = Config {
+        cases: 16,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    TestRunner::new(config)
+        .run(&strategy, |(kinds, t, format)| {
+            let mut from = [0.0; 3];
+            let mut moves = Vec::new();
+            for (kind, x) in &kinds {
+                let mut mv = if *kind == 4 {
+                    let d = 0.05 + 0.45 * x[0];
+                    let heading = std::f64::consts::TAU * x[1];
+                    Move::line([
+                        from[0] + d * heading.cos(),
+                        from[1] + d * heading.sin(),
+                        from[2],
+                    ])
+                } else {
+                    random_move(from, *kind, x)
+                };
+                if x[8] < 0.3 {
+                    mv = mv.with_feed(20.0 + 180.0 * x[7]);
+                }
+                from = mv.to;
+                moves.push(mv);
+            }
+            let tolerance = [0.0, 0.01, 0.05][t];
+            match format {
+                0 => check_random_stream::<f64>(&moves, tolerance),
+                1 => check_random_stream::<f32>(&moves, tolerance),
+                _ => check_random_stream::<Q40>(&moves, tolerance),
+            }
+        })
+        .unwrap();
 }
