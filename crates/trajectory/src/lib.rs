@@ -31,7 +31,7 @@ pub use path::{
 pub use plan::*;
 pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};
 pub use play::guard::{FeedGuard, MAX_DELAY, MAX_RAMP_TICKS, Schedule};
-pub use play::{Kernel, Sampler, SamplerState};
+pub use play::{Kernel, Sampler, SamplerState, StreamSampler};
 pub use stream::{
     Blend, Junction, Move, MoveCurve, PieceQueue, REVERSAL_ANGLE, Shape, Stream, StreamOptions,
     StreamStats, Toolpath, junction,

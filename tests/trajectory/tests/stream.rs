@@ -3,12 +3,14 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
+use strak_curves::Scalar;
 use strak_curves::heapless::Deque;
+use strak_curves::heapless::spsc::Queue;
 use strak_curves::{ParamCurve, ParamCurveDeriv, Plane, Point, Turn};
 use strak_trajectory::{
-    Along, AxisState, CompileOptions, Error, Junction, Limits, Move, MoveCurve, Number, Path,
-    PathTiming, Piece, PlanOptions, Q40, REVERSAL_ANGLE, Sampler, Shape, Stream, StreamOptions,
-    Stretches, Timing, Toolpath, junction,
+    Along, AxisState, CompileOptions, Error, Junction, Kernel, Limits, Move, MoveCurve, Number,
+    Path, PathTiming, Piece, PlanOptions, Q40, REVERSAL_ANGLE, Sample, Sampler, Shape, Stream,
+    StreamOptions, StreamSampler, StreamStats, Stretches, Timing, Toolpath, junction,
 };
 use strak_trajectory_tests::compile_boxed;
 
@@ -1166,4 +1168,105 @@ fn random_streams_keep_the_limits_in_every_number_format() {
             }
         })
         .unwrap();
+}
+
+/// Plays `moves` through a stream into a queue that a [`StreamSampler`] drains, one poll
+/// (when the queue has room) and one sample per tick, pushing `batch` moves every `every`
+/// ticks: the samples of every tick, until the stream is idle and the sampler holds.
+fn sample_stream<N: Kernel>(
+    moves: &[Move<3>],
+    tolerance: f64,
+    (batch, every): (usize, usize),
+) -> (Vec<Sample<N::Out, 3>>, StreamStats, u32) {
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let options = StreamOptions::new(1000.0).with_tolerance(tolerance);
+    let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
+    let mut queue = Queue::<Piece<N, 3>, 64>::new();
+    let (mut producer, consumer) = queue.split();
+    let mut sampler = StreamSampler::new(consumer, [N::ZERO; 3]);
+    let (mut samples, mut next) = (Vec::new(), 0);
+    for tick in 0..1_000_000 {
+        if tick % every == 0 {
+            for mv in moves.iter().skip(next).take(batch) {
+                stream.push(mv).unwrap();
+                next += 1;
+            }
+            if next == moves.len() {
+                stream.finish().unwrap();
+            }
+        }
+        stream.poll(&mut producer).unwrap();
+        samples.push(sampler.next());
+        if next == moves.len() && stream.is_idle() && sampler.is_holding() {
+            samples.extend((0..3).map(|_| sampler.next())); // holding on
+            return (samples, stream.stats(), sampler.underruns());
+        }
+    }
+    panic!("the stream does not end");
+}
+
+/// The sampler plays the stream's pieces as they come, bit for bit as forward differencing
+/// of the pieces does (`f64`, `f32`), holds exactly on the last move's end, and never runs
+/// dry while the main loop polls every tick.
+#[test]
+fn a_stream_sampler_plays_the_pieces_as_they_come() {
+    fn check<N: Kernel>() {
+        let moves = contour_moves();
+        let (samples, stats, underruns) = sample_stream::<N>(&moves, 0.05, (moves.len(), 1));
+        let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+        let mut stream = Stream::<3, 32, 256>::new(
+            [0.0; 3],
+            limits,
+            StreamOptions::new(1000.0).with_tolerance(0.05),
+        )
+        .unwrap();
+        let played = run_stream::<N, 32, 256>(&mut stream, &moves, moves.len());
+        assert_eq!(underruns, 0);
+        assert_eq!(stats.starved, 0);
+        assert!(samples.len() >= played.x.len());
+        for (k, s) in samples.iter().enumerate() {
+            let want = played.x[k.min(played.x.len() - 1)];
+            let got = s.position.map(Scalar::to_f64);
+            assert_eq!(got, want, "{} tick {k}", N::NAME);
+        }
+        let end = samples.last().unwrap();
+        assert_eq!(end.position.map(Scalar::to_f64), moves[8].to);
+        assert_eq!(end.velocity.map(Scalar::to_f64), [0.0; 3]);
+    }
+    check::<f64>();
+    check::<f32>();
+}
+
+/// A producer that pushes a move every 250 ticks, slower than the motion: the sampler holds
+/// still at every rest the stream makes (never mid-motion), and the samples of the wall
+/// clock, holds included, keep the limits (jerk from differences of the acceleration).
+#[test]
+fn a_starved_stream_sampler_holds_at_rest() {
+    let moves: Vec<Move<3>> = (1..=12)
+        .map(|i| {
+            let y = if i % 2 == 0 { 0.0 } else { 6.0 };
+            Move::line([8.0 * f64::from(i), y, 0.0])
+        })
+        .collect();
+    let (samples, stats, underruns) = sample_stream::<f64>(&moves, 0.02, (1, 250));
+    assert_eq!(underruns, 0);
+    assert!(stats.starved >= 3, "{stats:?}");
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    let mut holds = 0;
+    for w in samples.windows(2) {
+        let (a0, a1) = (w[0].acceleration, w[1].acceleration);
+        let j = a1.minus(a0).norm() * 1000.0;
+        assert!(
+            j <= keep * 100_000.0 * (1.0 + 1e-9),
+            "tick {}: jerk {j}",
+            w[1].tick
+        );
+        assert!(w[1].velocity.norm() <= 200.0 * (1.0 + 1e-9));
+        if w[0].velocity == [0.0; 3] && w[1].velocity == [0.0; 3] {
+            holds += 1;
+        }
+    }
+    println!("{} samples, {holds} held, {stats:?}", samples.len());
+    assert!(holds > 100);
+    assert_eq!(samples.last().unwrap().position, moves[11].to);
 }

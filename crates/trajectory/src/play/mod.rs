@@ -8,11 +8,13 @@ mod feed;
 mod form;
 pub(crate) mod guard;
 pub(crate) mod kernel;
+mod stream;
 mod switch;
 
 use crate::path::{AxisState, FeedRampLimits, MIN_ALPHA, Newton, PathView, Piece, Sample};
 use feed::FeedRamp;
 pub use kernel::Kernel;
+pub use stream::StreamSampler;
 use switch::After;
 
 /// What the sampler is doing.

@@ -78,12 +78,17 @@ impl ArcMap {
         self.s[i] + gauss_length(curve, self.panel(i).0, u)
     }
 
-    /// The parameter at the arc length `s` (clamped to the segment).
+    /// The parameter at the arc length `s` (clamped to the segment; its ends exactly).
     pub(super) fn param<C, const D: usize>(&self, curve: &C, s: f64) -> f64
     where
         C: ParamCurveDeriv<Point = [f64; D]>,
     {
-        let s = s.clamp(0.0, self.length());
+        if s <= 0.0 {
+            return self.u0;
+        }
+        if s >= self.length() {
+            return self.u1;
+        }
         let i = (0..PANELS)
             .find(|&i| s <= self.s[i + 1])
             .unwrap_or(PANELS - 1);

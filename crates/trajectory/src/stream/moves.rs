@@ -361,6 +361,9 @@ impl<const D: usize> ParamCurve for MoveCurve<D> {
                 if u == 1.0 { *to } else { from.lerp(*to, u) }
             }
             Traced::Arc(arc) => arc.eval(u),
+            // the end points exactly (de Casteljau's sums round off them)
+            Traced::Bezier(b) if u >= 1.0 => b.control_points()[3],
+            Traced::Bezier(b) if u <= 0.0 => b.control_points()[0],
             Traced::Bezier(b) => b.eval(u),
         }
     }

@@ -21,6 +21,7 @@
 
 use core::cell::Cell;
 
+use heapless::spsc::Producer;
 use heapless::{Deque, Vec};
 use strak_curves::ParamCurve;
 
@@ -29,9 +30,10 @@ use super::committed::{Committed, PHASES};
 use super::moves::{Move, MoveCurve};
 use super::segment::Segment;
 use crate::compile::StretchFit;
+use crate::compile::TickMotion;
 use crate::error::Error;
 use crate::num::Number;
-use crate::path::Piece;
+use crate::path::{AxisState, Piece};
 use crate::plan::{
     Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones, zones_into,
 };
@@ -63,6 +65,16 @@ pub trait PieceQueue<N, const A: usize> {
     fn room(&self) -> usize;
     /// Appends `piece` (the stream calls it only when there is room).
     fn push_piece(&mut self, piece: Piece<N, A>);
+}
+
+/// The producer half of the queue a [`StreamSampler`](crate::StreamSampler) plays from.
+impl<N, const A: usize> PieceQueue<N, A> for Producer<'_, Piece<N, A>> {
+    fn room(&self) -> usize {
+        self.capacity() - self.len()
+    }
+    fn push_piece(&mut self, piece: Piece<N, A>) {
+        let _ = self.enqueue(piece);
+    }
 }
 
 impl<N, const A: usize, const P: usize> PieceQueue<N, A> for Deque<Piece<N, A>, P> {
@@ -524,11 +536,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn poll<N: Number>(&mut self, out: &mut impl PieceQueue<N, D>) -> Result<u32, Error> {
-        if out.room() < STRETCH_PIECES {
+        if out.room() <= STRETCH_PIECES {
             return Ok(0);
         }
         let first = self.next_tick;
-        let last = self.cover(first.saturating_add(self.options.stretch_ticks))?;
+        let (last, rests) = self.cover(first.saturating_add(self.options.stretch_ticks))?;
         if last <= first {
             return Ok(0);
         }
@@ -547,8 +559,28 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             out.push_piece(piece);
         }
         self.next_tick = first + ticks;
+        if rests && self.next_tick == last {
+            out.push_piece(self.rest_piece(last)?);
+            self.next_tick = last + 1;
+        }
         self.drop_played();
-        Ok(ticks)
+        Ok(self.next_tick - first)
+    }
+
+    /// The piece of one tick at rest where the motion ends at tick `last`: the exact end
+    /// point, no velocity or acceleration, so that a sampler holding on after it holds
+    /// exactly there.
+    fn rest_piece<N: Number>(&self, last: u32) -> Result<Piece<N, D>, Error> {
+        let end = self.motion().position(last)?;
+        let mut axes = [AxisState::ZERO; D];
+        for (axis, x) in axes.iter_mut().zip(end) {
+            axis.position = N::from_f64(x).ok_or(Error::OutOfRange)?;
+        }
+        Ok(Piece {
+            axes,
+            start: last,
+            ticks: 1,
+        })
     }
 
     /// The committed motion.
@@ -565,13 +597,13 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
 
     /// Commits zones until the committed motion reaches tick `want`, and returns the last
     /// tick it covers, at most `want`: the end of the committed motion (the tick after it
-    /// when it rests there).
-    fn cover(&mut self, want: u32) -> Result<u32, Error> {
+    /// when it rests there), and whether the motion rests from that tick on.
+    fn cover(&mut self, want: u32) -> Result<(u32, bool), Error> {
         let period = self.period();
         loop {
             let (t_end, _, v_end) = self.window.entry();
             if t_end >= f64::from(want) * period {
-                return Ok(want);
+                return Ok((want, false));
             }
             let last_zone = self.window.len() <= 1;
             if last_zone && self.pending.is_some() {
@@ -582,12 +614,12 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             if self.window.is_empty() {
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                 let end = libm::ceil(t_end / period - 1e-9) as u32;
-                return Ok(end.min(want));
+                return Ok((end.min(want), end <= want));
             }
             if self.committed.len() + PHASES_PER_ZONE > PHASES {
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                 let end = libm::floor(t_end / period) as u32;
-                return Ok(end.min(want));
+                return Ok((end.min(want), false));
             }
             let now = f64::from(self.next_tick) * period;
             if v_end == 0.0 && t_end < now {

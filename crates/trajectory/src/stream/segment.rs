@@ -126,9 +126,16 @@ impl<const D: usize> Segment<D> {
         matches!(&self.trace, Trace::Span { curve, .. } if curve.has_constant_speed())
     }
 
-    /// The parameter at the arc length `s` from the segment's start (clamped to it).
+    /// The parameter at the arc length `s` from the segment's start (clamped to it; its ends
+    /// exactly).
     fn param(&self, s: f64) -> Result<f64, Error> {
-        let s = s.clamp(0.0, self.length);
+        let (lo, hi) = ParamCurve::domain(self);
+        if s <= 0.0 {
+            return Ok(lo);
+        }
+        if s >= self.length {
+            return Ok(hi);
+        }
         match &self.trace {
             Trace::Span {
                 curve,
@@ -157,7 +164,12 @@ impl<const D: usize> Segment<D> {
     /// # Errors
     /// [`Error::Curve`] when the arc-length inversion does not converge.
     pub(crate) fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
-        let u = self.param(s - self.start)?;
+        let local = if s >= self.end() {
+            self.length
+        } else {
+            s - self.start
+        };
+        let u = self.param(local)?;
         let (d1, d2) = (self.deriv(u, 1), self.deriv(u, 2));
         let speed2 = d1.dot(d1);
         let mut frame = Frame {
