@@ -845,37 +845,8 @@ fn contour_moves() -> Vec<Move<3>> {
     ]
 }
 
-/// The largest distance of the played ticks from the programmed moves: an upper bound,
-/// which exceeds the distance by at most twice the [`largest_sag`] of the moves (a point of
-/// a move lies within the sag of its polygon, and the polygon's distance gets the sag
-/// added).
-fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
-    let mut from = [0.0; 3];
-    let programmed: Vec<Polygon<3>> = moves
-        .iter()
-        .map(|mv| {
-            let m = MoveCurve::new(from, mv, 1e-9).unwrap();
-            from = mv.to;
-            Polygon::new(
-                &m,
-                (0.0, 1.0),
-                m.second_derivative_bound(),
-                4 * CURVE_SAMPLES,
-            )
-        })
-        .collect();
-    x.iter()
-        .map(|&p| {
-            programmed
-                .iter()
-                .map(|g| g.distance(p))
-                .fold(f64::INFINITY, f64::min)
-        })
-        .fold(0.0, f64::max)
-}
-
-/// The largest departure of the polygons of [`distance_from_moves`] from their moves.
-fn largest_sag(moves: &[Move<3>]) -> f64 {
+/// The moves from the origin as polygons of their samples (see [`Polygon`]).
+fn programmed(moves: &[Move<3>]) -> Vec<Polygon<3>> {
     let mut from = [0.0; 3];
     moves
         .iter()
@@ -888,9 +859,29 @@ fn largest_sag(moves: &[Move<3>]) -> f64 {
                 m.second_derivative_bound(),
                 4 * CURVE_SAMPLES,
             )
-            .sag
+        })
+        .collect()
+}
+
+/// The largest distance of the played ticks from the programmed moves: an upper bound,
+/// which exceeds the distance by at most twice the [`largest_sag`] of the moves (a point of
+/// a move lies within the sag of its polygon, and the polygon's distance gets the sag
+/// added).
+fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
+    let polygons = programmed(moves);
+    x.iter()
+        .map(|&p| {
+            polygons
+                .iter()
+                .map(|g| g.distance(p))
+                .fold(f64::INFINITY, f64::min)
         })
         .fold(0.0, f64::max)
+}
+
+/// The largest departure of the polygons of [`distance_from_moves`] from their moves.
+fn largest_sag(moves: &[Move<3>]) -> f64 {
+    programmed(moves).iter().map(|p| p.sag).fold(0.0, f64::max)
 }
 
 /// A stream of lines (corners of 5° to 145°, a reversal), a tangent arc with a helical rise

@@ -348,9 +348,8 @@ impl<const Z: usize> LookAhead<Z> {
 }
 
 /// The zones of one segment of a streamed path on their way into a window. The speed-limit
-/// sampling places them by the arc lengths of a table of the segment; they are scaled onto
-/// the segment's exact length and shifted to where it starts on the path (the last one
-/// ends exactly at the segment's end).
+/// sampling places them by the segment's own arc lengths; they are shifted to where it
+/// starts on the path (the last one ends exactly at the segment's end).
 ///
 /// A zone that its own speed limit crosses in fewer than [`MIN_ZONE_TICKS`] ticks is merged
 /// with its neighbour in the segment, under the lower limits of both: a zone is entered and
@@ -362,7 +361,6 @@ pub(crate) struct SegmentZones<const K: usize> {
     base: usize,
     start: f64,
     length: f64,
-    table_length: f64,
     /// The control period in seconds.
     period: f64,
 }
@@ -379,18 +377,15 @@ impl<const K: usize> SegmentZones<K> {
             base: 0,
             start: 0.0,
             length: 0.0,
-            table_length: 1.0,
             period: 0.0,
         }
     }
 
     /// The zones that follow are of a segment at the arc length `start` of the path, of
-    /// exact length `length` and table length `table_length`, played at the control period
-    /// `period`.
-    pub(crate) fn place(&mut self, start: f64, length: f64, table_length: f64, period: f64) {
+    /// length `length`, played at the control period `period`.
+    pub(crate) fn place(&mut self, start: f64, length: f64, period: f64) {
         self.base = self.zones.len();
-        (self.start, self.length) = (start, length);
-        (self.table_length, self.period) = (table_length, period);
+        (self.start, self.length, self.period) = (start, length, period);
     }
 
     /// Whether `zone` is crossed at its speed limit in fewer than [`MIN_ZONE_TICKS`] ticks.
@@ -398,12 +393,12 @@ impl<const K: usize> SegmentZones<K> {
         zone.end - zone.start < zone.v_limit * self.period * MIN_ZONE_TICKS
     }
 
-    /// The arc length of the path at the table's arc length `s`.
+    /// The arc length of the path at the segment's arc length `s` (its end exactly).
     fn at(&self, s: f64) -> f64 {
-        if s >= self.table_length {
+        if s >= self.length {
             self.start + self.length
         } else {
-            self.start + s * (self.length / self.table_length)
+            self.start + s
         }
     }
 

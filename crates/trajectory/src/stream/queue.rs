@@ -408,11 +408,8 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
         let mut s = self.length;
         if leave - prev.from > 1e-12 {
-            let span = Segment::span(&prev.curve, (prev.from, leave), s, prev.feed)?;
-            self.zones_of(&span, &mut zones)?;
-            if matches!(corner, Junction::Stop) {
-                zones.stop_at_end();
-            }
+            let stop = matches!(corner, Junction::Stop);
+            let span = self.span_of(&prev, leave, s, stop, &mut zones)?;
             s = span.end();
             let _ = added.push(span);
         }
@@ -463,14 +460,31 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             return Ok(());
         };
         let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
-        let span = Segment::span(&prev.curve, (prev.from, 1.0), self.length, prev.feed)?;
-        self.zones_of(&span, &mut zones)?;
-        zones.stop_at_end();
+        let span = self.span_of(&prev, 1.0, self.length, true, &mut zones)?;
         self.room_for(1, zones.zones().len())?;
         self.append(&[span], &zones)?;
         self.length = span.end();
         self.pending = None;
         Ok(())
+    }
+
+    /// The segment of the pending move `prev` from its start up to its parameter `to`, at the
+    /// path's arc length `start`, with its zones appended to `zones` (ending at rest for a
+    /// `stop`).
+    fn span_of<const K: usize>(
+        &self,
+        prev: &Pending<D>,
+        to: f64,
+        start: f64,
+        stop: bool,
+        zones: &mut SegmentZones<K>,
+    ) -> Result<Segment<D>, Error> {
+        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed)?;
+        self.zones_of(&span, zones)?;
+        if stop {
+            zones.stop_at_end();
+        }
+        Ok(span)
     }
 
     /// The zones of `segment` appended to `out`.
@@ -480,7 +494,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         out: &mut SegmentZones<K>,
     ) -> Result<(), Error> {
         let limits = self.planned.with_velocity_at_most(segment.feed);
-        out.place(segment.start, segment.length, segment.length, self.period());
+        out.place(segment.start, segment.length, self.period());
         let samples = if segment.uniform() { 1 } else { LOAD_SAMPLES };
         let options = self.options.plan.with_samples(samples);
         zones_into(segment, segment, &limits, &options, out)
