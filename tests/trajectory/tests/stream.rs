@@ -1169,14 +1169,25 @@ fn sample_stream<N: Kernel>(
     tolerance: f64,
     (batch, every): (usize, usize),
 ) -> (Vec<Sample<N::Out, 3>>, StreamStats, u32) {
+    sample_controlled::<N>(moves, tolerance, (batch, every), |_, _| {})
+}
+
+/// [`sample_stream`] with `control(tick, sampler)` called before each sample.
+fn sample_controlled<N: Kernel>(
+    moves: &[Move<3>],
+    tolerance: f64,
+    (batch, every): (usize, usize),
+    mut control: impl FnMut(usize, &mut StreamSampler<'_, N, 3>),
+) -> (Vec<Sample<N::Out, 3>>, StreamStats, u32) {
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let options = StreamOptions::new(1000.0).with_tolerance(tolerance);
     let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
     let mut queue = Queue::<Piece<N, 3>, 64>::new();
     let (mut producer, consumer) = queue.split();
-    let mut sampler = StreamSampler::new(consumer, [N::ZERO; 3]);
+    let mut sampler = StreamSampler::new(consumer, &stream).unwrap();
     let (mut samples, mut next) = (Vec::new(), 0);
     for tick in 0..1_000_000 {
+        control(tick, &mut sampler);
         if tick % every == 0 {
             for mv in moves.iter().skip(next).take(batch) {
                 stream.push(mv).unwrap();
@@ -1260,4 +1271,152 @@ fn a_starved_stream_sampler_holds_at_rest() {
     println!("{} samples, {holds} held, {stats:?}", samples.len());
     assert!(holds > 100);
     assert_eq!(samples.last().unwrap().position, moves[11].to);
+}
+
+/// The largest speed, acceleration and jerk of sampler output: the speed and acceleration
+/// from their channels, the jerk from differences of the acceleration channel.
+fn sample_peaks<N: Kernel>(samples: &[Sample<N::Out, 3>]) -> [f64; 3] {
+    let f = |x: [N::Out; 3]| x.map(Scalar::to_f64);
+    let mut peaks = [0.0_f64; 3];
+    for (k, s) in samples.iter().enumerate() {
+        peaks[0] = peaks[0].max(f(s.velocity).norm());
+        peaks[1] = peaks[1].max(f(s.acceleration).norm());
+        if let Some(p) = k.checked_sub(1).and_then(|i| samples.get(i)) {
+            let j = f(s.acceleration).minus(f(p.acceleration)).norm() * 1000.0;
+            peaks[2] = peaks[2].max(j);
+        }
+    }
+    peaks
+}
+
+/// Checks sampler output under feed ramps against the machine's limits (v 200, a 3000,
+/// j 100 000: the ramps use the feed share the plan leaves free) with the format's
+/// allowance, and in `f64` the speed from differences of positions.
+fn assert_machine_limits<N: Kernel>(samples: &[Sample<N::Out, 3>], what: &str) {
+    let (channel, jerk) = format_allowance::<N>();
+    let [v, a, j] = sample_peaks::<N>(samples);
+    println!("{what} {}: v {v:.3} a {a:.1} j {j:.0}", N::NAME);
+    assert!(v <= 200.0 * (1.0 + channel), "{what} {}: v {v}", N::NAME);
+    assert!(a <= 3000.0 * (1.0 + channel), "{what} {}: a {a}", N::NAME);
+    assert!(j <= 100_000.0 * (1.0 + jerk), "{what} {}: j {j}", N::NAME);
+    if N::NAME == "f64" {
+        for w in samples.windows(2) {
+            let d = w[1]
+                .position
+                .map(Scalar::to_f64)
+                .minus(w[0].position.map(Scalar::to_f64));
+            assert!(
+                d.norm() * 1000.0 <= 200.0 * (1.0 + 1e-9),
+                "{what}: step {d:?}"
+            );
+        }
+    }
+}
+
+/// Feed override, hold and resume on a stream: the samples keep the machine's limits and
+/// the tolerance of the moves, the hold stands still on the path, the motion takes longer
+/// than at full feed and ends exactly on the last move's end (every number format).
+#[test]
+fn feed_override_hold_and_resume_on_a_stream() {
+    fn check<N: Kernel>() {
+        let moves = contour_moves();
+        let all = (moves.len(), 1);
+        let (plain, _, _) = sample_stream::<N>(&moves, 0.05, all);
+        let (samples, _, underruns) =
+            sample_controlled::<N>(&moves, 0.05, all, |tick, s| match tick {
+                300 => s.set_feed(0.4),
+                800 => s.hold(),
+                1400 => s.resume(),
+                1700 => s.set_feed(1.0),
+                _ => {}
+            });
+        assert_eq!(underruns, 0);
+        assert!(
+            samples.len() > plain.len() + 600,
+            "{} vs {}",
+            samples.len(),
+            plain.len()
+        );
+        assert_machine_limits::<N>(&samples, "override and hold");
+        let x: Vec<[f64; 3]> = samples
+            .iter()
+            .map(|s| s.position.map(Scalar::to_f64))
+            .collect();
+        let held = x[800..1400].windows(2).filter(|w| w[0] == w[1]).count();
+        assert!(held > 300, "{} held {held} ticks", N::NAME);
+        let far = 256.0 * f64::from(f32::EPSILON) * 100.0;
+        let bound = 0.05 + 1e-5 + far + 2.0 * largest_sag(&moves);
+        let worst = distance_from_moves(&moves, &x);
+        assert!(worst <= bound, "{} distance {worst}", N::NAME);
+        assert_eq!(*x.last().unwrap(), moves[8].to);
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Q40>();
+}
+
+/// A quick stop and an abort (with ramps slowed to a quarter) at full speed on a long line:
+/// both stop on the line within the limits, the quick stop sooner; then the stream aborts
+/// at the sampler's position, the sampler restarts, and a move back ends exactly at the
+/// start, the limits held throughout.
+#[test]
+fn quick_stop_and_abort_on_a_stream() {
+    fn stop<N: Kernel>(quick: bool) -> usize {
+        let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+        let options = StreamOptions::new(1000.0);
+        let mut stream = Stream::<3, 8, 64>::new([0.0; 3], limits, options).unwrap();
+        stream.push(&Move::line([300.0, 0.0, 0.0])).unwrap();
+        stream.push(&Move::line([300.0, 1.0, 0.0])).unwrap();
+        let mut queue = Queue::<Piece<N, 3>, 64>::new();
+        let (mut producer, consumer) = queue.split();
+        let mut sampler = StreamSampler::new(consumer, &stream).unwrap();
+        let mut samples = Vec::new();
+        let mut stopped = None;
+        for tick in 0..20_000 {
+            match (tick, quick) {
+                (600, true) => sampler.quick_stop(),
+                (600, false) => sampler.abort(),
+                (0, false) => assert!(sampler.scale_feed_ramp(2)),
+                _ => {}
+            }
+            if !sampler.is_finished() {
+                stream.poll(&mut producer).unwrap();
+            } else if stopped.is_none() {
+                stopped = Some(tick);
+                let here = sampler.position();
+                assert!(
+                    here[0] > 50.0 && here[0] < 300.0 && here[1] == 0.0,
+                    "{here:?}"
+                );
+                stream.abort(here).unwrap();
+                assert!(sampler.restart());
+                stream.push(&Move::line([0.0; 3])).unwrap();
+                stream.finish().unwrap();
+            } else {
+                stream.poll(&mut producer).unwrap();
+            }
+            samples.push(sampler.next());
+            if stopped.is_some() && stream.is_idle() && sampler.is_holding() {
+                break;
+            }
+        }
+        let stopped = stopped.expect("stops");
+        assert_machine_limits::<N>(&samples, if quick { "quick stop" } else { "abort" });
+        let v = samples[599].velocity.map(Scalar::to_f64).norm();
+        assert!(v > 199.0, "at full speed before the stop: {v}");
+        assert_eq!(
+            samples.last().unwrap().position.map(Scalar::to_f64),
+            [0.0; 3]
+        );
+        assert_eq!(sampler.underruns(), 0);
+        stopped - 600
+    }
+    fn check<N: Kernel>() {
+        let (quick, abort) = (stop::<N>(true), stop::<N>(false));
+        println!("{}: quick stop in {quick} ticks, abort in {abort}", N::NAME);
+        assert!(quick * 2 < abort, "{quick} {abort}");
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Q40>();
 }

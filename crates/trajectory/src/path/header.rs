@@ -64,6 +64,28 @@ impl<N: Number> FeedRampLimits<N> {
         }
     }
 
+    /// The constants in `N` of a ramp with the largest rate `omega` and change per tick
+    /// `alpha` (from [`feed_ramp_f64`]) at `rate` ticks per second: `ω_max` rounded down to a
+    /// whole multiple of `α`, so that `ω` stays one and the ramp's braking distance is exact
+    /// (at most 2²⁰ steps, as `ω_max ≤ √α` and `α ≥ 2⁻⁴⁰`).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] when `α` or the rate does not fit `N`.
+    pub(crate) fn from_rates(omega: f64, alpha: f64, rate: f64) -> Result<Self, Error> {
+        let alpha = N::from_f64(alpha).ok_or(Error::OutOfRange)?;
+        #[allow(clippy::cast_possible_truncation)]
+        let k_max = libm::floor(omega / alpha.to_f64()).clamp(1.0, f64::from(1_u32 << 20)) as i64;
+        let rate = N::from_f64(rate).ok_or(Error::OutOfRange)?;
+        Ok(Self::new(alpha, k_max, rate))
+    }
+
+    /// The largest rate of the feed factor `φ̇ = α·K_max·rate`, per second, at `rate` ticks
+    /// per second.
+    #[allow(clippy::cast_precision_loss)]
+    pub(crate) fn phi_dot_max(&self, rate: f64) -> f64 {
+        self.alpha.to_f64() * (self.k_max as f64) * rate
+    }
+
     /// The same ramp with the change per tick `alpha` (and `ω` up to `k_max · alpha`).
     pub(crate) fn with_alpha(&self, alpha: N) -> Self {
         Self::new(alpha, self.k_max, self.rate)
@@ -441,15 +463,9 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
             return Err(Error::InvalidLimit);
         }
         let (omega, alpha) = feed_ramp_f64(meta);
-        let alpha = N::from_f64(alpha).ok_or(Error::OutOfRange)?;
-        // ω_max a whole multiple of α, so that ω stays one and the ramp's braking distance is
-        // exact: at most 2²⁰ steps, as ω_max ≤ √α and α ≥ 2⁻⁴⁰.
-        #[allow(clippy::cast_possible_truncation)]
-        let k_max = libm::floor(omega / alpha.to_f64()).clamp(1.0, f64::from(1_u32 << 20)) as i64;
-        let rate = N::from_f64(meta.rate).ok_or(Error::OutOfRange)?;
-        #[allow(clippy::cast_precision_loss)]
-        let phi_dot_max = alpha.to_f64() * (k_max as f64) * meta.rate;
-        header.ramp = FeedRampLimits::new(alpha, k_max, rate);
+        let ramp = FeedRampLimits::from_rates(omega, alpha, meta.rate)?;
+        let phi_dot_max = ramp.phi_dot_max(meta.rate);
+        header.ramp = ramp;
         Ok(Validator {
             header,
             phi_dot_max,

@@ -33,7 +33,7 @@ use crate::compile::StretchFit;
 use crate::compile::TickMotion;
 use crate::error::Error;
 use crate::num::Number;
-use crate::path::{AxisState, Piece};
+use crate::path::{AxisState, MIN_ALPHA, PathMeta, Piece, feed_ramp_f64};
 use crate::plan::{
     Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones, zones_into,
 };
@@ -272,6 +272,8 @@ pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
     /// The first tick not yet compiled.
     next_tick: u32,
     stats: StreamStats,
+    /// The feed ramp's largest rate and change per tick of the feed factor (the sampler's).
+    ramp: (f64, f64),
 }
 
 impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
@@ -303,7 +305,9 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         if !start.iter().all(|x| x.is_finite()) {
             return Err(Error::Curve(strak_curves::Error::NonFinite));
         }
+        let ramp = feed_ramp(&limits, &options);
         Ok(Stream {
+            ramp,
             planned: limits.without_reserve(1.0 - (1.0 - options.plan.feed_share()) * FIT_MARGIN),
             promised: options.plan.promised(&limits),
             options,
@@ -369,6 +373,67 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
 
     fn period(&self) -> f64 {
         1.0 / self.options.plan.rate()
+    }
+
+    /// The feed ramp's largest rate and change per tick of the feed factor, and the rate in
+    /// ticks per second, for [`StreamSampler`](crate::StreamSampler).
+    pub(crate) fn feed_ramp(&self) -> (f64, f64, f64) {
+        (self.ramp.0, self.ramp.1, self.options.plan.rate())
+    }
+
+    /// Where the motion is at the first tick not yet compiled: the start of what was pushed
+    /// while nothing is compiled, the end of the motion after it.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Move, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([1.0, 2.0], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([5.0, 2.0]))?;
+    /// assert_eq!(stream.position()?, [1.0, 2.0]);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Curve`] for a segment whose arc length does not converge.
+    pub fn position(&self) -> Result<[f64; D], Error> {
+        if self.segments.is_empty() {
+            return Ok(match &self.pending {
+                Some(p) if p.from == 0.0 => p.curve.eval(0.0),
+                _ => self.end,
+            });
+        }
+        self.motion().position(self.next_tick)
+    }
+
+    /// Drops everything not yet compiled and rests at `at`, where an aborted
+    /// [`StreamSampler`](crate::StreamSampler) stopped ([`position`](crate::StreamSampler::position)):
+    /// the next move starts there, from rest. The statistics and the tick count go on.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Move, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([5.0, 0.0]))?;
+    /// stream.abort([2.5, 0.0])?;
+    /// assert!(stream.is_idle());
+    /// assert_eq!(stream.position()?, [2.5, 0.0]);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Curve`] with a non-finite coordinate (nothing changed).
+    pub fn abort(&mut self, at: [f64; D]) -> Result<(), Error> {
+        if !at.iter().all(|x| x.is_finite()) {
+            return Err(Error::Curve(strak_curves::Error::NonFinite));
+        }
+        self.segments.clear();
+        self.committed.clear();
+        self.pending = None;
+        (self.end, self.length) = (at, 0.0);
+        self.window = LookAhead::new();
+        self.window
+            .hold_until(f64::from(self.next_tick) * self.period());
+        Ok(())
     }
 
     /// Appends the move `mv`, from the end of the move before (or the start).
@@ -658,4 +723,36 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             self.segments.pop_front();
         }
     }
+}
+
+/// The feed ramp of a stream's sampler: its largest rate and change per tick of the feed
+/// factor, from what the window leaves free of the limits (the feed share of the
+/// acceleration and jerk; the motion's speed at most the path velocity limit), as a compiled
+/// path's ramp is sized from its peaks. A ramp adds `φ̇·ẋᵢ` to each axis's acceleration,
+/// so its rate is also kept within the share of each axis's acceleration limit.
+fn feed_ramp<const D: usize>(limits: &Limits<D>, options: &StreamOptions) -> (f64, f64) {
+    let share = options.plan.feed_share();
+    let rate = options.plan.rate();
+    let meta = PathMeta {
+        rate,
+        plan_duration: 1.0,
+        tolerance: 1.0,
+        peak_velocity: limits.velocity(),
+        peak_acceleration: (1.0 - share) * limits.acceleration(),
+        peak_jerk: (1.0 - share) * limits.jerk(),
+        acceleration_limit: limits.acceleration(),
+        jerk_limit: limits.jerk(),
+        feed_share: share,
+    };
+    let (mut omega, alpha) = feed_ramp_f64(&meta);
+    for (v, a) in limits
+        .axis_velocity()
+        .into_iter()
+        .zip(limits.axis_acceleration())
+    {
+        if a.is_finite() {
+            omega = omega.min(share * a / (v.min(limits.velocity()) * rate));
+        }
+    }
+    (omega, alpha.min(omega.max(MIN_ALPHA)))
 }
