@@ -1169,15 +1169,15 @@ fn sample_stream<N: Kernel>(
     tolerance: f64,
     (batch, every): (usize, usize),
 ) -> (Vec<Sample<N::Out, 3>>, StreamStats, u32) {
-    sample_controlled::<N>(moves, tolerance, (batch, every), |_, _| {})
+    sample_controlled::<N>(moves, tolerance, (batch, every), |_, _, _| {})
 }
 
-/// [`sample_stream`] with `control(tick, sampler)` called before each sample.
+/// [`sample_stream`] with `control(tick, stream, sampler)` called before each sample.
 fn sample_controlled<N: Kernel>(
     moves: &[Move<3>],
     tolerance: f64,
     (batch, every): (usize, usize),
-    mut control: impl FnMut(usize, &mut StreamSampler<'_, N, 3>),
+    mut control: impl FnMut(usize, &mut Stream<3, 32, 256>, &mut StreamSampler<'_, N, 3>),
 ) -> (Vec<Sample<N::Out, 3>>, StreamStats, u32) {
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let options = StreamOptions::new(1000.0).with_tolerance(tolerance);
@@ -1187,7 +1187,7 @@ fn sample_controlled<N: Kernel>(
     let mut sampler = StreamSampler::new(consumer, &stream).unwrap();
     let (mut samples, mut next) = (Vec::new(), 0);
     for tick in 0..1_000_000 {
-        control(tick, &mut sampler);
+        control(tick, &mut stream, &mut sampler);
         if tick % every == 0 {
             for mv in moves.iter().skip(next).take(batch) {
                 stream.push(mv).unwrap();
@@ -1323,7 +1323,7 @@ fn feed_override_hold_and_resume_on_a_stream() {
         let all = (moves.len(), 1);
         let (plain, _, _) = sample_stream::<N>(&moves, 0.05, all);
         let (samples, _, underruns) =
-            sample_controlled::<N>(&moves, 0.05, all, |tick, s| match tick {
+            sample_controlled::<N>(&moves, 0.05, all, |tick, _, s| match tick {
                 300 => s.set_feed(0.4),
                 800 => s.hold(),
                 1400 => s.resume(),
@@ -1419,4 +1419,59 @@ fn quick_stop_and_abort_on_a_stream() {
     check::<f64>();
     check::<f32>();
     check::<Q40>();
+}
+
+/// A feed override above 100 % raises the feeds of the moves not yet compiled, never the
+/// machine's limits: moves at feed 60 (and one rapid) run up to 120 at 200 %, the rapid
+/// at the machine's 200 at most; back at 100 % the end runs at 60 again; the samples keep
+/// the promised limits and the tolerance throughout, and the motion is faster.
+#[test]
+fn feed_override_above_full_feed_raises_the_feeds() {
+    let mut moves: Vec<Move<3>> = contour_moves()
+        .into_iter()
+        .map(|m| m.with_feed(60.0))
+        .collect();
+    moves[4].feed = None;
+    let all = (moves.len(), 1);
+    let (plain, _, _) = sample_stream::<f64>(&moves, 0.05, all);
+    let (samples, _, underruns) = sample_controlled::<f64>(&moves, 0.05, all, |tick, stream, s| {
+        let f = match tick {
+            0 => 2.0,
+            1000 => 1.0,
+            _ => return,
+        };
+        s.set_feed(stream.set_feed_override(f));
+    });
+    assert_eq!(underruns, 0);
+    // speeds from differences of positions
+    let speeds: Vec<f64> = samples
+        .windows(2)
+        .map(|w| w[1].position.minus(w[0].position).norm() * 1000.0)
+        .collect();
+    let fast = speeds[..1000].iter().copied().fold(0.0, f64::max);
+    let end = speeds[speeds.len() * 4 / 5..]
+        .iter()
+        .copied()
+        .fold(0.0, f64::max);
+    println!(
+        "ticks {} (at 100 %: {}), fastest {fast:.2}, at the end {end:.2}",
+        samples.len(),
+        plain.len()
+    );
+    assert!(fast > 100.0 && fast <= 200.0 * (1.0 + 1e-9), "{fast}");
+    // within the fit's tolerance (1e-5 units) of the planned positions at both ends of a tick
+    let fit = 2.0 * 1e-5 * 1000.0;
+    assert!(end <= 60.0 + fit, "{end}");
+    assert!(samples.len() + 300 < plain.len());
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    let [v, a, j] = sample_peaks::<f64>(&samples);
+    assert!(
+        v <= 200.0 * (1.0 + 1e-9) && a <= keep * 3000.0 * (1.0 + 1e-9),
+        "{v} {a}"
+    );
+    assert!(j <= keep * 100_000.0 * (1.0 + 1e-9), "{j}");
+    let x: Vec<[f64; 3]> = samples.iter().map(|s| s.position).collect();
+    let worst = distance_from_moves(&moves, &x);
+    assert!(worst <= 0.05 + 1e-5 + 2.0 * largest_sag(&moves), "{worst}");
+    assert_eq!(*x.last().unwrap(), moves[8].to);
 }

@@ -115,15 +115,6 @@ impl<const A: usize> Limits<A> {
             axis_acceleration: self.axis_acceleration.map(|a| a * keep),
         }
     }
-
-    /// The limits with the path velocity lowered to `velocity` where that is lower (a
-    /// move's feed).
-    pub(crate) fn with_velocity_at_most(&self, velocity: f64) -> Self {
-        Limits {
-            velocity: self.velocity.min(velocity),
-            ..*self
-        }
-    }
 }
 
 #[cfg(test)]

@@ -39,15 +39,25 @@ use crate::error::Error;
 /// appended the backward pass stops at the first zone whose cap and fastest start come out
 /// as before (the zones before it keep theirs), and the forward pass starts again there.
 fn plan_speeds(zones: &mut [WindowZone], v_entry: f64) {
+    plan_speeds_under(zones, v_entry, |_, z| z.v_limit());
+}
+
+/// [`plan_speeds`] with the speed limit `limit(i, zone)` of each zone `i` (the zones' own,
+/// or those a feed scale would give them).
+fn plan_speeds_under(
+    zones: &mut [WindowZone],
+    v_entry: f64,
+    limit: impl Fn(usize, &WindowZone) -> f64,
+) {
     let mut bound = 0.0;
     let mut from = 0;
     for i in (0..zones.len()).rev() {
-        let next_limit = zones.get(i + 1).map_or(0.0, |z| z.v_limit);
+        let next_limit = zones.get(i + 1).map_or(0.0, |z| limit(i + 1, z));
         if let Some(z) = zones.get_mut(i) {
-            let length = z.end - z.start;
-            let cap = z.exit_cap.min(next_limit).min(bound).min(z.v_limit);
-            let from_rest = reach(0.0, length, z.v_limit, z.a_limit, z.j_limit);
-            let from_cap = reach(cap, length, z.v_limit, z.a_limit, z.j_limit);
+            let (length, v_limit) = (z.end - z.start, limit(i, z));
+            let cap = z.exit_cap.min(next_limit).min(bound).min(v_limit);
+            let from_rest = reach(0.0, length, v_limit, z.a_limit, z.j_limit);
+            let from_cap = reach(cap, length, v_limit, z.a_limit, z.j_limit);
             bound = from_rest.max(from_cap);
             if cap == z.cap && bound == z.bound {
                 from = i;
@@ -84,7 +94,7 @@ fn fastest_end(v0: f64, cap: f64, length: f64, a: f64, j: f64) -> f64 {
 
 /// A zone of the look-ahead window: a stretch of arc length with constant limits, without
 /// phases (those are made when it is committed), so that a window of many zones stays
-/// small (80 bytes).
+/// small (88 bytes).
 ///
 /// ```
 /// use strak_trajectory::{Error, WindowZone};
@@ -96,7 +106,13 @@ fn fastest_end(v0: f64, cap: f64, length: f64, a: f64, j: f64) -> f64 {
 pub struct WindowZone {
     start: f64,
     end: f64,
-    v_limit: f64,
+    /// The speed limit of the path and the machine (curvature, axes), without the feed.
+    v_machine: f64,
+    /// The programmed feed (`∞` for none; rounded down to `f32`), times `scale` where it
+    /// applies.
+    feed: f32,
+    /// The feed override the zone is planned with (1 to 2).
+    scale: f32,
     a_limit: f64,
     j_limit: f64,
     exit_cap: f64,
@@ -141,6 +157,16 @@ impl WindowZone {
         Ok(WindowZone::unchecked((start, end), (v, a, j), exit_cap))
     }
 
+    /// The speed limit: the machine's, or the feed scaled by the override where lower.
+    fn v_limit(&self) -> f64 {
+        self.limit_at(self.scale)
+    }
+
+    /// The speed limit under the feed override `scale`.
+    fn limit_at(&self, scale: f32) -> f64 {
+        self.v_machine.min(f64::from(self.feed) * f64::from(scale))
+    }
+
     /// The zone of [`new`](Self::new), its values not checked.
     const fn unchecked(
         (start, end): (f64, f64),
@@ -150,7 +176,9 @@ impl WindowZone {
         WindowZone {
             start,
             end,
-            v_limit: v,
+            v_machine: v,
+            feed: f32::INFINITY,
+            scale: 1.0,
             a_limit: a,
             j_limit: j,
             exit_cap,
@@ -322,6 +350,56 @@ impl<const Z: usize> LookAhead<Z> {
         }
     }
 
+    /// Plans the zones with the feed override `scale` (1 to 2): their feeds times `scale`,
+    /// never above the machine's limits. Where a lower override would leave the committed
+    /// speed no way to keep to the window, the fewest zones at its front keep the override
+    /// they had (the motion cannot slow down in time for them).
+    pub(crate) fn scale_feeds(&mut self, scale: f32) {
+        let v_entry = self.entry.2;
+        let (mut lo, mut hi) = (0, self.zones.len());
+        while lo < hi {
+            let keep = lo + (hi - lo) / 2;
+            if self.fits_from(keep, scale, v_entry) {
+                hi = keep;
+            } else {
+                lo = keep + 1;
+            }
+        }
+        let keep = if self.fits_from(lo, scale, v_entry) {
+            lo
+        } else {
+            self.zones.len()
+        };
+        for z in self.zones.iter_mut().skip(keep) {
+            z.scale = scale;
+        }
+        self.replan();
+    }
+
+    /// Whether the window, its zones from `keep` on planned with the override `scale`, can
+    /// be entered at `v_entry` (the speeds planned are left for [`replan`](Self::replan)).
+    fn fits_from(&mut self, keep: usize, scale: f32, v_entry: f64) -> bool {
+        for z in self.zones.iter_mut() {
+            z.bound = f64::NAN;
+        }
+        plan_speeds_under(&mut self.zones, v_entry, |i, z| {
+            if i < keep {
+                z.v_limit()
+            } else {
+                z.limit_at(scale)
+            }
+        });
+        self.zones.first().is_none_or(|z| v_entry <= z.bound)
+    }
+
+    /// Plans every zone's speeds afresh.
+    fn replan(&mut self) {
+        for z in self.zones.iter_mut() {
+            z.bound = f64::NAN;
+        }
+        plan_speeds(&mut self.zones, self.entry.2);
+    }
+
     /// Commits the first zone: its double S from the committed speed to the end speed the
     /// window allows, as a [`ProfileZone`] with its phases (entered at the committed time
     /// and arc length); `None` for an empty window.
@@ -336,7 +414,7 @@ impl<const Z: usize> LookAhead<Z> {
         }
         let w = self.zones.remove(0);
         let (t, s, v) = self.entry;
-        let mut zone = ProfileZone::new(w.start, w.end, w.v_limit, w.a_limit, w.j_limit);
+        let mut zone = ProfileZone::new(w.start, w.end, w.v_limit(), w.a_limit, w.j_limit);
         zone.exit_cap = w.exit_cap;
         zone.v_start = v;
         zone.v_end = w.v_end;
@@ -363,6 +441,15 @@ pub(crate) struct SegmentZones<const K: usize> {
     length: f64,
     /// The control period in seconds.
     period: f64,
+    /// The segment's feed (rounded down to `f32`) and the override it is planned with.
+    feed: (f32, f32),
+}
+
+/// A feed `x > 0` in `f32`, rounded down (a feed kept as a limit must not grow).
+fn round_down(x: f64) -> f32 {
+    #[allow(clippy::cast_possible_truncation)]
+    let y = x as f32;
+    if f64::from(y) > x { y.next_down() } else { y }
 }
 
 /// The fewest ticks in which a zone of a segment is crossed at its speed limit (else it is
@@ -378,19 +465,22 @@ impl<const K: usize> SegmentZones<K> {
             start: 0.0,
             length: 0.0,
             period: 0.0,
+            feed: (f32::INFINITY, 1.0),
         }
     }
 
     /// The zones that follow are of a segment at the arc length `start` of the path, of
-    /// length `length`, played at the control period `period`.
-    pub(crate) fn place(&mut self, start: f64, length: f64, period: f64) {
+    /// length `length`, played at the control period `period`, at the feed `feed` (`∞`:
+    /// none) under the override `scale`.
+    pub(crate) fn place(&mut self, (start, length): (f64, f64), period: f64, feed: (f64, f32)) {
         self.base = self.zones.len();
         (self.start, self.length, self.period) = (start, length, period);
+        self.feed = (round_down(feed.0), feed.1);
     }
 
     /// Whether `zone` is crossed at its speed limit in fewer than [`MIN_ZONE_TICKS`] ticks.
     fn short(&self, zone: &WindowZone) -> bool {
-        zone.end - zone.start < zone.v_limit * self.period * MIN_ZONE_TICKS
+        zone.end - zone.start < zone.v_limit() * self.period * MIN_ZONE_TICKS
     }
 
     /// The arc length of the path at the segment's arc length `s` (its end exactly).
@@ -425,7 +515,8 @@ impl<const K: usize> ZoneSink for SegmentZones<K> {
         (v, a, j): (f64, f64, f64),
         exit_cap: f64,
     ) -> usize {
-        let zone = WindowZone::unchecked((self.at(start), self.at(end)), (v, a, j), exit_cap);
+        let mut zone = WindowZone::unchecked((self.at(start), self.at(end)), (v, a, j), exit_cap);
+        (zone.feed, zone.scale) = self.feed;
         let merge = self.zones.len() > self.base
             && self.zones.last().is_some_and(|last| {
                 last.exit_cap == f64::INFINITY && (self.short(last) || self.short(&zone))
@@ -433,7 +524,7 @@ impl<const K: usize> ZoneSink for SegmentZones<K> {
         match self.zones.last_mut() {
             Some(last) if merge => {
                 last.end = zone.end;
-                last.v_limit = last.v_limit.min(zone.v_limit);
+                last.v_machine = last.v_machine.min(zone.v_machine);
                 last.a_limit = last.a_limit.min(zone.a_limit);
                 last.j_limit = last.j_limit.min(zone.j_limit);
                 last.exit_cap = zone.exit_cap;
@@ -561,6 +652,59 @@ mod tests {
 
     /// A window that runs dry comes to rest, and the zones that arrive afterwards start from
     /// rest where it stopped.
+    /// Feed overrides changed at random while zones with random feeds are streamed: the
+    /// committed motion stays continuous and within every zone's limits, raising the
+    /// override never slows a zone down, and the zones keep their feeds times the override
+    /// they were committed with (never above the machine's limit).
+    #[test]
+    fn feed_overrides_keep_the_window_feasible() {
+        let mut rng = Rng(0x5eed_1234_abcd_0002);
+        let mut kept = 0;
+        for _ in 0..200 {
+            let n = 4 + (rng.next() * 40.0) as usize;
+            let mut zones = random_zones(&mut rng, n);
+            for z in &mut zones {
+                z.feed = round_down(rng.range(5.0, 150.0));
+            }
+            let ahead = 1 + (rng.next() * 12.0) as usize;
+            let mut window = LookAhead::<64>::new();
+            let mut out = StdVec::new();
+            let mut scale = 1.0_f32;
+            for z in &zones {
+                let mut z = *z;
+                z.scale = scale;
+                window.push(z).unwrap();
+                if rng.next() < 0.3 {
+                    #[allow(clippy::cast_possible_truncation)]
+                    let next = if rng.next() < 0.5 {
+                        1.0
+                    } else {
+                        rng.range(1.0, 2.0) as f32
+                    };
+                    let before: StdVec<f32> = window.zones.iter().map(|z| z.scale).collect();
+                    window.scale_feeds(next);
+                    let changed = window.zones.iter().zip(&before);
+                    kept += changed
+                        .filter(|(z, b)| z.scale == **b && **b != next)
+                        .count();
+                    scale = next;
+                }
+                if window.len() > ahead {
+                    out.push(window.commit().unwrap());
+                }
+            }
+            while let Some(z) = window.commit() {
+                out.push(z);
+            }
+            check_motion(&out);
+            for (p, z) in out.iter().zip(&zones) {
+                assert!(p.v_limit <= z.v_machine);
+                assert!(p.v_limit <= f64::from(z.feed) * 2.0);
+            }
+        }
+        std::println!("zones that kept a higher override to stay feasible: {kept}");
+    }
+
     #[test]
     fn a_drained_window_rests_and_resumes() {
         let limits = (100.0, 1_000.0, 20_000.0);

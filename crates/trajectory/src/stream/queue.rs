@@ -274,6 +274,8 @@ pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
     stats: StreamStats,
     /// The feed ramp's largest rate and change per tick of the feed factor (the sampler's).
     ramp: (f64, f64),
+    /// The feed override (0 to 2): the feeds are planned with its part above 1.
+    feed_override: f64,
 }
 
 impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
@@ -308,6 +310,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         let ramp = feed_ramp(&limits, &options);
         Ok(Stream {
             ramp,
+            feed_override: 1.0,
             planned: limits.without_reserve(1.0 - (1.0 - options.plan.feed_share()) * FIT_MARGIN),
             promised: options.plan.promised(&limits),
             options,
@@ -403,6 +406,43 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             });
         }
         self.motion().position(self.next_tick)
+    }
+
+    /// Sets the feed override `f` (clamped to `[0, 2]`; NaN is ignored) and returns the
+    /// part of it for the sampler, [`StreamSampler::set_feed`](crate::StreamSampler::set_feed)'s
+    /// `min(f, 1)`. Above 1 the stream plans the feeds of the moves not yet compiled
+    /// (those in the look-ahead window and those pushed later) `f` times faster, never above
+    /// the machine's limits; rapid moves run at the machine's limits anyway. It takes
+    /// effect after the pieces already compiled (the queue's lead); where a lower override
+    /// would leave the motion no room to slow down, the zones at the window's front keep
+    /// the override they had. Below 1 the sampler's feed ramp slows the motion at once.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// assert_eq!(stream.set_feed_override(1.5), 1.0); // the stream plans 150 % of the feeds
+    /// assert_eq!(stream.set_feed_override(0.6), 0.6); // the sampler ramps to 60 %
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn set_feed_override(&mut self, f: f64) -> f32 {
+        if !f.is_nan() {
+            let before = self.feed_scale();
+            self.feed_override = f.clamp(0.0, 2.0);
+            if self.feed_scale() != before {
+                self.window.scale_feeds(self.feed_scale());
+            }
+        }
+        #[allow(clippy::cast_possible_truncation)]
+        let sampler = self.feed_override.min(1.0) as f32;
+        sampler
+    }
+
+    /// The feed override's part above 1, the factor the feeds are planned with.
+    fn feed_scale(&self) -> f32 {
+        #[allow(clippy::cast_possible_truncation)]
+        let scale = self.feed_override.max(1.0) as f32;
+        scale
     }
 
     /// Drops everything not yet compiled and rests at `at`, where an aborted
@@ -558,11 +598,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         segment: &Segment<D>,
         out: &mut SegmentZones<K>,
     ) -> Result<(), Error> {
-        let limits = self.planned.with_velocity_at_most(segment.feed);
-        out.place(segment.start, segment.length, self.period());
+        let feed = (segment.feed, self.feed_scale());
+        out.place((segment.start, segment.length), self.period(), feed);
         let samples = if segment.uniform() { 1 } else { LOAD_SAMPLES };
         let options = self.options.plan.with_samples(samples);
-        zones_into(segment, segment, &limits, &options, out)
+        zones_into(segment, segment, &self.planned, &options, out)
     }
 
     /// An error unless `segments` more segments and `zones` more zones fit.
