@@ -5,7 +5,8 @@
 //! instruction counter ([`counter`]), the check of the tick kernels against the portable
 //! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
 //! confines a firmware to the memories of a real part ([`mpu`]), the planning job
-//! ([`planning`]), the online solves ([`online`]) and the feed guard's cost ([`guard`]).
+//! ([`planning`]), the online solves ([`online`]), the feed guard's cost ([`guard`]) and
+//! streaming moves ([`streaming`]).
 //!
 //! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
 //! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a
@@ -44,6 +45,7 @@ pub mod play;
 pub mod sampler_check;
 #[allow(unsafe_code)]
 pub mod stack;
+pub mod streaming;
 
 use cortex_m_semihosting::debug;
 // The defmt global logger (semihosting) is linked from here.

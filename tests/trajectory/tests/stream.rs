@@ -805,7 +805,9 @@ fn run_stream<N: Number, const Q: usize, const Z: usize>(
         if next == moves.len() {
             stream.finish().unwrap();
         }
-        let ticks = stream.poll(&mut pieces).unwrap();
+        let ticks = stream
+            .poll(&mut pieces)
+            .unwrap_or_else(|e| panic!("poll: {e:?}"));
         while let Some(piece) = pieces.pop_front() {
             played.play(&piece, &mut end);
         }
@@ -1474,4 +1476,72 @@ fn feed_override_above_full_feed_raises_the_feeds() {
     let worst = distance_from_moves(&moves, &x);
     assert!(worst <= 0.05 + 1e-5 + 2.0 * largest_sag(&moves), "{worst}");
     assert_eq!(*x.last().unwrap(), moves[8].to);
+}
+
+/// A full stream refuses a move with a typed error and changes nothing: the segments
+/// (checked before any work) and the window's zones; after polls it takes the move, and the
+/// motion ends on the last move's end.
+#[test]
+fn a_full_stream_refuses_moves_and_changes_nothing() {
+    let limits = Limits::<2>::new(100.0, 2000.0, 50_000.0).unwrap();
+    let options = StreamOptions::new(1000.0).with_tolerance(0.05);
+    let zigzag = |i: usize| {
+        let y = if i.is_multiple_of(2) { 0.0 } else { 5.0 };
+        Move::line([5.0 * (i + 1) as f64, y])
+    };
+    // segments: 4 hold a move and its blend twice
+    let mut stream = Stream::<2, 4, 64>::new([0.0; 2], limits, options).unwrap();
+    let mut pushed = 0;
+    let refused = loop {
+        match stream.push(&zigzag(pushed)) {
+            Ok(()) => pushed += 1,
+            Err(e) => break e,
+        }
+    };
+    assert!(
+        matches!(refused, Error::CapacityExceeded { capacity: 4, .. }),
+        "{refused:?}"
+    );
+    let before = stream.stats();
+    assert_eq!(stream.push(&zigzag(pushed)), Err(refused));
+    assert_eq!(stream.stats(), before);
+    // zones: a window of 3 zones fills before the segments do
+    let mut narrow = Stream::<2, 16, 3>::new([0.0; 2], limits, options).unwrap();
+    let mut n = 0;
+    let refused = loop {
+        match narrow.push(&zigzag(n)) {
+            Ok(()) => n += 1,
+            Err(e) => break e,
+        }
+    };
+    assert!(
+        matches!(refused, Error::ZoneCapacityExceeded { capacity: 3, .. }),
+        "{refused:?}"
+    );
+    let before = narrow.stats();
+    assert_eq!(narrow.push(&zigzag(n)), Err(refused));
+    assert_eq!(narrow.stats(), before);
+    // polling frees room: every move is taken in the end
+    let mut pieces = Deque::<Piece<f64, 2>, 64>::new();
+    let mut last = [0.0; 2];
+    for _ in 0..100_000 {
+        if pushed < 12 && stream.push(&zigzag(pushed)).is_ok() {
+            pushed += 1;
+        }
+        if pushed == 12 {
+            match stream.finish() {
+                Ok(()) | Err(Error::CapacityExceeded { .. }) => {} // full: after a poll
+                Err(e) => panic!("{e}"),
+            }
+        }
+        stream.poll(&mut pieces).unwrap();
+        while let Some(p) = pieces.pop_front() {
+            last = p.axes().map(|a| a.position);
+        }
+        if pushed == 12 && stream.is_idle() {
+            break;
+        }
+    }
+    assert_eq!(last, zigzag(11).to);
+    assert_eq!(stream.stats().moves, 12);
 }

@@ -102,6 +102,15 @@ impl<const A: usize> Limits<A> {
         self.axis_acceleration
     }
 
+    /// No motion at all: every limit 0 (a placeholder until real limits are set).
+    pub(crate) const NONE: Self = Limits {
+        velocity: 0.0,
+        acceleration: 0.0,
+        jerk: 0.0,
+        axis_velocity: [0.0; A],
+        axis_acceleration: [0.0; A],
+    };
+
     /// What is left for the planned motion when `share` (in `(0, 1)`) of the acceleration
     /// and jerk limits (path and per axis) is reserved for feed changes: those limits times
     /// `1 − share`; the velocity limits are kept (a feed factor `≤ 1` only slows down).

@@ -241,6 +241,12 @@ impl<const Z: usize> LookAhead<Z> {
         }
     }
 
+    /// Empties the window, in place: at rest at arc length 0 and time 0.
+    pub(crate) fn clear(&mut self) {
+        self.zones.clear();
+        self.entry = (0.0, 0.0, 0.0);
+    }
+
     /// The zones not yet committed.
     ///
     /// ```

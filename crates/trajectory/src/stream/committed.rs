@@ -113,7 +113,7 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
 
     /// The frame of the path at the arc length `s`: of the first segment that ends at or
     /// after it (the last one beyond the end).
-    fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
+    pub(super) fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
         let segment = self
             .segments
             .iter()

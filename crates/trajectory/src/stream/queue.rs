@@ -255,6 +255,8 @@ struct Pending<const D: usize> {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
+    /// Whether limits and options are set ([`Stream::reset`]).
+    ready: bool,
     /// The limits the window plans with (the feed reserve taken off).
     planned: Limits<D>,
     /// What the compiled motion keeps to.
@@ -290,9 +292,80 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// ```
     ///
     /// # Errors
-    /// [`Error::InvalidLimit`] for invalid options (a negative or non-finite tolerance,
-    /// stretches of no tick, invalid [`PlanOptions`]).
+    /// As [`reset`](Self::reset).
     pub fn new(start: [f64; D], limits: Limits<D>, options: StreamOptions) -> Result<Self, Error> {
+        let mut stream = Self::unset();
+        stream.reset(start, limits, options)?;
+        Ok(stream)
+    }
+
+    /// A stream without limits that refuses every move ([`Error::InvalidLimit`]) until
+    /// [`reset`](Self::reset) gives it its start, limits and options: firmware builds a large
+    /// stream in place with it (`let mut stream = Stream::unset();` in the frame that runs
+    /// it, or a `static`), where [`new`](Self::new) would return it by value. Only the small
+    /// fields are written; the queues' storage is left uninitialized.
+    ///
+    /// ```
+    /// use strak_trajectory::{Error, Limits, Move, Stream, StreamOptions};
+    /// let mut stream = Stream::<2, 8, 32>::unset();
+    /// assert_eq!(stream.push(&Move::line([1.0, 0.0])), Err(Error::InvalidLimit));
+    /// let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// stream.reset([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// stream.push(&Move::line([1.0, 0.0]))?;
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    #[inline(never)] // the caller's slot is written in place (the value is returned through it)
+    pub const fn unset() -> Self {
+        Stream {
+            ready: false,
+            ramp: (0.0, 0.0),
+            feed_override: 1.0,
+            planned: Limits::NONE,
+            promised: MotionLimits::new(0.0, 0.0, 0.0),
+            options: StreamOptions::new(PlanOptions::DEFAULT_RATE),
+            fit: StretchFit {
+                tolerance: 0.0,
+                max_piece_ticks: 0,
+            },
+            segments: Deque::new(),
+            pending: None,
+            end: [0.0; D],
+            length: 0.0,
+            window: LookAhead::new(),
+            committed: Deque::new(),
+            next_tick: 0,
+            stats: StreamStats {
+                moves: 0,
+                blends: 0,
+                stops: 0,
+                starved: 0,
+                max_deviation: 0.0,
+            },
+        }
+    }
+
+    /// Starts the stream afresh, in place: at rest at `start`, under the machine's `limits`,
+    /// with `options`; what it held is dropped, its statistics and ticks start from 0.
+    ///
+    /// # Errors
+    /// [`Error::InvalidLimit`] for invalid options (a negative or non-finite tolerance,
+    /// stretches of no tick, invalid [`PlanOptions`]); [`Error::Curve`] for a non-finite
+    /// start. Nothing changes on an error.
+    ///
+    /// ```
+    /// # use strak_trajectory::{Error, Limits, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// let bad = StreamOptions::new(1_000.0).with_tolerance(-1.0);
+    /// assert_eq!(stream.reset([0.0; 2], limits, bad), Err(Error::InvalidLimit));
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn reset(
+        &mut self,
+        start: [f64; D],
+        limits: Limits<D>,
+        options: StreamOptions,
+    ) -> Result<(), Error> {
         options.plan.validate()?;
         let finite = |x: f64| x.is_finite() && x >= 0.0;
         if !(finite(options.tolerance)
@@ -307,26 +380,33 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         if !start.iter().all(|x| x.is_finite()) {
             return Err(Error::Curve(strak_curves::Error::NonFinite));
         }
-        let ramp = feed_ramp(&limits, &options);
-        Ok(Stream {
-            ramp,
-            feed_override: 1.0,
-            planned: limits.without_reserve(1.0 - (1.0 - options.plan.feed_share()) * FIT_MARGIN),
-            promised: options.plan.promised(&limits),
-            options,
-            fit: StretchFit {
-                tolerance: options.fit_tolerance,
-                max_piece_ticks: options.max_piece_ticks,
-            },
-            segments: Deque::new(),
-            pending: None,
-            end: start,
-            length: 0.0,
-            window: LookAhead::new(),
-            committed: Deque::new(),
-            next_tick: 0,
-            stats: StreamStats::default(),
-        })
+        self.ramp = feed_ramp(&limits, &options);
+        self.feed_override = 1.0;
+        let keep = (1.0 - options.plan.feed_share()) * FIT_MARGIN;
+        self.planned = limits.without_reserve(1.0 - keep);
+        self.promised = options.plan.promised(&limits);
+        self.options = options;
+        self.fit = StretchFit {
+            tolerance: options.fit_tolerance,
+            max_piece_ticks: options.max_piece_ticks,
+        };
+        self.next_tick = 0;
+        self.stats = StreamStats::default();
+        self.ready = true;
+        self.restart_at(start);
+        Ok(())
+    }
+
+    /// Drops the segments, the pending move, the window and the committed motion, in place:
+    /// at rest at `at`, from the first tick not yet compiled on.
+    fn restart_at(&mut self, at: [f64; D]) {
+        self.segments.clear();
+        self.committed.clear();
+        self.pending = None;
+        (self.end, self.length) = (at, 0.0);
+        self.window.clear();
+        self.window
+            .hold_until(f64::from(self.next_tick) * self.period());
     }
 
     /// What the stream has done so far.
@@ -466,22 +546,16 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         if !at.iter().all(|x| x.is_finite()) {
             return Err(Error::Curve(strak_curves::Error::NonFinite));
         }
-        self.segments.clear();
-        self.committed.clear();
-        self.pending = None;
-        (self.end, self.length) = (at, 0.0);
-        self.window = LookAhead::new();
-        self.window
-            .hold_until(f64::from(self.next_tick) * self.period());
+        self.restart_at(at);
         Ok(())
     }
 
     /// Appends the move `mv`, from the end of the move before (or the start).
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the segments or the window are full (poll, then push
-    /// again; nothing changed); the errors of [`MoveCurve::new`] and [`junction`] for a bad
-    /// move (nothing changed).
+    /// [`Error::CapacityExceeded`] when fewer than two segments are free (checked first, at
+    /// no cost) or the window is full (poll, then push again; nothing changed); the errors of
+    /// [`MoveCurve::new`] and [`junction`] for a bad move (nothing changed).
     ///
     /// ```
     /// # use strak_trajectory::{Error, Limits, Move, Stream, StreamOptions};
@@ -492,6 +566,16 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn push(&mut self, mv: &Move<D>) -> Result<(), Error> {
+        if !self.ready {
+            return Err(Error::InvalidLimit);
+        }
+        if self.segments.len() + 2 > Q {
+            // A move adds at most two segments: refused before any work.
+            return Err(Error::CapacityExceeded {
+                capacity: Q,
+                required: self.segments.len() + 2,
+            });
+        }
         let curve = MoveCurve::new(self.end, mv, self.options.arc_tolerance)?;
         let feed = mv.feed.unwrap_or(f64::INFINITY);
         let Some(prev) = self.pending else {
@@ -690,7 +774,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// point, no velocity or acceleration, so that a sampler holding on after it holds
     /// exactly there.
     fn rest_piece<N: Number>(&self, last: u32) -> Result<Piece<N, D>, Error> {
-        let end = self.motion().position(last)?;
+        // Where the window's committed motion ends, at rest: the end of its last segment
+        // exactly (the state at the tick can fall short of it by the rounding of the last
+        // phase's speed).
+        let (_, s, _) = self.window.entry();
+        let end = self.motion().frame(s)?.point;
         let mut axes = [AxisState::ZERO; D];
         for (axis, x) in axes.iter_mut().zip(end) {
             axis.position = N::from_f64(x).ok_or(Error::OutOfRange)?;

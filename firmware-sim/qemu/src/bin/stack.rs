@@ -13,7 +13,12 @@
 //! - solving online moves ([`OnlineMove::solve_in_place`], the benchmark's random 3-axis
 //!   moves on a 1 kHz grid) and compiling them ([`compile_move_into`]) into a
 //!   `Path<_, 3, 256>`: the `f32` solver and `f32` path on the Cortex-M4F, the `f64`
-//!   solver and `Q40` path on the Cortex-M3 (the pairs `strak-sim move` plays).
+//!   solver and `Q40` path on the Cortex-M3 (the pairs `strak-sim move` plays);
+//! - streaming a dense polyline ([`streaming::run`]: 80 chords of 0.2 mm pushed into a
+//!   `Stream<3, 64, 128>`, polled into a queue of 32 pieces and played by a
+//!   `StreamSampler`, all in the measured frame): `f32` pieces on the Cortex-M4F, `Q40` on
+//!   the Cortex-M3, the stack with the stream, queue and sampler, and the instructions per
+//!   move (its push and the polls until the next move is taken).
 //!
 //! This firmware keeps the large RAM of `memory/boards.x` (4 MiB) and reports the RAM each
 //! operation needs.
@@ -42,10 +47,11 @@ use strak_qemu::online::cases::{BENCH_SEED, OnlineCase, online_cases};
 use strak_qemu::planning::{self, Curve, Plan};
 use strak_qemu::play::{OutBits, Played, play_blob};
 use strak_qemu::stack::{self, Usage};
+use strak_qemu::streaming;
 use strak_qemu::{PIECES, STACK_JOB, exit_failure, exit_success};
 use strak_trajectory::{
-    Kernel, MoveOptions, Number, OnlineMove, Path, PathBlob, PathTiming, Q40, Real, Sampler,
-    compile_move_into,
+    Kernel, MoveOptions, Number, OnlineMove, Path, PathBlob, PathTiming, Piece, Q40, Real, Sampler,
+    StreamSampler, compile_move_into,
 };
 
 /// The online moves whose solve and compile the stack is measured over (each measurement
@@ -100,6 +106,10 @@ fn main() -> ! {
         |c| Some(*c),
         &mut lines,
     );
+    #[cfg(target_abi = "eabihf")]
+    stream::<f32>("stream-f32", &mut lines);
+    #[cfg(not(target_abi = "eabihf"))]
+    stream::<Q40>("stream-q40", &mut lines);
     defmt::println!("STACKS {=u32}", lines.stacks);
 
     let counter = WideCounter::start(p.SYST);
@@ -110,6 +120,20 @@ fn main() -> ! {
     count_plan_compile::<f32, f32>(names, &counter, &cal, &mut lines);
     #[cfg(not(target_abi = "eabihf"))]
     count_plan_compile::<Q40, I32F32>(names, &counter, &cal, &mut lines);
+    #[cfg(target_abi = "eabihf")]
+    count_stream::<f32>(
+        ["stream-push-f32", "stream-poll-f32", "stream-move-f32"],
+        &counter,
+        &cal,
+        &mut lines,
+    );
+    #[cfg(not(target_abi = "eabihf"))]
+    count_stream::<Q40>(
+        ["stream-push-q40", "stream-poll-q40", "stream-move-q40"],
+        &counter,
+        &cal,
+        &mut lines,
+    );
     defmt::println!("DONE {=u32}", lines.cases);
     exit_success()
 }
@@ -134,6 +158,11 @@ fn sizes() {
     size::<BSpline<[f64; 3], 16, 24>>("BSpline<[f64;3],16,24>");
     size::<OnlineMove<f32, 3>>("OnlineMove<f32,3>");
     size::<OnlineMove<f64, 3>>("OnlineMove<f64,3>");
+    size::<streaming::DeviceStream>("Stream<3,64,128>");
+    size::<StreamSampler<'static, f32, 3>>("StreamSampler<f32,3>");
+    size::<StreamSampler<'static, Q40, 3>>("StreamSampler<Q40,3>");
+    size::<Piece<f32, 3>>("Piece<f32,3>");
+    size::<Piece<Q40, 3>>("Piece<Q40,3>");
 }
 
 /// Validates and plays the bundled blob of [`STACK_JOB`] in `N` from flash, logging its stack
@@ -258,6 +287,83 @@ fn count_plan_compile<N: Number, S: Scalar>(
     instructions(names[1], compile_instructions);
     instructions(names[2], plan_instructions + compile_instructions);
     lines.cases += 3;
+}
+
+/// Streams the dense polyline with pieces in `N` ([`streaming::run`]), logging the stack of
+/// the whole run (the stream, the queue and the sampler are values of its frame).
+#[inline(never)]
+fn stream<N: Kernel>(name: &str, lines: &mut Lines) {
+    let mut costs = streaming::Costs::default();
+    let (streamed, used) = stack::usage(|| streaming::run::<N>(None, &mut costs));
+    let streamed = ok_or_fail(name, streamed);
+    check_streamed(name, &streamed);
+    stack::log(name, used);
+    lines.stacks += 1;
+}
+
+/// Fails the run unless the stream ended on the last chord's end without an underrun.
+fn check_streamed(name: &str, streamed: &streaming::Streamed) {
+    let end = streaming::chord(streaming::CHORDS - 1).to;
+    let off = (0..3).fold(0.0_f64, |m, i| m.max((streamed.end[i] - end[i]).abs()));
+    if off > 1e-5 || streamed.underruns > 0 {
+        defmt::error!(
+            "{=str}: ends {=f64} from the last move, {=u32} underruns",
+            name,
+            off,
+            streamed.underruns
+        );
+        exit_failure()
+    }
+}
+
+/// Counts the instructions of streaming the dense polyline with pieces in `N` (`names`: per
+/// push that took a move, per poll that compiled ticks, and the whole run per move).
+#[inline(never)]
+fn count_stream<N: Kernel>(
+    names: [&str; 3],
+    counter: &WideCounter,
+    cal: &Calibration,
+    lines: &mut Lines,
+) {
+    let mut costs = streaming::Costs::default();
+    let streamed = ok_or_fail(
+        names[0],
+        streaming::run::<N>(Some((counter, cal)), &mut costs),
+    );
+    check_streamed(names[0], &streamed);
+    spread(names[0], &mut costs.pushes);
+    spread(names[1], &mut costs.polls);
+    let per_move = costs.total / streaming::CHORDS as u64;
+    defmt::println!(
+        "I {=str} {=u64} {=u64} {=u64} {=usize} 0",
+        names[2],
+        per_move,
+        per_move,
+        per_move,
+        streaming::CHORDS
+    );
+    lines.cases += 3;
+}
+
+/// Logs calls' instructions as an `I` line: least, median and most, the calls, the first
+/// call that took the most.
+fn spread(name: &str, costs: &mut [u64]) {
+    let worst = costs.iter().enumerate().fold(
+        (0, 0),
+        |(w, m), (i, &c)| if c > m { (i, c) } else { (w, m) },
+    );
+    costs.sort_unstable();
+    let median = costs.get(costs.len() / 2).copied().unwrap_or(0);
+    let min = costs.first().copied().unwrap_or(0);
+    defmt::println!(
+        "I {=str} {=u64} {=u64} {=u64} {=usize} {=usize}",
+        name,
+        min,
+        median,
+        worst.1,
+        costs.len(),
+        worst.0
+    );
 }
 
 /// Logs the instructions of one call as an `I` line.

@@ -1,0 +1,149 @@
+//! Streaming on the device: a dense polyline (chords of 0.2 mm on a circle of 10 mm radius,
+//! at a feed of 100 mm/s, blended within 0.02 mm) pushed into a [`Stream`] as fast as it
+//! takes them, polled in the main loop and played by a [`StreamSampler`] one tick per
+//! iteration, as a printer's firmware streams a curved wall: the RAM, stack and
+//! instructions per move that the `stack` firmware measures.
+//!
+//! The stream, the piece queue and the sampler are values of [`run`]'s frame, so that a
+//! stack measurement around it counts all of them with the stack they need.
+
+use heapless::Vec;
+use heapless::spsc::Queue;
+use strak_trajectory::{Error, Kernel, Limits, Move, Piece, Stream, StreamOptions, StreamSampler};
+
+use crate::counter::{Calibration, WideCounter};
+
+/// Segments of the stream: a move's part between its blends and its blend each take one,
+/// so 64 hold 32 blended moves.
+pub const SEGMENTS: usize = 64;
+/// Zones of the look-ahead window.
+pub const ZONES: usize = 128;
+/// Pieces between the main loop and the tick.
+pub const PIECE_QUEUE: usize = 32;
+/// The moves streamed.
+pub const CHORDS: usize = 80;
+/// The most ticks a run may take (it takes about 200).
+const MAX_TICKS: u32 = 100_000;
+
+/// The stream of the job: 3 axes, [`SEGMENTS`] segments, [`ZONES`] zones.
+pub type DeviceStream = Stream<3, SEGMENTS, ZONES>;
+
+/// The circle's radius (mm) and the angle of a chord (rad): chords of `2·R·sin(δ/2)`,
+/// 0.19999 mm.
+const RADIUS: f64 = 10.0;
+const STEP: f64 = 0.02;
+
+/// The end of chord `i` (from the point at angle `i·δ` to the one at `(i + 1)·δ`).
+pub fn chord(i: usize) -> Move<3> {
+    #[allow(clippy::cast_precision_loss)]
+    let angle = STEP * (i + 1) as f64;
+    Move::line([RADIUS * libm::cos(angle), RADIUS * libm::sin(angle), 0.0]).with_feed(100.0)
+}
+
+/// Starts `stream` at the circle's first point, in place: limits of 200 mm/s, 3 000 mm/s²
+/// and 100 000 mm/s³ at 1 kHz, blends within 0.02 mm.
+///
+/// # Errors
+/// As [`Stream::reset`] (not for these constants).
+pub fn start(stream: &mut DeviceStream) -> Result<(), Error> {
+    let limits = Limits::new(200.0, 3_000.0, 100_000.0)?;
+    let options = StreamOptions::new(1_000.0).with_tolerance(0.02);
+    stream.reset([RADIUS, 0.0, 0.0], limits, options)
+}
+
+/// What a run did: the ticks played, the moves pushed, the end position and the underruns.
+pub struct Streamed {
+    /// Ticks until the stream was idle and the sampler held at its end.
+    pub ticks: u32,
+    /// The last sample's position, in `f64`.
+    pub end: [f64; 3],
+    /// Ticks the sampler held mid-motion.
+    pub underruns: u32,
+}
+
+/// The most polls that compile ticks in a run.
+pub const POLLS: usize = 256;
+
+/// The instructions of a run, when counted: of every push that took a move, of every poll
+/// that compiled ticks, and of the whole run's pushes, finish and polls.
+#[derive(Default)]
+pub struct Costs {
+    /// Each push that took a move.
+    pub pushes: Vec<u64, CHORDS>,
+    /// Each poll that compiled ticks.
+    pub polls: Vec<u64, POLLS>,
+    /// Every push (refused ones too), the finish and every poll.
+    pub total: u64,
+}
+
+/// The instructions of a call, when counting.
+fn count<R>(counter: Option<(&WideCounter, &Calibration)>, f: impl FnOnce() -> R) -> (u64, R) {
+    match counter {
+        Some((c, cal)) => {
+            let (n, r) = c.counts(f);
+            (cal.instructions_wide(n), r)
+        }
+        None => (0, f()),
+    }
+}
+
+/// Streams the job in `N`: each iteration pushes the next move if the stream takes it (it
+/// refuses while its segments or window are full), polls once and plays one tick; with a
+/// counter, `costs` gets the instructions.
+///
+/// # Errors
+/// The stream's errors; [`Error::CapacityExceeded`] when it does not end within
+/// [`MAX_TICKS`].
+#[inline(never)]
+pub fn run<N: Kernel>(
+    counter: Option<(&WideCounter, &Calibration)>,
+    costs: &mut Costs,
+) -> Result<Streamed, Error> {
+    let mut stream = DeviceStream::unset();
+    start(&mut stream)?;
+    let mut queue = Queue::<Piece<N, 3>, PIECE_QUEUE>::new();
+    let (mut producer, consumer) = queue.split();
+    let mut sampler = StreamSampler::new(consumer, &stream)?;
+    let (mut next, mut finished) = (0, false);
+    for tick in 0..MAX_TICKS {
+        if next < CHORDS {
+            let mv = chord(next);
+            let (c, pushed) = count(counter, || stream.push(&mv));
+            costs.total += c;
+            if take(pushed)? {
+                let _ = costs.pushes.push(c);
+                next += 1;
+            }
+        } else if !finished {
+            let (c, done) = count(counter, || stream.finish());
+            costs.total += c;
+            finished = take(done)?;
+        }
+        let (c, polled) = count(counter, || stream.poll(&mut producer));
+        costs.total += c;
+        if polled? > 0 {
+            let _ = costs.polls.push(c);
+        }
+        let sample = sampler.next();
+        if finished && stream.is_idle() && sampler.is_holding() {
+            return Ok(Streamed {
+                ticks: tick + 1,
+                end: sample.position.map(strak_curves::Scalar::to_f64),
+                underruns: sampler.underruns(),
+            });
+        }
+    }
+    Err(Error::CapacityExceeded {
+        capacity: MAX_TICKS as usize,
+        required: MAX_TICKS as usize + 1,
+    })
+}
+
+/// Whether a push or finish was taken: `false` while the stream is full, its other errors.
+fn take(r: Result<(), Error>) -> Result<bool, Error> {
+    match r {
+        Ok(()) => Ok(true),
+        Err(Error::CapacityExceeded { .. } | Error::ZoneCapacityExceeded { .. }) => Ok(false),
+        Err(e) => Err(e),
+    }
+}
