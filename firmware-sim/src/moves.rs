@@ -160,7 +160,8 @@ fn point(field: &str, v: &[f64], axes: usize) -> Result<(), JobError> {
 
 /// The plane named `name`.
 fn plane(field: &str, name: Option<&str>, axes: usize) -> Result<Plane, JobError> {
-    let p = match name.unwrap_or("xy") {
+    let name = name.unwrap_or("xy");
+    let p = match name {
         "xy" => Plane::XY,
         "zx" => Plane::ZX,
         "yz" => Plane::YZ,
@@ -174,7 +175,7 @@ fn plane(field: &str, name: Option<&str>, axes: usize) -> Result<Plane, JobError
     if p.first.max(p.second) >= axes {
         return Err(JobError::new(
             field,
-            format!("an arc in the {name:?} plane needs more than {axes} axes"),
+            format!("an arc in the {name} plane needs more than {axes} axes"),
         ));
     }
     Ok(p)
@@ -186,6 +187,12 @@ impl MovesJob {
     /// # Errors
     /// A [`JobError`] naming the field.
     pub fn parse(text: &str) -> Result<Self, JobError> {
+        if toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key("path")) {
+            return Err(JobError::new(
+                "path",
+                "a job has either a [path] or [[moves]], not both",
+            ));
+        }
         let job: MovesJob = toml::from_str(text).map_err(|e| {
             let at = locate(text, &e, &[]);
             JobError::new(at.field, at.message)
@@ -567,6 +574,7 @@ bezier = { to = [30, 0, 0], c1 = [22, 15, 0], c2 = [28, 5, 0] }
                 "queue",
             ),
             (GOOD.replace("feed = 150", "feed = -1"), "moves[0].feed"),
+            (format!("{GOOD}[path]\nkind = \"bezier\"\n"), "path"),
             (
                 GOOD.replace("center = [10, 10, 0]", "center = [10, 0, 0]"),
                 "moves[1].arc.center",

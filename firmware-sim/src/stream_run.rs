@@ -171,6 +171,77 @@ fn stream_error(job: &MovesJob, e: TrajError) -> JobError {
     }
 }
 
+/// Whether a push or a finish found the stream full (poll, then try again).
+fn is_full(e: &TrajError) -> bool {
+    matches!(
+        e,
+        TrajError::CapacityExceeded { .. } | TrajError::ZoneCapacityExceeded { .. }
+    )
+}
+
+/// The main loop's side of the program: the moves pushed so far, how each corner was
+/// passed, and whether the program is finished.
+struct Feeder<'p, const D: usize> {
+    program: &'p [Move<D>],
+    next: usize,
+    corners: Vec<CornerKind>,
+    /// The stream's starved rests at the last push.
+    starved: usize,
+    finished: bool,
+}
+
+impl<'p, const D: usize> Feeder<'p, D> {
+    fn new(program: &'p [Move<D>]) -> Self {
+        Feeder {
+            program,
+            next: 0,
+            corners: Vec::new(),
+            starved: 0,
+            finished: false,
+        }
+    }
+
+    /// Pushes the moves before `arrived` while the stream has room, then finishes the
+    /// program after the last one.
+    fn push_arrived<const Q: usize, const Z: usize>(
+        &mut self,
+        job: &MovesJob,
+        stream: &mut Stream<D, Q, Z>,
+        arrived: usize,
+    ) -> Result<(), RunError> {
+        while self.next < arrived {
+            let before = stream.stats();
+            match stream.push(&self.program[self.next]) {
+                Ok(()) => {}
+                Err(e) if is_full(&e) => break,
+                Err(e) => return Err(push_error(self.next, e).into()),
+            }
+            let after = stream.stats();
+            if self.next > 0 {
+                self.corners.push(if after.blends > before.blends {
+                    CornerKind::Blended
+                } else if after.stops > before.stops {
+                    CornerKind::Stop
+                } else if before.starved > self.starved {
+                    CornerKind::Starved
+                } else {
+                    CornerKind::Straight
+                });
+            }
+            self.starved = after.starved;
+            self.next += 1;
+        }
+        if self.next == self.program.len() && !self.finished {
+            match stream.finish() {
+                Ok(()) => self.finished = true,
+                Err(e) if is_full(&e) => {}
+                Err(e) => return Err(stream_error(job, e).into()),
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Drives the stream `Stream<D, Q, Z>` through the job, handing each sample to `sink`.
 fn drive<N: Kernel, const D: usize, const Q: usize, const Z: usize>(
     job: &MovesJob,
@@ -194,57 +265,25 @@ fn drive<N: Kernel, const D: usize, const Q: usize, const Z: usize>(
         pieces: 0,
     };
     let mut sampler = StreamSampler::new(consumer, start_n.map(|x| x.unwrap_or(N::ZERO)));
+    // The ticks between two arrivals.
     let every = job
         .produce
         .as_ref()
         .map(|p| job.rate_hz / p.moves_per_second);
-    let (mut next, mut finished, mut planning) = (0, false, Duration::ZERO);
-    let mut corners = Vec::new();
-    let mut starved_at_push = 0;
+    let mut feeder = Feeder::new(program);
+    let mut planning = Duration::ZERO;
+    let mut done = false;
     for tick in 0..guard {
         let clock = Instant::now();
         let arrived = every.map_or(program.len(), |e| {
             ((tick as f64 / e).floor() as usize + 1).min(program.len())
         });
-        while next < arrived {
-            let before = stream.stats();
-            match stream.push(&program[next]) {
-                Ok(()) => {}
-                Err(
-                    TrajError::CapacityExceeded { .. } | TrajError::ZoneCapacityExceeded { .. },
-                ) => {
-                    break;
-                }
-                Err(e) => return Err(push_error(next, e).into()),
-            }
-            let after = stream.stats();
-            if next > 0 {
-                corners.push(if after.blends > before.blends {
-                    CornerKind::Blended
-                } else if after.stops > before.stops {
-                    CornerKind::Stop
-                } else if before.starved > starved_at_push {
-                    CornerKind::Starved
-                } else {
-                    CornerKind::Straight
-                });
-            }
-            starved_at_push = after.starved;
-            next += 1;
-        }
-        if next == program.len() && !finished {
-            match stream.finish() {
-                Ok(()) => finished = true,
-                Err(
-                    TrajError::CapacityExceeded { .. } | TrajError::ZoneCapacityExceeded { .. },
-                ) => {}
-                Err(e) => return Err(stream_error(job, e).into()),
-            }
-        }
+        feeder.push_arrived(job, &mut stream, arrived)?;
         stream.poll(&mut pieces).map_err(|e| stream_error(job, e))?;
         planning += clock.elapsed();
         sink(&sampler.next())?;
-        if finished && stream.is_idle() && sampler.is_holding() {
+        done = feeder.finished && stream.is_idle() && sampler.is_holding();
+        if done {
             break;
         }
     }
@@ -254,8 +293,8 @@ fn drive<N: Kernel, const D: usize, const Q: usize, const Z: usize>(
         ticks: stream.ticks(),
         pieces: pieces.pieces,
         planning,
-        corners,
-        finished: finished && stream.is_idle() && sampler.is_holding(),
+        corners: feeder.corners,
+        finished: done,
     })
 }
 
@@ -474,6 +513,19 @@ fn write_plots(
         .map_err(|e| RunError::Io(format!("cannot write {}: {e}", motion_svg.display())))
 }
 
+/// Which checks fail a moves run.
+const CHECK_RULE: &str = "the stream plans jerk-limited motion under every limit: exceeding \
+     one, or the blend tolerance (plus the fit tolerance) from the moves, fails the run";
+
+/// The wall time before it is measured.
+const NO_TIME: WallTime = WallTime {
+    plan_s: 0.0,
+    compile_s: 0.0,
+    play_s: 0.0,
+    plots_s: 0.0,
+    total_s: 0.0,
+};
+
 /// The stream's statistics for the summary.
 fn report(job: &MovesJob, driven: &Driven) -> StreamReport {
     let s = &driven.stats;
@@ -562,10 +614,7 @@ fn summarize<N: Number, const D: usize>(
         stop: if driven.finished {
             "end of the moves".to_owned()
         } else {
-            format!(
-                "stopped by the guard after {} samples: the stream did not end",
-                rec.samples
-            )
+            format!("stopped by the guard after {} samples", rec.samples)
         },
         finished: driven.finished,
         events_applied: 0,
@@ -586,9 +635,7 @@ fn summarize<N: Number, const D: usize>(
         accuracy: accuracy(job, rec),
         check: CheckRule {
             enforced: true,
-            rule: "the stream plans jerk-limited motion under every limit: exceeding one, or \
-                   the blend tolerance (plus the fit tolerance) from the moves, fails the run"
-                .to_owned(),
+            rule: CHECK_RULE.to_owned(),
             relative_tolerance: crate::measure::RELATIVE_TOLERANCE,
         },
         violations: Vec::new(),
@@ -604,13 +651,7 @@ fn summarize<N: Number, const D: usize>(
             error_to_path_end: distance(&rec.last, &end),
             error_to_reference_end: distance(&rec.last, &end),
         },
-        wall_time: WallTime {
-            plan_s: 0.0,
-            compile_s: 0.0,
-            play_s: 0.0,
-            plots_s: 0.0,
-            total_s: 0.0,
-        },
+        wall_time: NO_TIME,
         files: ["samples.csv", "summary.json", "path.svg", "motion.svg"]
             .iter()
             .map(|f| options.out_dir.join(f).display().to_string())

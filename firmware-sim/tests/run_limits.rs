@@ -1,5 +1,5 @@
-//! Every bundled `[path]` job (`examples/jobs/*.toml`) respects every limit of its job file, checked
-//! from `samples.csv` alone: the velocity by finite differences of the positions, the
+//! Every bundled `[path]` job (`examples/jobs/*.toml`) respects every limit of its job file,
+//! checked from `samples.csv` alone: the velocity by finite differences of the positions, the
 //! acceleration by finite differences of the velocity samples, the jerk by finite differences
 //! of the acceleration samples, and the velocity and acceleration samples themselves — along
 //! the path (Euclidean norms) and per axis. The summary agrees.
