@@ -89,7 +89,7 @@ impl<const D: usize> Programmed<D> {
     }
 
     /// The point of the moves nearest to `p`, among the move of the last nearest point and
-    /// the [`AHEAD`] after it.
+    /// the three after it.
     pub fn nearest(&mut self, p: &[f64; D]) -> [f64; D] {
         let mut best = (f64::INFINITY, *p, self.cursor);
         let last = (self.cursor + AHEAD).min(self.polygons.len().saturating_sub(1));

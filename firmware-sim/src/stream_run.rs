@@ -526,6 +526,14 @@ const NO_TIME: WallTime = WallTime {
     total_s: 0.0,
 };
 
+/// The playback format and sample type.
+fn playback_name<N: Number>() -> String {
+    match N::FORMAT {
+        NumberFormat::Q40 => format!("{} (samples I32F32)", N::NAME),
+        _ => N::NAME.to_owned(),
+    }
+}
+
 /// The stream's statistics for the summary.
 fn report(job: &MovesJob, driven: &Driven) -> StreamReport {
     let s = &driven.stats;
@@ -596,10 +604,7 @@ fn summarize<N: Number, const D: usize>(
     let mut summary = Summary {
         job: options.name.clone(),
         number: number::name(job.number).to_owned(),
-        playback: match job.number {
-            NumberFormat::Q40 => format!("{} (samples I32F32)", N::NAME),
-            _ => N::NAME.to_owned(),
-        },
+        playback: playback_name::<N>(),
         axes: D,
         unit: job.unit().to_owned(),
         rate_hz: job.rate_hz,
