@@ -47,7 +47,8 @@ use crate::summary::{
 /// The pieces between the stream and the sampler (the queue holds one less).
 pub const PIECE_QUEUE: usize = 64;
 
-/// The fit tolerance of the stream's pieces (units), [`StreamOptions`]' default.
+/// The fit tolerance of the stream's pieces (units): how far they may lie from the
+/// planned motion ([`StreamOptions::with_fit_tolerance`]).
 pub const FIT_TOLERANCE: f64 = 1e-5;
 
 /// How the distance of a sample from the moves is measured (reported in the summary).
@@ -154,6 +155,7 @@ fn stream_options(job: &MovesJob) -> StreamOptions {
     StreamOptions::new(job.rate_hz)
         .with_tolerance(job.tolerance)
         .with_arc_tolerance(job.arc_tolerance())
+        .with_fit_tolerance(FIT_TOLERANCE)
 }
 
 /// An error of [`Stream::poll`] or [`Stream::finish`] as an error on the job.
