@@ -38,6 +38,9 @@
 //! feed = 0.5                  # or: hold = true | resume = true | abort = true
 //! ```
 //!
+//! A file with `[[moves]]` in place of `[path]` is a moves job, streamed through the
+//! look-ahead planner: see [`crate::moves`].
+//!
 //! The path and the time law are serde enums tagged by `kind`; every range is checked while
 //! deserializing. What serde cannot say ([`Job::check`]: the path's lists, per-axis limits of
 //! one entry per axis, one action per event) is checked after. Every problem is reported as

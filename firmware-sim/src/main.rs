@@ -3,6 +3,7 @@
 //! ```text
 //! strak-sim sample CURVE.toml [--count N] [--derivatives K] [--number f64|f32|fixed] [--out FILE]
 //! strak-sim run [JOB.toml] [--out DIR]      # exit 3: a planned motion exceeded a limit
+//!                                           # (a `[path]` job, or `[[moves]]` streamed)
 //! strak-sim compile JOB.toml --number f32|fixed|f64 --out FILE.strk
 //! strak-sim move MOVE.toml [--out DIR]     # exit 3: the samples exceeded a limit
 //! ```
@@ -19,12 +20,15 @@ use strak_sim::curve_file::CurveFile;
 use strak_sim::export::export;
 use strak_sim::job::Job;
 use strak_sim::line::line_move;
+use strak_sim::moves::{MovesJob, is_moves_job};
 use strak_sim::number::{self, NumberFormat};
 use strak_sim::online_move::{MoveJob, run_move};
 use strak_sim::run::{
     BUNDLED_JOB, BUNDLED_NAME, EXIT_EXCEEDED, RunOptions, exit_code, run_job, violation_lines,
 };
 use strak_sim::sample::{SampleOptions, sample_to_csv};
+use strak_sim::stream_run::run_moves;
+use strak_sim::summary::Summary;
 
 /// Host simulator for strak: sample curves, run jobs through the firmware's sampler.
 #[derive(Debug, Parser)]
@@ -56,8 +60,10 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Plan, compile and play a job through the sampler firmware uses; write samples.csv,
-    /// summary.json, path.svg and motion.svg, and print the summary. Without JOB it runs the
-    /// bundled example (a 3-axis pick-and-place move at 1 kHz with an S-curve profile).
+    /// summary.json, path.svg and motion.svg, and print the summary. A job with `[[moves]]`
+    /// in place of `[path]` streams its moves through the look-ahead planner, corners
+    /// blended. Without JOB it runs the bundled example (a 3-axis pick-and-place move at
+    /// 1 kHz with an S-curve profile).
     /// Exit code 3 (one error line per quantity) when a trapezoid or S-curve exceeds a limit
     /// it is planned under or the accuracy bound, measured from the samples.
     Run {
@@ -179,13 +185,18 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
             format!("bundled {BUNDLED_NAME}.toml"),
         ),
     };
-    let job = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     let options = RunOptions {
         out_dir: out.unwrap_or_else(|| PathBuf::from("out").join(&name)),
         name,
         progress: true,
         velocity_factor: None,
     };
+    if is_moves_job(&text) {
+        let job = MovesJob::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        let summary = run_moves(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        return Ok(summary_outcome(&summary, &label));
+    }
+    let job = Job::parse(&text).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     if let Some(line) = line_move(&job) {
         let line = line.map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
         println!(
@@ -195,13 +206,19 @@ fn run_command(job: Option<&FsPath>, out: Option<PathBuf>) -> anyhow::Result<Out
         return move_outcome(&line, &options, &label);
     }
     let summary = run_job(&job, &options).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    Ok(summary_outcome(&summary, &label))
+}
+
+/// Prints a run's summary (a warning when it did not finish); the violations, if any, for
+/// the exit.
+fn summary_outcome(summary: &Summary, label: &str) -> Outcome {
     println!("{summary}");
     if !summary.finished {
         eprintln!("strak-sim: warning: {}", summary.stop);
     }
-    match exit_code(&summary) {
-        0 => Ok(Outcome::Done),
-        code => Ok(Outcome::Exceeded(code, violation_lines(&label, &summary))),
+    match exit_code(summary) {
+        0 => Outcome::Done,
+        code => Outcome::Exceeded(code, violation_lines(label, summary)),
     }
 }
 

@@ -42,7 +42,7 @@ use strak_trajectory::{
 };
 
 use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Job, JobError, Profile, ProfileKind};
+use crate::job::{Job, JobError, JobLimits, Profile, ProfileKind};
 use crate::number::{self, NumberFormat};
 use crate::summary::num;
 
@@ -91,7 +91,14 @@ pub fn planning_limits<const D: usize>(job: &Job) -> Result<Limits<D>, JobError>
 /// # Errors
 /// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
 pub fn job_limits<const D: usize>(job: &Job, v_keep: f64) -> Result<Limits<D>, JobError> {
-    let l = &job.limits;
+    limits_of(&job.limits, v_keep)
+}
+
+/// The limits `l` (path and per axis), with the velocities times `v_keep`.
+///
+/// # Errors
+/// A [`JobError`] on `limits` for a limit the trajectory layer rejects.
+pub fn limits_of<const D: usize>(l: &JobLimits, v_keep: f64) -> Result<Limits<D>, JobError> {
     let bad = |field: &'static str| move |e: TrajError| JobError::new(field, e.to_string());
     Limits::<D>::new(l.velocity * v_keep, l.acceleration, l.jerk)
         .map_err(bad("limits"))?

@@ -27,6 +27,7 @@ const AXIS_COLORS: [RGBColor; MAX_AXES] = [
 ];
 const NORM_COLOR: RGBColor = RGBColor(0, 0, 0);
 const LIMIT_COLOR: RGBColor = RGBColor(214, 39, 40);
+const BLEND_COLOR: RGBColor = RGBColor(255, 127, 14);
 
 /// One bucket of consecutive samples: time span and, per channel, minimum and maximum.
 #[derive(Clone, Debug)]
@@ -366,10 +367,26 @@ fn bounds(points: &[Vec<f64>], axis: usize) -> (f64, f64) {
         })
 }
 
+/// What the path plot marks besides the path: the blends that replaced corners (drawn in
+/// another colour over the path) and the corners where the motion stopped (squares).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PathMarks {
+    /// Each blend as points along it.
+    pub blends: Vec<Vec<Vec<f64>>>,
+    /// Each corner where the motion came to rest.
+    pub stops: Vec<Vec<f64>>,
+}
+
 /// Writes `path.svg`: the path in the x–y plane (one axis: x over t; three or more axes: the
 /// x–y, x–z and y–z projections side by side), start marked by a circle and end by a cross,
-/// equal scales on both axes of each projection.
-pub fn write_path(file: &FsPath, rec: &Recorder, unit: &str, title: &str) -> PlotResult {
+/// equal scales on both axes of each projection, and the `marks` (in the projections).
+pub fn write_path(
+    file: &FsPath,
+    rec: &Recorder,
+    unit: &str,
+    title: &str,
+    marks: &PathMarks,
+) -> PlotResult {
     let points = rec.path_points();
     let size = if rec.axes >= 3 {
         (1800, 680)
@@ -405,12 +422,12 @@ pub fn write_path(file: &FsPath, rec: &Recorder, unit: &str, title: &str) -> Plo
                 .draw_series(LineSeries::new(pts, AXIS_COLORS[0].stroke_width(2)))
                 .map_err(err)?;
         }
-        2 => projection(&root, &points, (0, 1), unit, size)?,
+        2 => projection(&root, &points, marks, (0, 1), unit, size)?,
         _ => {
             let panels = root.split_evenly((1, 3));
             let third = (size.0 / 3, size.1);
             for (panel, pair) in panels.iter().zip([(0, 1), (0, 2), (1, 2)]) {
-                projection(panel, &points, pair, unit, third)?;
+                projection(panel, &points, marks, pair, unit, third)?;
             }
         }
     }
@@ -420,6 +437,7 @@ pub fn write_path(file: &FsPath, rec: &Recorder, unit: &str, title: &str) -> Plo
 fn projection(
     area: &DrawingArea<SVGBackend<'_>, Shift>,
     points: &[Vec<f64>],
+    marks: &PathMarks,
     (i, j): (usize, usize),
     unit: &str,
     size: (u32, u32),
@@ -458,6 +476,7 @@ fn projection(
             AXIS_COLORS[0].stroke_width(2),
         ))
         .map_err(err)?;
+    draw_marks(&mut chart, marks, &xy)?;
     if let (Some(first), Some(last)) = (points.first(), points.last()) {
         chart
             .draw_series(std::iter::once(Circle::new(
@@ -472,6 +491,55 @@ fn projection(
                 6,
                 LIMIT_COLOR.stroke_width(2),
             )))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The blends (orange over the path, labelled) and the stops (hollow squares).
+fn draw_marks(
+    chart: &mut Chart<'_>,
+    marks: &PathMarks,
+    xy: &dyn Fn(&Vec<f64>) -> (f64, f64),
+) -> PlotResult {
+    for (k, blend) in marks.blends.iter().enumerate() {
+        let series = chart
+            .draw_series(LineSeries::new(
+                blend.iter().map(xy),
+                BLEND_COLOR.stroke_width(3),
+            ))
+            .map_err(err)?;
+        if k == 0 {
+            series.label("corner blends").legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], BLEND_COLOR.stroke_width(3))
+            });
+        }
+    }
+    for (k, stop) in marks.stops.iter().enumerate() {
+        let (x, y) = xy(stop);
+        let series = chart
+            .draw_series(std::iter::once(
+                EmptyElement::at((x, y))
+                    + Rectangle::new([(-5, -5), (5, 5)], LIMIT_COLOR.stroke_width(1)),
+            ))
+            .map_err(err)?;
+        if k == 0 {
+            series.label("stops").legend(|(x, y)| {
+                Rectangle::new(
+                    [(x + 5, y - 5), (x + 15, y + 5)],
+                    LIMIT_COLOR.stroke_width(1),
+                )
+            });
+        }
+    }
+    if !(marks.blends.is_empty() && marks.stops.is_empty()) {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.4))
+            .label_font(("sans-serif", 13))
+            .draw()
             .map_err(err)?;
     }
     Ok(())

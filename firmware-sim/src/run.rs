@@ -32,7 +32,7 @@ use strak_trajectory::{
 };
 
 use crate::dyn_curve::{DynCurve, build_dyn};
-use crate::job::{Job, JobError, ProfileKind};
+use crate::job::{Job, JobError, JobLimits, ProfileKind};
 use crate::measure::{Measure, Observed, distance, norm, to_f64};
 use crate::number::{self, NumberFormat};
 use crate::pipeline::{Compiled, PIECES, Prepared, axis_array, curve_error, is_planned};
@@ -308,7 +308,11 @@ fn observe<N: Number, S: Scalar, const D: usize>(
 }
 
 /// The plot channels of one sample (see [`Recorder`]).
-fn channels<const D: usize>(s: &Observed<D>, jerk: Option<[f64; D]>, values: &mut Vec<f64>) {
+pub(crate) fn channels<const D: usize>(
+    s: &Observed<D>,
+    jerk: Option<[f64; D]>,
+    values: &mut Vec<f64>,
+) {
     values.clear();
     values.extend_from_slice(&s.position);
     values.extend_from_slice(&s.velocity);
@@ -403,23 +407,50 @@ fn job_events(events: &[TimedEvent]) -> usize {
         .count()
 }
 
+/// The relative allowances of a playback format over the limits, beyond the checks' own
+/// (see [`crate::stream_run::allowance`]): of the sampled velocities and accelerations
+/// (and their finite differences), and of the jerk.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Allowance {
+    /// Relative to the velocity and acceleration limits.
+    pub sampled: f64,
+    /// Relative to the jerk limit.
+    pub jerk: f64,
+}
+
 /// The limit checks of the sampled maxima, the finite differences and the components along
 /// the path.
 fn maxima<const D: usize>(
     job: &Job,
     m: &Measure<D>,
 ) -> (Maxima, Vec<Maxima>, FiniteDifferences, AlongPath) {
-    let l = &job.limits;
-    let planned = is_planned(job);
-    let jerk_planned = job.profile.kind() == ProfileKind::SCurve;
+    let enforced = (is_planned(job), job.profile.kind() == ProfileKind::SCurve);
+    maxima_of(&job.limits, job.number, enforced, Allowance::default(), m)
+}
+
+/// The limit checks of the sampled maxima, the finite differences and the components along
+/// the path against `l`; `enforced`: whether the velocity and acceleration limits, and the
+/// jerk limit, fail the run; `allowance`: the playback format's.
+pub(crate) fn maxima_of<const D: usize>(
+    l: &JobLimits,
+    number: NumberFormat,
+    (planned, jerk_planned): (bool, bool),
+    allowance: Allowance,
+    m: &Measure<D>,
+) -> (Maxima, Vec<Maxima>, FiniteDifferences, AlongPath) {
     let axis_v = axis_array::<D>(l.axis_velocity.as_deref());
     let axis_a = axis_array::<D>(l.axis_acceleration.as_deref());
     let check = |w: crate::measure::Worst, limit: f64, slack: f64, enforced: bool| {
+        let share = if limit.is_finite() {
+            allowance.sampled * limit
+        } else {
+            0.0
+        };
         Checked::new(w.max, w.at_s, Some(limit))
-            .allowing(slack)
+            .allowing(slack.max(share))
             .enforce(enforced)
     };
-    let slack = |magnitude: f64, norm: bool| m.slack(job.number, magnitude, norm);
+    let slack = |magnitude: f64, norm: bool| m.slack(number, magnitude, norm);
     let (sx, sv, sa) = (
         m.position.magnitude,
         m.velocity.magnitude,
@@ -429,7 +460,12 @@ fn maxima<const D: usize>(
         name: "path".to_owned(),
         velocity: check(m.velocity.norm, l.velocity, 0.0, planned),
         acceleration: check(m.acceleration.norm, l.acceleration, 0.0, planned),
-        jerk: check(m.jerk.norm, l.jerk, slack(sa, true), jerk_planned),
+        jerk: check(
+            m.jerk.norm,
+            l.jerk,
+            slack(sa, true).max(allowance.jerk * l.jerk),
+            jerk_planned,
+        ),
     };
     let names = crate::axes::names(D);
     let per_axis = (0..D)
@@ -614,6 +650,7 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
             .iter()
             .map(|f| options.out_dir.join(f).display().to_string())
             .collect(),
+        stream: None,
     };
     summary.limits_respected = summary
         .all_checked()
@@ -649,8 +686,14 @@ fn write_plots(
     };
     let out = &options.out_dir;
     let path_svg = out.join("path.svg");
-    plot::write_path(&path_svg, recorder, job.unit(), &title)
-        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", path_svg.display())))?;
+    plot::write_path(
+        &path_svg,
+        recorder,
+        job.unit(),
+        &title,
+        &plot::PathMarks::default(),
+    )
+    .map_err(|e| RunError::Io(format!("cannot write {}: {e}", path_svg.display())))?;
     let motion_svg = out.join("motion.svg");
     plot::write_motion(&motion_svg, recorder, job.unit(), plot_limits, &title)
         .map_err(|e| RunError::Io(format!("cannot write {}: {e}", motion_svg.display())))

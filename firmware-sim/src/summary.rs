@@ -211,6 +211,36 @@ pub struct Applied {
     pub ramp_shift: u8,
 }
 
+/// What the stream of a moves job did ([`crate::stream_run`]).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct StreamReport {
+    /// Moves pushed.
+    pub moves: usize,
+    /// Corners blended.
+    pub blends: usize,
+    /// Exact stops at corners (a zero tolerance, a near-reversal).
+    pub stops: usize,
+    /// The corner blend tolerance ε.
+    pub tolerance: f64,
+    /// The largest deviation bound of a blend from its corner, against ε.
+    pub max_deviation: Checked,
+    /// Rests at the end of a move because the next one had not arrived.
+    pub starved: usize,
+    /// Ticks the sampler held still while moving (the piece queue ran empty).
+    pub underruns: u32,
+    /// Look-ahead segments.
+    pub queue: usize,
+    /// Look-ahead zones.
+    pub zones: usize,
+    /// Pieces the queue between the stream and the sampler holds.
+    pub piece_queue: usize,
+    /// The rate the moves arrived at (`None`: all at once).
+    pub moves_per_second: Option<f64>,
+    /// Wall-clock time of pushing and polling per move, in seconds (a measurement of this
+    /// host).
+    pub planning_per_move_s: f64,
+}
+
 /// Everything `strak-sim run` reports.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Summary {
@@ -290,6 +320,9 @@ pub struct Summary {
     pub wall_time: WallTime,
     /// The files written.
     pub files: Vec<String>,
+    /// The stream's statistics (moves jobs only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stream: Option<StreamReport>,
 }
 
 /// Six significant digits, without trailing zeros; scientific for very small or large values.
@@ -409,6 +442,14 @@ impl Summary {
                 self.events_refused
             ));
         }
+        if let Some(s) = &self.stream
+            && s.max_deviation.exceeds()
+        {
+            lines.push(exceeded(
+                "blend deviation from its corner",
+                &s.max_deviation,
+            ));
+        }
         if self.accuracy.distance.exceeds() {
             lines.push(exceeded(
                 "accuracy: distance to the curve (bound: tolerance + playback bound)",
@@ -459,6 +500,9 @@ impl Summary {
             self.events_applied,
             self.stop
         )?;
+        if let Some(s) = &self.stream {
+            return self.fmt_stream(f, s);
+        }
         writeln!(
             f,
             "  compiled   {} pieces (capacity {}), tolerance {} {u}, playback bound {} {u}",
@@ -485,6 +529,45 @@ impl Summary {
                 num(self.planned_with.jerk),
             )
         }
+    }
+
+    /// The stream's lines of the head.
+    fn fmt_stream(&self, f: &mut fmt::Formatter<'_>, s: &StreamReport) -> fmt::Result {
+        let u = &self.unit;
+        let arrival = s.moves_per_second.map_or_else(
+            || "all at once".to_owned(),
+            |r| format!("{} moves/s", num(r)),
+        );
+        writeln!(
+            f,
+            "  stream     {} moves ({arrival}), {} blends, {} exact stops; look-ahead {} segments, {} zones; {} pieces",
+            s.moves, s.blends, s.stops, s.queue, s.zones, self.pieces
+        )?;
+        writeln!(
+            f,
+            "  corners    largest deviation {} {u} of ε = {} {u} {}",
+            num(s.max_deviation.max),
+            num(s.tolerance),
+            check_mark(&s.max_deviation)
+        )?;
+        writeln!(
+            f,
+            "  starved    {} rest(s) with an empty queue (the next move had not arrived), {} underrun tick(s)",
+            s.starved, s.underruns
+        )?;
+        writeln!(
+            f,
+            "  planning   {} µs per move (push + poll, wall clock on this host)",
+            num(s.planning_per_move_s * 1e6)
+        )?;
+        writeln!(
+            f,
+            "  planned    with v = {}, a = {}, j = {} (a and j: {} of the limits, the stream's feed share kept back)",
+            num(self.planned_with.velocity),
+            num(self.planned_with.acceleration),
+            num(self.planned_with.jerk),
+            num(1.0 - self.feed_share)
+        )
     }
 
     fn fmt_table(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -538,14 +621,35 @@ impl Summary {
         };
         writeln!(f, "  limits     {limits}")?;
         let a = &self.accuracy.distance;
+        let (from, bound) = match self.stream {
+            Some(_) => ("the moves", "ε + fit tolerance"),
+            None => ("the curve", "tolerance + playback bound"),
+        };
         writeln!(
             f,
-            "  accuracy   max distance {} {u} from the curve at t = {} s, bound {} {u} (tolerance + playback bound) {}",
+            "  accuracy   max distance {} {u} from {from} at t = {} s, bound {} {u} ({bound}) {}",
             num(a.max),
             num(a.at_s),
             a.limit.map_or("-".to_owned(), num),
             check_mark(a)
         )?;
+        let w = &self.wall_time;
+        if self.stream.is_some() {
+            writeln!(
+                f,
+                "  end point  error {} {u} to the last move's end",
+                num(self.end_point.error_to_path_end)
+            )?;
+            writeln!(
+                f,
+                "  wall time  push + poll {} s, play and measure {} s, plots {} s, total {} s",
+                num(w.plan_s),
+                num(w.play_s),
+                num(w.plots_s),
+                num(w.total_s)
+            )?;
+            return write!(f, "  wrote      {}", self.files.join(", "));
+        }
         writeln!(
             f,
             "  reference  max distance {} {u} at t = {} s ({})",
@@ -559,7 +663,6 @@ impl Summary {
             num(self.end_point.error_to_path_end),
             num(self.end_point.error_to_reference_end)
         )?;
-        let w = &self.wall_time;
         writeln!(
             f,
             "  wall time  plan {} s, compile {} s, play {} s, plots {} s, total {} s",

@@ -382,3 +382,87 @@ fn missing_job_file() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("cannot read"), "{stderr}");
 }
+
+/// The bundled moves job, the one the bad moves below break one field of.
+fn moves_job() -> String {
+    std::fs::read_to_string(common::jobs_dir().join("moves-contour.toml")).unwrap()
+}
+
+/// The moves job with `from` replaced by `to` (`from` must occur in it).
+fn moves_with(from: &str, to: &str) -> String {
+    let text = moves_job();
+    assert!(text.contains(from), "{from}");
+    text.replacen(from, to, 1)
+}
+
+#[test]
+fn moves_a_zero_length_line() {
+    let e = fails_naming(
+        &moves_with("line = [10, 0, 0]", "line = [0, 0, 0]"),
+        "moves[0].line",
+    );
+    assert!(e.contains("zero length"), "{e}");
+}
+
+#[test]
+fn moves_an_arc_whose_end_is_off_its_circle() {
+    let e = fails_naming(
+        &moves_with("to = [20, 10, 0], center", "to = [20, 11, 0], center"),
+        "moves[1].arc.to",
+    );
+    assert!(e.contains("off the circle"), "{e}");
+}
+
+#[test]
+fn moves_a_non_finite_value() {
+    fails_naming(
+        &moves_with("c1 = [22, 15, 0]", "c1 = [22, nan, 0]"),
+        "moves[2].bezier.c1[1]",
+    );
+    fails_naming(
+        &moves_with("line = [30, -10, 2]", "line = [30, inf, 2]"),
+        "moves[3].line[1]",
+    );
+}
+
+#[test]
+fn moves_two_shapes_in_one_move() {
+    let e = fails_naming(
+        &moves_with(
+            "feed = 150",
+            "feed = 150\nbezier = { to = [1, 1, 0], c1 = [0, 1, 0], c2 = [1, 0, 0] }",
+        ),
+        "moves[0]",
+    );
+    assert!(e.contains("exactly one of line, arc, bezier"), "{e}");
+}
+
+#[test]
+fn moves_of_another_axis_count() {
+    fails_naming(
+        &moves_with("line = [30, -10, 2]", "line = [30, -10]"),
+        "moves[3].line",
+    );
+}
+
+#[test]
+fn moves_a_queue_the_simulator_does_not_build() {
+    let e = fails_naming(&moves_with("queue = 32", "queue = 12"), "queue");
+    assert!(e.contains("8, 16, 32 or 64"), "{e}");
+}
+
+#[test]
+fn moves_a_bezier_whose_tangent_vanishes() {
+    fails_naming(
+        &moves_with("c2 = [28, 5, 0]", "c2 = [30, 0, 0]"),
+        "moves[2].bezier.c2",
+    );
+}
+
+#[test]
+fn moves_beside_a_path() {
+    fails_naming(
+        &format!("{}\n[path]\nkind = \"bezier\"\n", moves_job()),
+        "path",
+    );
+}

@@ -232,3 +232,102 @@ fn bundled_jobs_in_every_format() {
     }
     println!("bundled jobs that exceed in another format: {failed:#?}");
 }
+
+/// The largest norm over the axes of the columns `first ..` (one per axis) of `samples.csv`.
+fn column_peak(csv: &str, first: usize, axes: usize) -> f64 {
+    csv.lines()
+        .skip(1)
+        .map(|row| {
+            let cells: Vec<f64> = row.split(',').map(|c| c.parse().unwrap()).collect();
+            cells[first..first + axes]
+                .iter()
+                .map(|x| x * x)
+                .sum::<f64>()
+                .sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The bundled moves contour (lines, arcs, a Bézier, feeds; ε = 0.02 mm) runs: exit 0, every
+/// corner blended within ε, the samples (from `samples.csv`) within the limits, the end on
+/// the last move's end.
+#[test]
+fn the_moves_contour_streams_within_its_limits() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(common::jobs_dir().join("moves-contour.toml")).unwrap();
+    let r = run("moves-contour", &text, dir.path());
+    assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
+    agrees(&r);
+    let s = &r.summary["stream"];
+    assert_eq!(
+        (s["moves"].as_u64(), s["blends"].as_u64()),
+        (Some(6), Some(5))
+    );
+    assert_eq!(
+        (s["stops"].as_u64(), s["starved"].as_u64()),
+        (Some(0), Some(0))
+    );
+    assert_eq!(s["underruns"], 0);
+    assert!(s["max_deviation"]["max"].as_f64().unwrap() <= 0.02);
+    assert!(s["planning_per_move_s"].as_f64().is_some());
+    assert_eq!(r.summary["limits_respected"], true);
+    assert_eq!(r.summary["accuracy"]["distance"]["within"], true);
+    assert_eq!(r.summary["end_point"]["error_to_path_end"], 0.0);
+    for what in ["moves", "blends", "starved", "planning", "deviation"] {
+        assert!(r.stdout.contains(what), "{what}: {}", r.stdout);
+    }
+    let csv = std::fs::read_to_string(dir.path().join("moves-contour/samples.csv")).unwrap();
+    let (v, a) = (column_peak(&csv, 5, 3), column_peak(&csv, 8, 3));
+    assert!(v <= 200.0 * (1.0 + 1e-9) && v > 100.0, "{v}");
+    assert!(a <= 3000.0 * (1.0 + 1e-9) && a > 1000.0, "{a}");
+    assert!(dir.path().join("moves-contour/path.svg").exists());
+}
+
+/// Moves that arrive more slowly than the machine runs them: the stream rests at the end of
+/// what it has ("starved"), and the limits hold.
+#[test]
+fn slowly_produced_moves_starve_the_stream() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(common::jobs_dir().join("moves-starved.toml")).unwrap();
+    let r = run("moves-starved", &text, dir.path());
+    assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
+    agrees(&r);
+    let s = &r.summary["stream"];
+    assert_eq!(s["moves"], 6);
+    assert!(s["starved"].as_u64().unwrap() > 0, "{s}");
+    assert!(s["blends"].as_u64().unwrap() < 5, "{s}");
+    assert_eq!(r.summary["limits_respected"], true);
+}
+
+/// The moves contour in f32 and fixed-point playback (and with exact stops, on a smaller
+/// look-ahead): each holds its limits and ends on the last move's end.
+#[test]
+fn moves_run_in_f32_and_fixed() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(common::jobs_dir().join("moves-contour.toml")).unwrap();
+    for (name, from, to) in [
+        ("f32", "number = \"f64\"", "number = \"f32\""),
+        ("fixed", "number = \"f64\"", "number = \"fixed\""),
+        ("stops", "tolerance = 0.02 ", "queue = 8\ntolerance = 0 #"),
+    ] {
+        let job = text.replace(from, to).replace(
+            "queue = 32 ",
+            if name == "stops" { "#" } else { "queue = 32 " },
+        );
+        let r = run(name, &job, dir.path());
+        assert_eq!(r.output.status.code(), Some(0), "{name}: {}", r.stderr);
+        agrees(&r);
+        assert_eq!(r.summary["limits_respected"], true, "{name}");
+        assert!(
+            r.summary["end_point"]["error_to_path_end"]
+                .as_f64()
+                .unwrap()
+                < 1e-6,
+            "{name}"
+        );
+        if name == "stops" {
+            assert_eq!(r.summary["stream"]["blends"], 0);
+            assert!(r.summary["stream"]["stops"].as_u64().unwrap() >= 4);
+        }
+    }
+}

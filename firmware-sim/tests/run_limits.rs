@@ -1,12 +1,12 @@
-//! Every bundled job (`examples/jobs/*.toml`) respects every limit of its job file, checked
-//! from `samples.csv` alone: the velocity by finite differences of the positions, the
+//! Every bundled `[path]` job (`examples/jobs/*.toml`) respects every limit of its job file,
+//! checked from `samples.csv` alone: the velocity by finite differences of the positions, the
 //! acceleration by finite differences of the velocity samples, the jerk by finite differences
 //! of the acceleration samples, and the velocity and acceleration samples themselves — along
 //! the path (Euclidean norms) and per axis. The summary agrees.
 
 mod common;
 
-use common::{bundled_jobs, stem};
+use common::{bundled_path_jobs, stem};
 use strak_sim::job::{Job, ProfileKind};
 use strak_sim::run::{RunOptions, run_job};
 use strak_sim::summary::Summary;
@@ -40,7 +40,7 @@ impl Check<'_> {
 
 #[test]
 fn bundled_jobs_respect_every_limit() {
-    for file in bundled_jobs() {
+    for file in bundled_path_jobs() {
         let name = stem(&file);
         let job = Job::parse(&std::fs::read_to_string(&file).unwrap()).unwrap();
         check_job(&name, &job);

@@ -3,7 +3,7 @@
 //!
 //! 1. Installs what is missing: the rustup targets, `qemu-system-arm` (apt-get),
 //!    `defmt-print` (cargo install, pinned to [`DEFMT_PRINT_VERSION`]).
-//! 2. Compiles every bundled job (`firmware-sim/examples/jobs/*.toml`) on the host in `f32`
+//! 2. Compiles every bundled `[path]` job (`firmware-sim/examples/jobs/*.toml`) on the host in `f32`
 //!    and fixed-point with `strak_sim::export` (what `strak-sim compile` writes) and plays it
 //!    with its events, keeping every sample's bits, and the flash-playback firmware's job
 //!    [`FLASH_JOB_FILE`] in fixed-point; writes the blobs and a `jobs.rs` for the firmware
@@ -244,9 +244,13 @@ fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(files)
 }
 
-/// Exports every job file of `dir` in both formats, writing the blobs into `blob_dir`.
+/// Exports every job file of `dir` with a `[path]` in both formats, writing the blobs into
+/// `blob_dir` (the moves jobs stream on the host only: the firmware plays compiled paths).
 fn export_jobs(dir: &Path, blob_dir: &Path) -> Result<Vec<HostJob>, String> {
-    let files = toml_files(dir)?;
+    let mut files = toml_files(dir)?;
+    files.retain(|f| {
+        fs::read_to_string(f).map_or(true, |text| !strak_sim::moves::is_moves_job(&text))
+    });
     if files.is_empty() {
         return Err(format!("no job files in {}", dir.display()));
     }

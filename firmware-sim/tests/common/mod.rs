@@ -54,6 +54,14 @@ pub(crate) fn bundled_jobs() -> Vec<PathBuf> {
     files
 }
 
+/// The bundled jobs with a `[path]` (not the `[[moves]]` jobs), sorted by name.
+pub(crate) fn bundled_path_jobs() -> Vec<PathBuf> {
+    bundled_jobs()
+        .into_iter()
+        .filter(|f| !strak_sim::moves::is_moves_job(&std::fs::read_to_string(f).unwrap()))
+        .collect()
+}
+
 /// The bundled job `name` (`examples/jobs/<name>.toml`), parsed.
 pub(crate) fn bundled_job(name: &str) -> Job {
     let text = std::fs::read_to_string(jobs_dir().join(format!("{name}.toml"))).unwrap();
