@@ -86,6 +86,14 @@ impl<N: Number> FeedRampLimits<N> {
         self.alpha.to_f64() * (self.k_max as f64) * rate
     }
 
+    /// The ramp slowed to `2⁻ˢʰⁱᶠᵗ`: its change per tick `α` (and so its largest rate) times
+    /// `2⁻ˢʰⁱᶠᵗ`; `None` when that is below 2⁻⁴⁰ or not exact in `N`.
+    pub(crate) fn scaled(&self, shift: u8) -> Option<Self> {
+        let alpha = self.alpha.to_f64() * libm::ldexp(1.0, -i32::from(shift));
+        let scaled = N::from_f64(alpha).filter(|a| a.to_f64() == alpha && alpha >= MIN_ALPHA)?;
+        Some(self.with_alpha(scaled))
+    }
+
     /// The same ramp with the change per tick `alpha` (and `ω` up to `k_max · alpha`).
     pub(crate) fn with_alpha(&self, alpha: N) -> Self {
         Self::new(alpha, self.k_max, self.rate)

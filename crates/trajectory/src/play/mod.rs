@@ -11,7 +11,7 @@ pub(crate) mod kernel;
 mod stream;
 mod switch;
 
-use crate::path::{AxisState, FeedRampLimits, MIN_ALPHA, Newton, PathView, Piece, Sample};
+use crate::path::{AxisState, FeedRampLimits, Newton, PathView, Piece, Sample};
 use feed::FeedRamp;
 pub use kernel::Kernel;
 pub use stream::StreamSampler;
@@ -513,17 +513,13 @@ impl<'a, N: Kernel, const A: usize> Sampler<'a, N, A> {
         if self.is_ramping() || shift >= 40 {
             return false;
         }
-        let path = self.path.header().ramp;
-        let scale = libm::ldexp(1.0, -i32::from(shift));
-        let alpha = path.alpha.to_f64() * scale;
-        let Some(scaled) = N::from_f64(alpha).filter(|a| a.to_f64() == alpha) else {
-            return false;
-        };
-        if alpha < MIN_ALPHA {
-            return false;
+        match self.path.header().ramp.scaled(shift) {
+            Some(ramp) => {
+                self.ramp = ramp;
+                true
+            }
+            None => false,
         }
-        self.ramp = path.with_alpha(scaled);
-        true
     }
 
     /// Feed hold: ramp down to feed 0 and stand still on the path (ignored after an abort).

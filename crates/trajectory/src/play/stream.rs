@@ -11,7 +11,7 @@ use super::SamplerState;
 use super::feed::FeedRamp;
 use super::kernel::Kernel;
 use crate::error::Error;
-use crate::path::{AxisState, FeedRampLimits, MIN_ALPHA, Newton, Piece, Sample};
+use crate::path::{AxisState, FeedRampLimits, Newton, Piece, Sample};
 use crate::stream::Stream;
 
 /// Plays the pieces of a [`Stream`] from a queue, one [`Sample`] per call of
@@ -538,10 +538,9 @@ impl<'q, N: Kernel, const A: usize> StreamSampler<'q, N, A> {
         if !self.feed.is_idle() || shift >= 40 {
             return false;
         }
-        let alpha = self.full.alpha.to_f64() * libm::ldexp(1.0, -i32::from(shift));
-        match N::from_f64(alpha).filter(|a| a.to_f64() == alpha && alpha >= MIN_ALPHA) {
-            Some(scaled) => {
-                self.ramp = self.full.with_alpha(scaled);
+        match self.full.scaled(shift) {
+            Some(ramp) => {
+                self.ramp = ramp;
                 true
             }
             None => false,
