@@ -1064,7 +1064,10 @@ fn format_allowance<N: Number>() -> (f64, f64) {
 /// `f64` the speed from differences of positions and the seams as well; every tick within
 /// the tolerance of the moves (plus the fit's and the format's position error); the end
 /// on the last move's end.
-fn check_random_stream<N: Number>(moves: &[Move<3>], tolerance: f64) -> Result<(), TestCaseError> {
+fn check_random_stream<N: Number>(
+    moves: &[Move<3>],
+    tolerance: f64,
+) -> Result<StreamStats, TestCaseError> {
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let options = StreamOptions::new(1000.0).with_tolerance(tolerance);
     let mut stream = Stream::<3, 32, 512>::new([0.0; 3], limits, options).unwrap();
@@ -1112,7 +1115,65 @@ fn check_random_stream<N: Number>(moves: &[Move<3>], tolerance: f64) -> Result<(
         "{} end {last:?}",
         what()
     );
-    Ok(())
+    Ok(stream.stats())
+}
+
+/// The moves of `kinds` from the origin: kind 4 a line of 0.05 to 0.5 mm, the others
+/// [`random_move`]; with a feed of 20 to 200 where `x[8] < 0.3`.
+fn random_moves(kinds: &[(u8, [f64; 10])]) -> Vec<Move<3>> {
+    let mut from = [0.0; 3];
+    let mut moves = Vec::new();
+    for (kind, x) in kinds {
+        let mut mv = if *kind == 4 {
+            let d = 0.05 + 0.45 * x[0];
+            let heading = std::f64::consts::TAU * x[1];
+            Move::line([
+                from[0] + d * heading.cos(),
+                from[1] + d * heading.sin(),
+                from[2],
+            ])
+        } else {
+            random_move(from, *kind, x)
+        };
+        if x[8] < 0.3 {
+            mv = mv.with_feed(20.0 + 180.0 * x[7]);
+        }
+        from = mv.to;
+        moves.push(mv);
+    }
+    moves
+}
+
+/// Two lines of 10 mm meeting at a turn of 5°, 90°, 135°, 179° and 180° (a reversal),
+/// played in `f64`, `f32` and `Q40` ([`check_random_stream`]: the limits from the played
+/// ticks, the tolerance of 0.05 mm, the exact end): the corners up to 135° are blended, the
+/// near-reversal and the reversal are exact stops.
+#[test]
+fn every_corner_angle_keeps_the_limits_and_the_tolerance() {
+    for degrees in [5.0, 90.0, 135.0, 179.0, 180.0] {
+        let turn = f64::to_radians(degrees);
+        let corner = [10.0, 0.0, 0.0];
+        let moves = [
+            Move::line(corner),
+            Move::line([10.0 + 10.0 * turn.cos(), 10.0 * turn.sin(), 0.0]),
+        ];
+        let stats = [
+            check_random_stream::<f64>(&moves, 0.05),
+            check_random_stream::<f32>(&moves, 0.05),
+            check_random_stream::<Q40>(&moves, 0.05),
+        ]
+        .map(|checked| checked.unwrap_or_else(|e| panic!("{degrees}°: {e}")));
+        let blended = degrees < 170.0;
+        for s in stats {
+            assert_eq!(
+                (s.blends, s.stops),
+                (usize::from(blended), usize::from(!blended)),
+                "{degrees}°: {s:?}"
+            );
+            assert!(s.max_deviation <= 0.05, "{degrees}°: {s:?}");
+        }
+        println!("{degrees}°: {:?}", stats[0]);
+    }
 }
 
 /// Random streams of lines (some of 0.05 to 0.5 mm), arcs about a centre with a helical
@@ -1133,32 +1194,14 @@ fn random_streams_keep_the_limits_in_every_number_format() {
     };
     TestRunner::new(config)
         .run(&strategy, |(kinds, t, format)| {
-            let mut from = [0.0; 3];
-            let mut moves = Vec::new();
-            for (kind, x) in &kinds {
-                let mut mv = if *kind == 4 {
-                    let d = 0.05 + 0.45 * x[0];
-                    let heading = std::f64::consts::TAU * x[1];
-                    Move::line([
-                        from[0] + d * heading.cos(),
-                        from[1] + d * heading.sin(),
-                        from[2],
-                    ])
-                } else {
-                    random_move(from, *kind, x)
-                };
-                if x[8] < 0.3 {
-                    mv = mv.with_feed(20.0 + 180.0 * x[7]);
-                }
-                from = mv.to;
-                moves.push(mv);
-            }
+            let moves = random_moves(&kinds);
             let tolerance = [0.0, 0.01, 0.05][t];
-            match format {
+            let checked = match format {
                 0 => check_random_stream::<f64>(&moves, tolerance),
                 1 => check_random_stream::<f32>(&moves, tolerance),
                 _ => check_random_stream::<Q40>(&moves, tolerance),
-            }
+            };
+            checked.map(|_| ())
         })
         .unwrap();
 }
@@ -1544,4 +1587,113 @@ fn a_full_stream_refuses_moves_and_changes_nothing() {
     }
     assert_eq!(last, zigzag(11).to);
     assert_eq!(stream.stats().moves, 12);
+}
+
+/// A Bézier rapid with a near-cusp between two slow lines, exact stop: the motion crawls
+/// through a curvature peak narrower than the speed-limit samples, and the turning jerk
+/// there stays within the promised limit (found by the random streams).
+#[test]
+fn a_bezier_near_cusp_keeps_the_jerk() {
+    let x = [
+        0.8307072166133039,
+        0.0810093519871286,
+        0.15888489906249206,
+        0.18986581364953495,
+        0.8854555299410828,
+        0.66418581809838,
+        0.3872894109698018,
+        0.797850928581325,
+        0.6034628233950906,
+        0.0,
+    ];
+    let moves = random_moves(&[(0, [0.0; 10]), (3, x), (0, [0.0; 10])]);
+    check_random_stream::<f64>(&moves, 0.0).unwrap();
+}
+
+/// Arcs and lines with exact stops, one of which comes to rest just before a tick: the
+/// motion leaves the corner along the next move from the first tick, with the jerk of its
+/// plan (the frame of the move it left gave that tick's acceleration a jump across the
+/// corner; found by the random streams).
+#[test]
+fn an_exact_stop_leaves_along_the_next_move() {
+    let kinds = [
+        (
+            2,
+            [
+                0.9413624251171844,
+                0.8331510748599859,
+                0.0,
+                0.602965777378459,
+                0.0,
+                0.0,
+                0.0,
+                0.5495658994742861,
+                0.0,
+                0.6845733306261141,
+            ],
+        ),
+        (
+            0,
+            [
+                0.27008082559781665,
+                0.8902600779079188,
+                0.4878866953048279,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.8553410947818464,
+                0.0,
+            ],
+        ),
+        (
+            2,
+            [
+                0.5328872795895289,
+                0.31651903400366244,
+                0.0,
+                0.01565451153803424,
+                0.0,
+                0.0,
+                0.0,
+                0.047407045882298805,
+                0.0,
+                0.0,
+            ],
+        ),
+        (
+            1,
+            [
+                0.9934561048823541,
+                0.11965639849018711,
+                0.25401308953561935,
+                0.8024985487346008,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.5108951504409003,
+                0.8987655877740335,
+            ],
+        ),
+        (
+            0,
+            [
+                0.6653788634309662,
+                0.32800045776304415,
+                0.7805444204314381,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.8585092673062545,
+                0.0,
+                0.0,
+            ],
+        ),
+        (4, [0.0; 10]),
+    ];
+    let stats = check_random_stream::<f64>(&random_moves(&kinds), 0.0).unwrap();
+    assert_eq!((stats.moves, stats.stops), (6, 5));
 }

@@ -111,14 +111,18 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
         }
     }
 
-    /// The frame of the path at the arc length `s`: of the first segment that ends at or
-    /// after it (the last one beyond the end).
+    /// The frame of the path at the arc length `s`: of the last segment that starts at or
+    /// before it (the first one before the start). At a join the motion is on the segment
+    /// it enters, so that after an exact stop at a corner it leaves along the next segment
+    /// from its first tick (the previous segment's end, `start + length`, can exceed the
+    /// join by its rounding).
     pub(super) fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
         let segment = self
             .segments
             .iter()
-            .find(|g| s <= g.end())
-            .or_else(|| self.segments.back());
+            .rev()
+            .find(|g| g.start <= s)
+            .or_else(|| self.segments.front());
         segment.ok_or(Error::EmptyPath)?.frame(s)
     }
 }
