@@ -247,7 +247,9 @@ pub fn section() -> String {
     let _ = writeln!(
         o,
         "`cargo run --release -p strak-bench --bin corners`: the same moves planned with their \
-         corners blended within the tolerance, with exact stops, and by the junction-deviation \
+         corners blended within the tolerance, with exact stops (streamed at tolerance 0: the \
+         motion rests at every junction, tangent joins of lines and arcs included), and by the \
+         junction-deviation \
          trapezoid planner of grbl, Marlin and g2core (no jerk limit; arcs cut into chords of \
          {ARC_TOLERANCE} mm sagitta). v = {V} mm/s, a = {A} mm/s², j = {J} mm/s³ (strak only, \
          no feed reserve), tolerance {TOLERANCE} mm where the row says no other (the \
@@ -262,7 +264,7 @@ pub fn section() -> String {
     for (name, start, moves, tolerance) in cases() {
         let (blended, deviation) = strak(start, &moves, tolerance);
         let (stream, per_second) = streamed(start, &moves, tolerance);
-        let (stops, _) = strak(start, &moves, 0.0);
+        let (stops, _) = streamed(start, &moves, 0.0);
         let jd = junction_deviation(&polyline(start, &moves), tolerance);
         let _ = writeln!(
             o,

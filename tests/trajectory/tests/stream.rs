@@ -679,8 +679,9 @@ fn param_acceleration_is_the_derivative_of_the_rate() {
 }
 
 /// A dense chain: a circle of 0.2 mm chords blended within 0.02 mm, where every blend takes
-/// half of each chord (the blends meet with no line between them). It plans and plays
-/// within the tolerance of the chords, and more than twice as fast as exact stops.
+/// half of each chord (the blends meet with no line between them, chained with a shared
+/// curvature). It plans and plays within the tolerance of the chords, near the path
+/// velocity, and more than twice as fast as exact stops.
 #[test]
 fn dense_chain_of_short_moves() {
     let points: Vec<[f64; 2]> = (0..=100)
@@ -710,6 +711,21 @@ fn dense_chain_of_short_moves() {
     println!("0.2 mm chords: blended {blended:.3} s, exact stops {stopping:.3} s");
     assert!(2.0 * blended < stopping, "{blended} against {stopping}");
     let path = Toolpath::<2, 128>::new(points[0], &moves, 0.02, 1e-9).unwrap();
+    // the blends are chained: the curvature stays near the circle's 0.1/mm between the
+    // first and the last blend, where each blend alone would fall to 0 on every chord
+    let (mut least, mut most) = (f64::INFINITY, 0.0_f64);
+    for i in 200..=9_900 {
+        let u = f64::from(i) * 0.01;
+        let (d1, d2) = (path.deriv(u, 1), path.deriv(u, 2));
+        let speed = d1[0].hypot(d1[1]);
+        let k = (d1[0] * d2[1] - d1[1] * d2[0]) / (speed * speed * speed);
+        (least, most) = (least.min(k), most.max(k));
+    }
+    println!("curvature of the chained blends: {least:.6} to {most:.6}");
+    assert!(least > 0.099 && most < 0.101, "{least} {most}");
+    // so the circle is crossed near the path velocity: its 20 mm at 100 mm/s, and the ramps
+    // with what the turning leaves of the acceleration and jerk (about 0.12 s each)
+    assert!(blended < 0.45, "{blended}");
     let plan = PathTiming::<_, 4096, 1024>::plan(&path, &limits, &PlanOptions::new()).unwrap();
     let played: Box<Path<f64, 2, 4096>> =
         compile_boxed(&plan, 1000.0, &CompileOptions::new().with_tolerance(1e-4)).unwrap();
@@ -730,6 +746,51 @@ fn dense_chain_of_short_moves() {
         );
     }
     assert!(worst <= 0.02 + 1e-4 + played.playback_bound(), "{worst}");
+}
+
+/// A whole toolpath of lines meeting arcs tangentially, planned with exact stops (tolerance
+/// 0: no blends) and with blends: the joins where only the curvature steps are passed at a
+/// capped speed, so the compiled motion keeps the jerk limit from the samples.
+#[test]
+fn tangent_arc_joins_of_a_whole_toolpath_keep_the_jerk() {
+    let arc = |to: [f64; 2], center: [f64; 2]| {
+        Move::new(
+            to,
+            Shape::ArcCenter {
+                center,
+                plane: Plane::XY,
+                turn: Turn::CounterClockwise,
+            },
+        )
+    };
+    let moves = [
+        Move::line([37.0, 0.0]),
+        arc([40.0, 3.0], [37.0, 3.0]),
+        Move::line([40.0, 17.0]),
+        arc([37.0, 20.0], [37.0, 17.0]),
+    ];
+    let limits = Limits::<2>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    for tolerance in [0.0, 0.02] {
+        let path = Toolpath::<2, 8>::new([0.0, 0.0], &moves, tolerance, 1e-9).unwrap();
+        let plan = PathTiming::<_, 4096, 1024>::plan(&path, &limits, &PlanOptions::new()).unwrap();
+        let played: Box<Path<f64, 2, 4096>> =
+            compile_boxed(&plan, 1000.0, &CompileOptions::new().with_tolerance(1e-4)).unwrap();
+        let mut sampler = Sampler::new(&*played);
+        let (mut a_max, mut j_max) = (0.0_f64, 0.0_f64);
+        let mut last: Option<[f64; 2]> = None;
+        while !sampler.is_finished() {
+            let a = sampler.next().acceleration;
+            a_max = a_max.max(a.norm());
+            if let Some(p) = last {
+                j_max = j_max.max(a.minus(p).norm() * 1000.0);
+            }
+            last = Some(a);
+        }
+        println!("tolerance {tolerance}: a {a_max:.1}, j {j_max:.0}");
+        assert!(a_max <= keep * 3000.0 * (1.0 + 1e-9), "{a_max}");
+        assert!(j_max <= keep * 100_000.0 * (1.0 + 1e-9), "{j_max}");
+    }
 }
 
 /// The ticks of a stream as played: positions, velocities and accelerations per tick, the

@@ -16,6 +16,16 @@
 //! and a join that turns by more than the corner angle is a corner, where the motion stops.
 //! A step within the rounding of the tangents (`64·ε` of the curve's scalar, relative to
 //! `max(1, |c'|)`) is no turn: the positions carry that rounding anyway.
+//!
+//! Where the tangent is continuous but the curvature vector steps by `Δk` (a line meeting an
+//! arc tangentially), the acceleration steps by `v²·|Δk|`, which the samples show as a jerk
+//! `v²·|Δk|/T`; so such a join is passed at most at
+//!
+//! ```text
+//! v²·|Δk| ≤ q·j·T
+//! ```
+//!
+//! (no cap without a jerk limit). A step within `1024·ε` of the curvatures is no step.
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
@@ -48,6 +58,23 @@ pub(super) fn direction<C: ParamCurveDeriv, const A: usize>(
     Some((t.map(|x| x / n), n))
 }
 
+/// The curvature vector `(c'' − (c''·T)·T)/|c'|²` at `u`, where the unit tangent is `t`
+/// and `|c'| = speed`.
+fn curvature<C: ParamCurveDeriv, const A: usize>(
+    curve: &C,
+    u: ScalarOf<C>,
+    t: &[f64; A],
+    speed: f64,
+) -> [f64; A] {
+    let d = curve.deriv(u, 2);
+    let mut c2 = [0.0; A];
+    for (i, slot) in c2.iter_mut().enumerate().take(<C::Point as Point>::DIM) {
+        *slot = d.coord(i).to_f64();
+    }
+    let along = dot(&c2, t);
+    core::array::from_fn(|i| (c2[i] - along * t[i]) / (speed * speed))
+}
+
 fn dot<const A: usize>(a: &[f64; A], b: &[f64; A]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -59,6 +86,8 @@ pub(super) struct JoinRule<const A: usize> {
     step: f64,
     /// `q·a_i·T` per axis: the largest `v·|ΔT_i|`.
     axis_step: [f64; A],
+    /// `q·j·T`: the largest `v²·|Δk|`.
+    curvature_step: f64,
 }
 
 impl<const A: usize> JoinRule<A> {
@@ -71,6 +100,7 @@ impl<const A: usize> JoinRule<A> {
             cos_corner: libm::cos(options.corner_angle()),
             step,
             axis_step: limits.axis_acceleration().map(|a| q * a * period),
+            curvature_step: q * jerk * period,
         }
     }
 
@@ -91,19 +121,35 @@ impl<const A: usize> JoinRule<A> {
         if dot(&left, &right) < self.cos_corner {
             return 0.0;
         }
+        let mut cap = self.curvature_cap::<ScalarOf<C>>(
+            curvature(curve, left_at, &left, sl),
+            curvature(curve, u_join, &right, sr),
+        );
         let delta: [f64; A] = core::array::from_fn(|i| right[i] - left[i]);
         let noise = 64.0 * ScalarOf::<C>::EPSILON.to_f64() * (1.0 / sl.min(sr)).max(1.0);
         let jump = libm::sqrt(dot(&delta, &delta));
         if jump <= noise {
-            return f64::INFINITY;
+            return cap;
         }
-        let mut cap = self.step / jump;
+        cap = cap.min(self.step / jump);
         for (d, s) in delta.iter().zip(&self.axis_step) {
             if d.abs() > noise {
                 cap = cap.min(s / d.abs());
             }
         }
         cap
+    }
+
+    /// The largest speed at a join where the curvature vector steps from `left` to
+    /// `right`: `√(q·j·T / |Δk|)`, `∞` for a step within the rounding.
+    fn curvature_cap<S: Scalar>(&self, left: [f64; A], right: [f64; A]) -> f64 {
+        let delta: [f64; A] = core::array::from_fn(|i| right[i] - left[i]);
+        let step = libm::sqrt(dot(&delta, &delta));
+        let size = libm::sqrt(dot(&left, &left)) + libm::sqrt(dot(&right, &right));
+        if step <= 1024.0 * S::EPSILON.to_f64() * size {
+            return f64::INFINITY;
+        }
+        libm::sqrt(self.curvature_step / step)
     }
 }
 
@@ -177,6 +223,19 @@ mod tests {
         assert!((cap10 - 0.25).abs() < 1e-6, "{cap10}");
         // a straight join: no cap
         assert_eq!(rule(&o).cap(&polyline(0.0), 0), f64::INFINITY);
+    }
+
+    /// A line meeting an arc of radius 2 tangentially: the curvature steps by 0.5, so
+    /// `v ≤ √(q·j·T/|Δk|) = √(0.5·50 000·10⁻³/0.5) = √50`; without a jerk limit, no cap.
+    #[test]
+    fn a_curvature_step_caps_the_join() {
+        let c = crate::plan::testcurves::LineArcLine::new(100.0, 2.0, 100.0);
+        let cap = rule(&PlanOptions::new()).cap(&c, 0);
+        assert!((cap - 50.0_f64.sqrt()).abs() < 1e-9, "{cap}");
+        assert!((rule(&PlanOptions::new()).cap(&c, 1) - cap).abs() < 1e-9);
+        let l = Limits::<2>::new(200.0, 2000.0, 50_000.0).unwrap();
+        let trapezoid = JoinRule::new(&l, f64::INFINITY, &PlanOptions::new());
+        assert_eq!(trapezoid.cap(&c, 0), f64::INFINITY);
     }
 
     #[test]

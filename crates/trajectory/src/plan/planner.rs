@@ -502,6 +502,9 @@ mod tests {
         assert!(meas.v_ratio <= 1.0 + 1e-6);
     }
 
+    /// Five zones: the lines, the arc, and the sampling intervals that reach the joins from
+    /// the lines' side (the arc's curvature in their last sample), which end where the
+    /// curvature step caps the speed.
     #[test]
     fn capacity_exceeded_for_zones() {
         let c = LineArcLine::new(100.0, 2.0, 100.0);
@@ -511,7 +514,7 @@ mod tests {
             r,
             Err(Error::ZoneCapacityExceeded {
                 capacity: 2,
-                required: 3
+                required: 5
             })
         ));
         // a continuously varying limit with tolerance 0 needs many zones

@@ -108,6 +108,8 @@ pub struct WindowZone {
     end: f64,
     /// The speed limit of the path and the machine (curvature, axes), without the feed.
     v_machine: f64,
+    /// The highest `v_machine` of the zones merged into it.
+    v_high: f64,
     /// The programmed feed (`∞` for none; rounded down to `f32`), times `scale` where it
     /// applies.
     feed: f32,
@@ -167,6 +169,29 @@ impl WindowZone {
         self.v_machine.min(f64::from(self.feed) * f64::from(scale))
     }
 
+    /// This zone and `next` (which starts where it ends) as one zone under the lower limits
+    /// of both, where their speed limits are within `ratio` of each other (the highest of
+    /// all merged at most `ratio` times the lowest), nothing caps the speed where they
+    /// meet, and they have the same feed and override; else `None`.
+    fn merged(&self, next: &WindowZone, ratio: f64) -> Option<Self> {
+        let high = self.v_high.max(next.v_high);
+        let low = self.v_machine.min(next.v_machine);
+        let same_feed = self.feed == next.feed && self.scale == next.scale;
+        if !(self.exit_cap == f64::INFINITY && same_feed && high <= ratio * low) {
+            return None;
+        }
+        Some(WindowZone {
+            end: next.end,
+            v_machine: low,
+            v_high: high,
+            a_limit: self.a_limit.min(next.a_limit),
+            j_limit: self.j_limit.min(next.j_limit),
+            exit_cap: next.exit_cap,
+            bound: f64::NAN,
+            ..*self
+        })
+    }
+
     /// The zone of [`new`](Self::new), its values not checked.
     const fn unchecked(
         (start, end): (f64, f64),
@@ -177,6 +202,7 @@ impl WindowZone {
             start,
             end,
             v_machine: v,
+            v_high: v,
             feed: f32::INFINITY,
             scale: 1.0,
             a_limit: a,
@@ -319,6 +345,17 @@ impl<const Z: usize> LookAhead<Z> {
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn extend(&mut self, zones: &[WindowZone]) -> Result<(), Error> {
+        self.check(zones)?;
+        for zone in zones {
+            let _ = self.zones.push(*zone);
+        }
+        plan_speeds(&mut self.zones, self.entry.2);
+        Ok(())
+    }
+
+    /// An error unless `zones` fit and each starts where the one before it (the first:
+    /// where the window) ends.
+    fn check(&self, zones: &[WindowZone]) -> Result<(), Error> {
         let required = self.zones.len() + zones.len();
         if required > Z {
             return Err(Error::CapacityExceeded {
@@ -333,11 +370,48 @@ impl<const Z: usize> LookAhead<Z> {
             }
             end = zone.end;
         }
-        for zone in zones {
-            let _ = self.zones.push(*zone);
-        }
-        plan_speeds(&mut self.zones, self.entry.2);
         Ok(())
+    }
+
+    /// [`extend`](Self::extend), merging each zone into the window's last while that one is
+    /// crossed at its speed limit in fewer than [`MIN_ZONE_TICKS`] ticks of the control
+    /// period `period` and their speed limits are within `ratio` of each other
+    /// ([`WindowZone::merged`]): a dense chain of short segments then plans its speed
+    /// changes across several of them, where each zone alone (entered and left without
+    /// acceleration) would let the speed change by a sliver. The merged zones stay short,
+    /// as a committed zone is planned no further: longer ones would take the look-ahead of
+    /// a short queue. A merge that would leave the committed speed no way to keep to the
+    /// window (it lowers the last zone's limits) is taken back.
+    ///
+    /// # Errors
+    /// As [`extend`](Self::extend).
+    pub(crate) fn extend_merging(
+        &mut self,
+        zones: &[WindowZone],
+        ratio: f64,
+        period: f64,
+    ) -> Result<(), Error> {
+        self.check(zones)?;
+        let mut rest = zones;
+        while let (Some(next), Some(last)) = (rest.first(), self.zones.last_mut()) {
+            if last.end - last.start >= MIN_ZONE_TICKS * period * last.v_limit() {
+                break;
+            }
+            let Some(merged) = last.merged(next, ratio) else {
+                break;
+            };
+            let kept = core::mem::replace(last, merged);
+            plan_speeds(&mut self.zones, self.entry.2);
+            if self.zones.first().is_some_and(|z| self.entry.2 > z.bound) {
+                if let Some(last) = self.zones.last_mut() {
+                    *last = kept;
+                }
+                self.replan();
+                break;
+            }
+            rest = &rest[1..];
+        }
+        self.extend(rest)
     }
 
     /// Moves the window's entry time on to `t` while the committed motion rests at its end
@@ -531,6 +605,7 @@ impl<const K: usize> ZoneSink for SegmentZones<K> {
             Some(last) if merge => {
                 last.end = zone.end;
                 last.v_machine = last.v_machine.min(zone.v_machine);
+                last.v_high = last.v_high.max(zone.v_high);
                 last.a_limit = last.a_limit.min(zone.a_limit);
                 last.j_limit = last.j_limit.min(zone.j_limit);
                 last.exit_cap = zone.exit_cap;
@@ -654,6 +729,109 @@ mod tests {
             }
         }
         std::println!("largest duration against the whole plan, look-ahead 0, 1, 3, 8: {ratios:?}");
+    }
+
+    /// Chains of short zones whose limits differ by up to 4 % (a dense chain of blends),
+    /// between longer zones, streamed one by one with merging (control period 1 ms): fewer
+    /// zones are committed, each merged one is crossed at its limit (before its last part
+    /// was merged) in fewer than 16 ticks plus its last part, and the committed motion keeps
+    /// every original zone's limits.
+    #[test]
+    fn merged_zones_keep_every_zones_limits() {
+        let mut rng = Rng(0x5eed_1234_abcd_0003);
+        let period = 1e-3;
+        let (mut pushed, mut committed) = (0, 0);
+        for _ in 0..100 {
+            let mut zones = StdVec::new();
+            let mut s = 0.0;
+            for _ in 0..(2 + (rng.next() * 6.0) as usize) {
+                let (v, a, j) = (
+                    rng.range(20.0, 200.0),
+                    rng.range(500.0, 3000.0),
+                    rng.range(1e4, 1e5),
+                );
+                let short = rng.next() < 0.7;
+                for _ in 0..if short { 30 } else { 1 } {
+                    let length = if short {
+                        rng.range(0.05, 0.3)
+                    } else {
+                        rng.range(1.0, 20.0)
+                    };
+                    let w = 1.0 + 0.04 * rng.next();
+                    let zone =
+                        WindowZone::new((s, s + length), (v * w, a * w, j * w), f64::INFINITY)
+                            .unwrap();
+                    zones.push(zone);
+                    s += length;
+                }
+            }
+            let mut window = LookAhead::<64>::new();
+            let mut out = StdVec::new();
+            for z in &zones {
+                window
+                    .extend_merging(core::slice::from_ref(z), 1.05, period)
+                    .unwrap();
+                if window.len() > 4 {
+                    out.push(window.commit().unwrap());
+                }
+            }
+            while let Some(z) = window.commit() {
+                out.push(z);
+            }
+            check_motion(&out);
+            (pushed, committed) = (pushed + zones.len(), committed + out.len());
+            for z in &out {
+                let inside: StdVec<&WindowZone> = zones
+                    .iter()
+                    .filter(|w| w.start >= z.start && w.end <= z.end)
+                    .collect();
+                let last = inside.last().map_or(0.0, |w| w.end - w.start);
+                // (the limit before the last merge was at most 1.05 times the merged one)
+                assert!(z.end - z.start - last < 16.0 * period * 1.05 * z.v_limit);
+                for p in z.phases() {
+                    for i in 0..=16 {
+                        let st = p.state_at(p.t0 + p.duration * f64::from(i) / 16.0);
+                        let w = inside.iter().find(|w| st.s <= w.end).unwrap_or(&inside[0]);
+                        assert!(st.v <= w.v_machine * (1.0 + 1e-9), "{st:?} {w:?}");
+                        assert!(st.a.abs() <= w.a_limit * (1.0 + 1e-9), "{st:?} {w:?}");
+                        assert!(st.j.abs() <= w.j_limit * (1.0 + 1e-9), "{st:?} {w:?}");
+                    }
+                }
+            }
+        }
+        std::println!("{pushed} zones pushed, {committed} committed");
+        assert!(2 * committed < pushed, "{committed} of {pushed}");
+    }
+
+    /// A merge that lowers the last zone's speed limit below the committed speed is taken
+    /// back: the zone is appended on its own, and the motion slows down into it.
+    #[test]
+    fn a_merge_below_the_committed_speed_is_taken_back() {
+        let limits = |v: f64| (v, 3_000.0, 1e5);
+        let mut window = LookAhead::<8>::new();
+        window
+            .push(WindowZone::new((0.0, 1_000.0), limits(100.0), f64::INFINITY).unwrap())
+            .unwrap();
+        window
+            .push(WindowZone::new((1_000.0, 1_100.0), limits(100.0), f64::INFINITY).unwrap())
+            .unwrap();
+        let first = window.commit().unwrap();
+        assert_eq!(first.v_end, 100.0);
+        // within 5 % and crossed in fewer than 16 ticks of 0.1 s: merged
+        let above = WindowZone::new((1_100.0, 1_110.0), limits(100.5), f64::INFINITY).unwrap();
+        window.extend_merging(&[above], 1.05, 0.1).unwrap();
+        assert_eq!(window.len(), 1);
+        // lower than the committed 100: taken back
+        let below = WindowZone::new((1_110.0, 1_120.0), limits(96.0), f64::INFINITY).unwrap();
+        window.extend_merging(&[below], 1.05, 0.1).unwrap();
+        assert_eq!(window.len(), 2);
+        let mut out = std::vec![first];
+        while let Some(z) = window.commit() {
+            out.push(z);
+        }
+        check_motion(&out);
+        assert_eq!(out[1].v_limit, 100.0);
+        assert_eq!(out[2].v_limit, 96.0);
     }
 
     /// A window that runs dry comes to rest, and the zones that arrive afterwards start from

@@ -5,8 +5,10 @@
 //! # How a move flows through
 //!
 //! 1. [`Stream::push`] keeps the newest move pending until the next one arrives: only then
-//!    is its end junction known ([`junction`]). The part of the pending move between its
-//!    blends, and the blend after it, become segments of the path; each segment's speed
+//!    is its end junction known ([`junction`]). The blend before the pending move (held
+//!    back until then, so that two blends taking all of a short line between them can be
+//!    joined with a shared curvature, [`chain`]) and the pending move's part between its
+//!    blends become segments of the path; each segment's speed
 //!    limits are sampled into zones ([`PlanOptions`]: curvature, turning jerk, per-axis
 //!    limits, the moves' feeds) and appended to the window ([`LookAhead`]), which keeps a
 //!    plan that comes to rest at the end of the path known so far.
@@ -25,7 +27,7 @@ use heapless::spsc::Producer;
 use heapless::{Deque, Vec};
 use strak_curves::ParamCurve;
 
-use super::blend::{Junction, junction};
+use super::blend::{Blend, Junction, chain, junction};
 use super::committed::{Committed, PHASES};
 use super::moves::{Move, MoveCurve};
 use super::segment::Segment;
@@ -222,12 +224,15 @@ pub struct StreamStats {
 }
 
 /// The newest move, whose end junction is not yet known: its curve, the parameter where its
-/// part after the blend before it starts, and its feed.
+/// part after the blend before it starts, its feed, and the blend before it with that
+/// blend's feed (held back until the next junction is known: where the two blends take all
+/// of the move between them, they are joined as a [`chain`]).
 #[derive(Clone, Copy, Debug)]
 struct Pending<const D: usize> {
     curve: MoveCurve<D>,
     from: f64,
     feed: f64,
+    before: Option<(Blend<D>, f64)>,
 }
 
 /// A stream of moves in `D` axes: at most `Q` segments (each move's part between its blends,
@@ -583,42 +588,50 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
                 curve,
                 from: 0.0,
                 feed,
+                before: None,
             });
             self.end = curve.eval(1.0);
             self.stats.moves += 1;
             return Ok(());
         };
         let corner = junction(&prev.curve, &curve, self.options.tolerance)?;
-        let (leave, from) = match &corner {
-            Junction::Blend(b) => (b.leave(), b.join()),
-            _ => (1.0, 0.0),
+        let (leave, from, mut after) = match corner {
+            Junction::Blend(b) => (b.leave(), b.join(), Some(b)),
+            _ => (1.0, 0.0, None),
         };
+        let through = leave - prev.from > 1e-12;
+        let mut before = prev.before;
+        if let (Some((b, _)), Some(a), false) = (before.as_mut(), after.as_mut(), through) {
+            chain(b, a, &prev.curve, self.options.tolerance);
+        }
         let mut added = Vec::<Segment<D>, 2>::new();
         let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
         let mut s = self.length;
-        if leave - prev.from > 1e-12 {
+        if let Some(blend) = self.blend_of(before, s, &mut zones)? {
+            s = blend.end();
+            let _ = added.push(blend);
+        }
+        if through {
             let stop = matches!(corner, Junction::Stop);
             let span = self.span_of(&prev, leave, s, stop, &mut zones)?;
             s = span.end();
             let _ = added.push(span);
         }
-        if let Junction::Blend(b) = &corner {
-            let blend = Segment::blend(b, s, prev.feed.min(feed))?;
-            self.zones_of(&blend, &mut zones)?;
-            s = blend.end();
-            let _ = added.push(blend);
-        }
         self.room_for(added.len(), zones.zones().len())?;
         self.append(&added, &zones)?;
         self.length = s;
-        self.pending = Some(Pending { curve, from, feed });
+        self.note_deviation(before);
+        let before = after.map(|b| (b, prev.feed.min(feed)));
+        self.pending = Some(Pending {
+            curve,
+            from,
+            feed,
+            before,
+        });
         self.end = curve.eval(1.0);
         self.stats.moves += 1;
         match corner {
-            Junction::Blend(b) => {
-                self.stats.blends += 1;
-                self.stats.max_deviation = self.stats.max_deviation.max(b.deviation());
-            }
+            Junction::Blend(_) => self.stats.blends += 1,
             Junction::Stop => self.stats.stops += 1,
             Junction::Straight => {}
         }
@@ -629,8 +642,9 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// of what was pushed (a later move starts from rest there).
     ///
     /// # Errors
-    /// [`Error::CapacityExceeded`] when the segments or the window are full (poll, then
-    /// finish again).
+    /// [`Error::CapacityExceeded`] when too few segments are free (checked first, at no
+    /// cost), [`Error::ZoneCapacityExceeded`] when the window is full (poll, then finish
+    /// again; nothing changed).
     ///
     /// ```
     /// # use heapless::Deque;
@@ -648,13 +662,45 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         let Some(prev) = self.pending else {
             return Ok(());
         };
+        self.room_for(1 + usize::from(prev.before.is_some()), 0)?;
+        let mut added = Vec::<Segment<D>, 2>::new();
         let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
-        let span = self.span_of(&prev, 1.0, self.length, true, &mut zones)?;
-        self.room_for(1, zones.zones().len())?;
-        self.append(&[span], &zones)?;
+        let mut s = self.length;
+        if let Some(blend) = self.blend_of(prev.before, s, &mut zones)? {
+            s = blend.end();
+            let _ = added.push(blend);
+        }
+        let span = self.span_of(&prev, 1.0, s, true, &mut zones)?;
+        let _ = added.push(span);
+        self.room_for(added.len(), zones.zones().len())?;
+        self.append(&added, &zones)?;
         self.length = span.end();
+        self.note_deviation(prev.before);
         self.pending = None;
         Ok(())
+    }
+
+    /// The segment of the blend `before` (with its feed) at the path's arc length `start`,
+    /// with its zones appended to `zones`; `None` without a blend.
+    fn blend_of<const K: usize>(
+        &self,
+        before: Option<(Blend<D>, f64)>,
+        start: f64,
+        zones: &mut SegmentZones<K>,
+    ) -> Result<Option<Segment<D>>, Error> {
+        let Some((blend, feed)) = before else {
+            return Ok(None);
+        };
+        let segment = Segment::blend(&blend, start, feed)?;
+        self.zones_of(&segment, zones)?;
+        Ok(Some(segment))
+    }
+
+    /// Counts the deviation of the blend `before`, now a segment of the path.
+    fn note_deviation(&mut self, before: Option<(Blend<D>, f64)>) {
+        if let Some((b, _)) = before {
+            self.stats.max_deviation = self.stats.max_deviation.max(b.deviation());
+        }
     }
 
     /// The segment of the pending move `prev` from its start up to its parameter `to`, at the
@@ -715,7 +761,9 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         for g in segments {
             let _ = self.segments.push_back(*g);
         }
-        self.window.extend(zones.zones())
+        let ratio = 1.0 + self.options.plan.zone_tolerance();
+        self.window
+            .extend_merging(zones.zones(), ratio, self.period())
     }
 
     /// Compiles the next stretch of at most the options' stretch ticks into `out`, committing
@@ -814,9 +862,16 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             }
             let last_zone = self.window.len() <= 1;
             if last_zone && self.pending.is_some() {
-                self.finish()?;
-                self.stats.starved += 1;
-                continue;
+                match self.finish() {
+                    Ok(()) => {
+                        self.stats.starved += 1;
+                        continue;
+                    }
+                    // Full: the motion rests at the window's end, and the pending move is
+                    // finished once the played segments make room.
+                    Err(Error::CapacityExceeded { .. } | Error::ZoneCapacityExceeded { .. }) => {}
+                    Err(e) => return Err(e),
+                }
             }
             if self.window.is_empty() {
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]

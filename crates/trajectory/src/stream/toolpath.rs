@@ -4,7 +4,7 @@
 use heapless::Vec;
 use strak_curves::{ParamCurve, ParamCurveDeriv, PieceDeriv, Point};
 
-use super::blend::{Junction, junction};
+use super::blend::{Junction, chain, junction};
 use super::moves::{Move, MoveCurve};
 use crate::error::Error;
 
@@ -83,6 +83,7 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
             }
             path.moves.push(curve).map_err(|_| full)?;
         }
+        path.chain_blends(tolerance);
         for i in 0..path.moves.len() {
             let begin = match i.checked_sub(1).map(|j| &path.junctions[j]) {
                 Some(Junction::Blend(b)) => b.join(),
@@ -98,6 +99,20 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
             path.pieces += usize::from(has_span((begin, end))) + usize::from(blended);
         }
         Ok(path)
+    }
+
+    /// Joins the blends at both ends of each line they take all of between them, in order
+    /// along the path, as a [`Stream`](crate::Stream) does ([`chain`]).
+    fn chain_blends(&mut self, tolerance: f64) {
+        for i in 1..self.junctions.len() {
+            let (done, rest) = self.junctions.split_at_mut(i);
+            if let (Some(Junction::Blend(before)), Some(Junction::Blend(after))) =
+                (done.last_mut(), rest.first_mut())
+                && !has_span((before.join(), after.leave()))
+            {
+                chain(before, after, &self.moves[i], tolerance);
+            }
+        }
     }
 
     /// The number of blended corners.
