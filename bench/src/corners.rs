@@ -284,33 +284,40 @@ pub fn section() -> String {
 /// How the streamed column is made, and what its speed is.
 const STREAMED: &str = "Streamed: the same moves pushed into a `Stream<2, 64, 1024>` (64 \
 segments, 1024 zones of look-ahead) and compiled at 1 kHz a stretch of 64 ticks at a time \
-into `f32` pieces, the duration its ticks; moves/s is the wall-clock rate of pushing, \
-planning and compiling them on this machine, one run, release build. The stream plans \
-each segment (a move between its blends, a blend) in zones of its own and merges zones \
-crossed in fewer than 16 ticks, which is why it is faster than the whole-path plan on the \
-walk and the contour. Its planning speed is a sixtieth of the target of 200 000 moves/s or \
-less: on the dense circle each move costs the blend's arc-length panels and Newton \
-inversions at every tick the stretch fit evaluates, the speed-limit samples of the blend \
-(32 intervals), and a refit of every stretch tick by tick.";
+into `f32` pieces, the duration its ticks; exact stops are the same stream at tolerance 0; \
+moves/s is the wall-clock rate of pushing, planning and compiling them on this machine, one \
+run, release build. The stream plans each segment (a move between its blends, a blend) in \
+zones of its own and merges zones crossed in fewer than 16 ticks (across segments too, where \
+their speed limits are within the zone tolerance), which is why it is faster than the \
+whole-path plan on the walk and the contour. On the dense circle it is slower than the \
+whole-path plan: its look-ahead is the 64 segments it holds, 12.8 mm of chords, within which \
+it must be able to stop with what the turning leaves of the acceleration and jerk. Its \
+planning speed is a seventh to a thirtieth of the target of 200 000 moves/s: each move costs \
+the blend's arc-length panels and Newton inversions at every tick the stretch fit \
+evaluates, the speed-limit samples of the blend (32 intervals, halved where they disagree), \
+and a refit of every stretch tick by tick.";
 
 /// What limits the blends in the table above (from the blends' curvature, measured in
 /// `tests/trajectory/tests/stream.rs`).
 const CORNERS_MISSED: &str = "The targets (at most 1.3 × the junction-deviation planner, at \
-least 2 × faster than exact stops) are not met yet. A jerk limit binds the speed through a \
-blend by `v³·|dκ/ds| ≤ j`, and a blend within ε of a corner turning by φ has a curvature \
-derivative of about `c(φ)/ε²` (c = 0.012 at 30°, 0.22 at 90°, 2.2 at 120°): at ε = 0.02 mm \
-and j = 10⁵ mm/s³ that bound is about 6 mm/s at a right angle, and the planner's speed \
-limit through such a blend (its zones in `PathTiming::motion`, with the shares of the \
-limits for the turning) is 4.2 to \
-4.6 mm/s, which costs more time than stopping at the corner (the last 0.1 mm of a \
-jerk-limited stop take 18 ms; the table's single right angle). Blended within 0.5 mm the \
-corner is passed at 36 mm/s and still takes longer than a stop, as the planner's zones \
-through the blend keep only 340 mm/s² and 12 600 mm/s³ for speed changes (the turning \
-takes the rest of the jerk). The junction-deviation planner passes the right angle at \
-12 mm/s (within 0.02) without any jerk limit. On the dense circle every blend takes half \
-of each chord and the curvature rises and falls along every chord (0 at the chords' \
-middles): by the same bound about 40 mm/s, where the circle itself allows 200 (the plan \
-averages 22 mm/s over it). What will close the gap: choosing at each corner between the \
-blend and an exact stop by their times under the limits, and, for chains of short moves, \
-a smoothing window that fits one curve of nearly constant curvature across them within \
-the tolerance instead of a blend per vertex.";
+least 2 × faster than exact stops) are met by none of the paths for the first and by the \
+dense circle alone for the second. A jerk limit binds the speed through a blend by \
+`v³·|dκ/ds| ≤ j`, and a blend within ε of a corner turning by φ has a curvature derivative \
+of about `c(φ)/ε²` (c = 0.012 at 30°, 0.22 at 90°, 2.2 at 120°): at ε = 0.02 mm and \
+j = 10⁵ mm/s³ that bound is about 6 mm/s at a right angle, and the planner's speed limit \
+through such a blend (with the shares of the limits for the turning) is 4.2 to 4.6 mm/s, \
+which costs as much time as stopping at the corner (the last 0.1 mm of a jerk-limited stop \
+take 18 ms; the table's single right angle). Blended within 0.5 mm the corner is passed at \
+36 mm/s and still takes longer than a stop, as the planner's zones through the blend keep \
+only 340 mm/s² and 12 600 mm/s³ for speed changes (the turning takes the rest of the \
+jerk). The junction-deviation planner passes the right angle at 12 mm/s (within 0.02) \
+without any jerk limit. On the dense circle the blends at both ends of each chord take half \
+of it and share one curvature at its middle (chained), so the blended path has nearly the \
+circle's curvature throughout (within 0.02 %, `dense_chain_of_short_moves`) and is crossed \
+at up to 122 mm/s, the speed at which the centripetal acceleration takes its share (half) \
+of 3 000 mm/s²; the junction-deviation planner passes its 1.15° junctions at its full \
+200 mm/s, where the circle's centripetal acceleration is 4 000 mm/s², above its own limit \
+(it bounds the speed at junctions, not along the path's turning). What will close more of \
+the gap: choosing at each corner between the blend and an exact stop by their times under \
+the limits, zones that carry acceleration across their ends, and a larger share of the \
+acceleration for the turning where the speed does not change.";

@@ -13,8 +13,8 @@ use strak_trajectory::{Error, Kernel, Limits, Move, Piece, Stream, StreamOptions
 
 use crate::counter::{Calibration, WideCounter};
 
-/// Segments of the stream: a move's part between its blends and its blend each take one,
-/// so 64 hold 32 blended moves.
+/// Segments of the stream: a move's part between its blends and its blend each take one;
+/// these chords are short enough that their blends take all of each, so 64 hold 64 moves.
 pub const SEGMENTS: usize = 64;
 /// Zones of the look-ahead window.
 pub const ZONES: usize = 128;
@@ -22,7 +22,7 @@ pub const ZONES: usize = 128;
 pub const PIECE_QUEUE: usize = 32;
 /// The moves streamed.
 pub const CHORDS: usize = 80;
-/// The most ticks a run may take (it takes about 200).
+/// The most ticks a run may take (it takes about 550).
 const MAX_TICKS: u32 = 100_000;
 
 /// The stream of the job: 3 axes, [`SEGMENTS`] segments, [`ZONES`] zones.
