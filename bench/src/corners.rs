@@ -292,10 +292,10 @@ their speed limits are within the zone tolerance), which is why it is faster tha
 whole-path plan on the walk and the contour. On the dense circle it is slower than the \
 whole-path plan: its look-ahead is the 64 segments it holds, 12.8 mm of chords, within which \
 it must be able to stop with what the turning leaves of the acceleration and jerk. Its \
-planning speed is a seventh to a thirtieth of the target of 200 000 moves/s: each move costs \
-the blend's arc-length panels and Newton inversions at every tick the stretch fit \
-evaluates, the speed-limit samples of the blend (32 intervals, halved where they disagree), \
-and a refit of every stretch tick by tick.";
+planning speed is a sixth to a twenty-fifth of the target of 200 000 moves/s: each move \
+costs the blend's arc-length panels and a Newton inversion at every tick the stretch fit \
+evaluates (the last eight ticks' frames are kept), the speed-limit samples of the blend \
+(32 intervals, halved where they disagree), and a refit of every stretch tick by tick.";
 
 /// What limits the blends in the table above (from the blends' curvature, measured in
 /// `tests/trajectory/tests/stream.rs`).

@@ -23,6 +23,9 @@ use crate::plan::{MotionLimits, MotionState, PHASES_PER_ZONE, Phase};
 /// more.
 pub(super) const PHASES: usize = 3 * PHASES_PER_ZONE;
 
+/// The ticks whose states and frames a committed motion keeps.
+pub(super) const RECENT: usize = 8;
+
 /// Bisection steps locating a join of segments in a phase: to well below a nanosecond.
 const JOIN_BISECTION_STEPS: usize = 48;
 
@@ -35,9 +38,10 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize> {
     pub(super) limits: MotionLimits,
     /// The end of the committed motion: time, arc length and speed.
     pub(super) end: (f64, f64, f64),
-    /// The last tick evaluated, its state and frame: a stretch asks for the position,
-    /// slope and second derivative of the same tick in turn.
-    pub(super) last: Cell<Option<(u32, MotionState, Frame<D>)>>,
+    /// The ticks evaluated last, their states and frames, by tick modulo [`RECENT`]: a
+    /// stretch asks for the position, slope and second derivative of a tick in turn, and
+    /// for the ticks near it again as it refines its pieces.
+    pub(super) recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
 }
 
 impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
@@ -76,14 +80,15 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
 
     /// The state and the frame at tick `k`.
     fn at_tick(&self, k: u32) -> Result<(MotionState, Frame<D>), Error> {
-        if let Some((tick, st, f)) = self.last.get()
+        let slot = &self.recent[k as usize % RECENT];
+        if let Some((tick, st, f)) = slot.get()
             && tick == k
         {
             return Ok((st, f));
         }
         let st = self.state(f64::from(k) * self.period);
         let f = self.frame(st.s)?;
-        self.last.set(Some((k, st, f)));
+        slot.set(Some((k, st, f)));
         Ok((st, f))
     }
 

@@ -846,7 +846,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             period: self.period(),
             limits: self.promised,
             end: self.window.entry(),
-            last: Cell::new(None),
+            recent: core::array::from_fn(|_| Cell::new(None)),
         }
     }
 

@@ -224,6 +224,12 @@ impl<const D: usize> ArcLengths for Segment<D> {
         self.param(s)
             .unwrap_or_else(|_| lo + (hi - lo) * (s / self.length).clamp(0.0, 1.0))
     }
+
+    /// A segment's arc length at a parameter costs a quadrature: the sampling integrates
+    /// its samples' speeds instead.
+    fn lengths_by_samples(&self) -> bool {
+        true
+    }
 }
 
 impl<const D: usize> ParamCurve for Segment<D> {
