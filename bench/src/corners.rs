@@ -23,12 +23,17 @@ const V: f64 = 200.0;
 const A: f64 = 3_000.0;
 const J: f64 = 100_000.0;
 const TOLERANCE: f64 = 0.02;
+/// The lines the buffered junction-deviation planner plans ahead: as many moves as the
+/// stream's 64 segments hold on a dense chain.
+const BLOCKS: usize = 64;
 /// grbl's arc tolerance: the largest sagitta of the chords it cuts arcs into.
 const ARC_TOLERANCE: f64 = 0.002;
 
 /// The junction-deviation trapezoid planner on a polyline with the junction deviation
-/// `tolerance`: the duration (s).
-pub fn junction_deviation(points: &[[f64; 2]], tolerance: f64) -> f64 {
+/// `tolerance`, planning `blocks` lines ahead (as grbl's block buffer: when a line starts,
+/// the motion must be able to stop at the end of the last line buffered; `usize::MAX` for
+/// the whole path at once): the duration (s).
+pub fn junction_deviation(points: &[[f64; 2]], tolerance: f64, blocks: usize) -> f64 {
     let n = points.len() - 1;
     let len: Vec<f64> = (0..n).map(|i| dist(points[i], points[i + 1])).collect();
     let dir = |i: usize| {
@@ -49,6 +54,10 @@ pub fn junction_deviation(points: &[[f64; 2]], tolerance: f64) -> f64 {
             (A * tolerance * sin_half / (1.0 - sin_half)).sqrt().min(V)
         };
     }
+    let cap = buffered_caps(&v, &len, blocks);
+    for (vi, c) in v.iter_mut().zip(cap) {
+        *vi = vi.min(c);
+    }
     for i in (0..n).rev() {
         v[i] = v[i].min((v[i + 1] * v[i + 1] + 2.0 * A * len[i]).sqrt());
     }
@@ -66,6 +75,27 @@ pub fn junction_deviation(points: &[[f64; 2]], tolerance: f64) -> f64 {
             (peak - v0) / A + (peak - v1) / A + (l - up - down).max(0.0) / peak
         })
         .sum()
+}
+
+/// The largest speed at each vertex `k` of a polyline (junction limits `v`, line lengths
+/// `len`) when the line ending there started with `blocks` lines buffered: the speed from
+/// which the motion can still stop at the end of the last of them.
+fn buffered_caps(v: &[f64], len: &[f64], blocks: usize) -> Vec<f64> {
+    let n = len.len();
+    (0..=n)
+        .map(|k| {
+            let Some(line) = k.checked_sub(1) else {
+                return 0.0; // at rest at the start
+            };
+            // the buffer from `line` on ends at vertex `end`, where the motion can rest
+            let end = line.saturating_add(blocks).min(n);
+            let mut b = 0.0_f64;
+            for m in (k..end).rev() {
+                b = v[m].min((b * b + 2.0 * A * len[m]).sqrt());
+            }
+            b
+        })
+        .collect()
 }
 
 fn dist(p: [f64; 2], q: [f64; 2]) -> f64 {
@@ -95,7 +125,7 @@ fn polyline(start: [f64; 2], moves: &[Move<2>]) -> Vec<[f64; 2]> {
 /// strak's duration of the moves blended within `tolerance` (0: exact stops), and the
 /// largest proven deviation of a blend.
 pub fn strak(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64) {
-    let path = Toolpath::<2, 512>::new(start, moves, tolerance, 1e-9).expect("toolpath");
+    let path = Toolpath::<2, 2048>::new(start, moves, tolerance, 1e-9).expect("toolpath");
     let limits = Limits::<2>::new(V, A, J).expect("limits");
     let options = PlanOptions::new().with_feed_share(0.0);
     let plan = PathTiming::<_, 16_384, 4_096>::plan(&path, &limits, &options).expect("plan");
@@ -148,11 +178,14 @@ pub fn streamed(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64
     )
 }
 
-/// A circle of radius 10 mm in chords of 0.2 mm.
-fn dense_circle() -> Vec<Move<2>> {
-    (1..=314)
+/// A circle of radius 10 mm in chords of about `chord` mm (a whole number of them, from
+/// and back to (10, 0)).
+fn dense_circle(chord: f64) -> Vec<Move<2>> {
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let n = (2.0 * std::f64::consts::PI * 10.0 / chord).round() as u32;
+    (1..=n)
         .map(|i| {
-            let th = f64::from(i) * 0.02;
+            let th = 2.0 * std::f64::consts::PI * f64::from(i) / f64::from(n);
             Move::line([10.0 * th.cos(), 10.0 * th.sin()])
         })
         .collect()
@@ -208,13 +241,25 @@ fn contour() -> Vec<Move<2>> {
 }
 
 /// The paths compared: a name, the start point, the moves and the blend tolerance.
-pub fn cases() -> [(&'static str, [f64; 2], Vec<Move<2>>, f64); 5] {
+pub fn cases() -> [(&'static str, [f64; 2], Vec<Move<2>>, f64); 7] {
     let right = || vec![Move::line([20.0, 0.0]), Move::line([20.0, 20.0])];
     [
         (
             "circle of 0.2 mm chords (r = 10 mm)",
             [10.0, 0.0],
-            dense_circle(),
+            dense_circle(0.2),
+            TOLERANCE,
+        ),
+        (
+            "the same in 0.05 mm chords",
+            [10.0, 0.0],
+            dense_circle(0.05),
+            TOLERANCE,
+        ),
+        (
+            "the same in 0.5 mm chords",
+            [10.0, 0.0],
+            dense_circle(0.5),
             TOLERANCE,
         ),
         (
@@ -253,25 +298,32 @@ pub fn section() -> String {
          trapezoid planner of grbl, Marlin and g2core (no jerk limit; arcs cut into chords of \
          {ARC_TOLERANCE} mm sagitta). v = {V} mm/s, a = {A} mm/s², j = {J} mm/s³ (strak only, \
          no feed reserve), tolerance {TOLERANCE} mm where the row says no other (the \
-         comparison's junction deviation δ is the same).\n"
+         comparison's junction deviation δ is the same). The junction-deviation planner plans \
+         the whole path at once, and, as grbl's block buffer does, {BLOCKS} lines ahead (when a \
+         line starts, the motion must be able to stop at the end of the last line buffered; \
+         arcs count their chords).\n"
     );
     let _ = writeln!(
         o,
-        "| path | moves | blended, whole path (s) | streamed (s) | exact stops (s) | junction \
-         deviation (s) | streamed / JD | stops / streamed | largest deviation / tolerance | \
-         streamed moves/s (host) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "| path | moves | blended, whole path (s) | streamed (s) | exact stops (s) | JD, whole \
+         path (s) | JD, {BLOCKS} lines ahead (s) | streamed / JD | streamed / JD {BLOCKS} | stops / \
+         streamed | largest deviation / tolerance | streamed moves/s (host) |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for (name, start, moves, tolerance) in cases() {
         let (blended, deviation) = strak(start, &moves, tolerance);
         let (stream, per_second) = streamed(start, &moves, tolerance);
         let (stops, _) = streamed(start, &moves, 0.0);
-        let jd = junction_deviation(&polyline(start, &moves), tolerance);
+        let line = polyline(start, &moves);
+        let jd = junction_deviation(&line, tolerance, usize::MAX);
+        let jd_ahead = junction_deviation(&line, tolerance, BLOCKS);
         let _ = writeln!(
             o,
-            "| {name} | {} | {blended:.3} | {stream:.3} | {stops:.3} | {jd:.3} | {:.2} | {:.2} | \
-             {:.3} | {per_second:.0} |",
+            "| {name} | {} | {blended:.3} | {stream:.3} | {stops:.3} | {jd:.3} | {jd_ahead:.3} | \
+             {:.2} | {:.2} | {:.2} | {:.3} | {per_second:.0} |",
             moves.len(),
             stream / jd,
+            stream / jd_ahead,
             stops / stream,
             deviation / tolerance
         );
@@ -289,9 +341,13 @@ moves/s is the wall-clock rate of pushing, planning and compiling them on this m
 run, release build. The stream plans each segment (a move between its blends, a blend) in \
 zones of its own and merges zones crossed in fewer than 16 ticks (across segments too, where \
 their speed limits are within the zone tolerance), which is why it is faster than the \
-whole-path plan on the walk and the contour. On the dense circle it is slower than the \
-whole-path plan: its look-ahead is the 64 segments it holds, 12.8 mm of chords, within which \
-it must be able to stop with what the turning leaves of the acceleration and jerk. Its \
+whole-path plan on the walk and the contour. On the dense circles it is slower than the \
+whole-path plan: its look-ahead is the 64 segments it holds (12.8 mm of 0.2 mm chords, \
+3.2 mm of 0.05 mm ones), within which it must be able to stop with what the turning leaves \
+of the acceleration and jerk, in zones entered and left without acceleration (on 0.05 mm \
+chords a zone of 16 ticks at 122 mm/s is 2 mm long: the window holds less than two); the \
+junction-deviation planner brakes with all of its acceleration and no jerk limit, so 64 \
+lines ahead cost it little. Its \
 planning speed is a sixth to a twenty-fifth of the target of 200 000 moves/s: each move \
 costs the blend's arc-length panels and a Newton inversion at every tick the stretch fit \
 evaluates (the last eight ticks' frames are kept), the speed-limit samples of the blend \
@@ -301,7 +357,7 @@ evaluates (the last eight ticks' frames are kept), the speed-limit samples of th
 /// `tests/trajectory/tests/stream.rs`).
 const CORNERS_MISSED: &str = "The targets (at most 1.3 × the junction-deviation planner, at \
 least 2 × faster than exact stops) are met by none of the paths for the first and by the \
-dense circle alone for the second. A jerk limit binds the speed through a blend by \
+dense circles alone for the second. A jerk limit binds the speed through a blend by \
 `v³·|dκ/ds| ≤ j`, and a blend within ε of a corner turning by φ has a curvature derivative \
 of about `c(φ)/ε²` (c = 0.012 at 30°, 0.22 at 90°, 2.2 at 120°): at ε = 0.02 mm and \
 j = 10⁵ mm/s³ that bound is about 6 mm/s at a right angle, and the planner's speed limit \
@@ -311,11 +367,12 @@ take 18 ms; the table's single right angle). Blended within 0.5 mm the corner is
 36 mm/s and still takes longer than a stop, as the planner's zones through the blend keep \
 only 340 mm/s² and 12 600 mm/s³ for speed changes (the turning takes the rest of the \
 jerk). The junction-deviation planner passes the right angle at 12 mm/s (within 0.02) \
-without any jerk limit. On the dense circle the blends at both ends of each chord take half \
+without any jerk limit. On the dense circles the blends at both ends of each chord take half \
 of it and share one curvature at its middle (chained), so the blended path has nearly the \
 circle's curvature throughout (within 0.02 %, `dense_chain_of_short_moves`) and is crossed \
 at up to 122 mm/s, the speed at which the centripetal acceleration takes its share (half) \
-of 3 000 mm/s²; the junction-deviation planner passes its 1.15° junctions at its full \
+of 3 000 mm/s²; the junction-deviation planner passes their junctions (1.15° for 0.2 mm \
+chords) at its full \
 200 mm/s, where the circle's centripetal acceleration is 4 000 mm/s², above its own limit \
 (it bounds the speed at junctions, not along the path's turning). What will close more of \
 the gap: choosing at each corner between the blend and an exact stop by their times under \

@@ -29,7 +29,8 @@ use strak_curves::ParamCurve;
 use strak_curves::heapless::spsc::Queue;
 use strak_trajectory::{
     Error as TrajError, Junction, Kernel, Limits, Move, MoveCurve, Number, Piece, PieceQueue,
-    PlanOptions, Q40, Sample, Stream, StreamOptions, StreamSampler, StreamStats, junction,
+    PlanOptions, Q40, Sample, Stream, StreamOptions, StreamSampler, StreamStats, chain_junctions,
+    junction,
 };
 
 use crate::job::JobError;
@@ -447,8 +448,9 @@ where
 }
 
 /// The blends and the stops of the path plot: each blended corner's blend curve (the
-/// stream's own blend: [`junction`] of the two moves at the job's tolerance) and each
-/// corner where the motion came to rest.
+/// stream's own blend: [`junction`] of the two moves at the job's tolerance, joined along
+/// chains of short lines by [`chain_junctions`] as the stream joins them) and each corner
+/// where the motion came to rest.
 fn marks<const D: usize>(job: &MovesJob, program: &[Move<D>], corners: &[CornerKind]) -> PathMarks {
     let mut marks = PathMarks::default();
     let mut from = job.start::<D>();
@@ -462,21 +464,38 @@ fn marks<const D: usize>(job: &MovesJob, program: &[Move<D>], corners: &[CornerK
         })
         .collect();
     for (i, kind) in corners.iter().enumerate() {
-        let corner = program[i].to.to_vec();
-        match (kind, &curves[i], &curves[i + 1]) {
-            (CornerKind::Blended, Some(a), Some(b)) => {
-                if let Ok(Junction::Blend(blend)) = junction(a, b, job.tolerance) {
-                    let c = blend.curve();
-                    marks.blends.push(
-                        (0..=32)
-                            .map(|k| c.eval(f64::from(k) / 32.0).to_vec())
-                            .collect(),
-                    );
-                }
-            }
-            (CornerKind::Stop | CornerKind::Starved, _, _) => marks.stops.push(corner),
-            _ => {}
+        if matches!(kind, CornerKind::Stop | CornerKind::Starved) {
+            marks.stops.push(program[i].to.to_vec());
         }
+    }
+    // the blends along each run of moves that all have curves, chained as the stream does
+    let mut start = 0;
+    while start < curves.len() {
+        let run: Vec<MoveCurve<D>> = curves[start..].iter().map_while(|c| *c).collect();
+        // a corner the stream did not blend (a stop, a starved move) ends a chain there
+        let mut junctions: Vec<Junction<D>> = run
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| match corners.get(start + k) {
+                Some(CornerKind::Blended) => {
+                    junction(&w[0], &w[1], job.tolerance).unwrap_or(Junction::Stop)
+                }
+                _ => Junction::Stop,
+            })
+            .collect();
+        chain_junctions(&run, &mut junctions, job.tolerance);
+        for (k, j) in junctions.iter().enumerate() {
+            if let (Some(CornerKind::Blended), Junction::Blend(blend)) = (corners.get(start + k), j)
+            {
+                let c = blend.curve();
+                marks.blends.push(
+                    (0..=32)
+                        .map(|t| c.eval(f64::from(t) / 32.0).to_vec())
+                        .collect(),
+                );
+            }
+        }
+        start += run.len().max(1);
     }
     marks
 }
@@ -667,4 +686,52 @@ fn summarize<N: Number, const D: usize>(
         .all(|c| c.within != Some(false));
     summary.violations = summary.find_violations();
     summary
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use strak_trajectory::Toolpath;
+
+    /// Five chords of 0.2 mm on a circle of radius 10 mm, all corners blended: the plot's
+    /// blends are the chained ones the stream plays (as a whole toolpath of the moves joins
+    /// them), not each corner's blend alone; a starved corner ends the chain.
+    #[test]
+    fn the_plot_marks_the_chained_blends() {
+        let mut text = String::from(
+            "rate_hz = 1000\nnumber = \"f64\"\ntolerance = 0.02\nstart = [10, 0, 0]\n\
+             [limits]\nvelocity = 200\nacceleration = 3000\njerk = 100000\n",
+        );
+        for i in 1..=5 {
+            let th = 0.02 * f64::from(i);
+            text += &format!(
+                "[[moves]]\nline = [{}, {}, 0]\n",
+                10.0 * th.cos(),
+                10.0 * th.sin()
+            );
+        }
+        let job = MovesJob::parse(&text).unwrap();
+        let program = job.program::<3>().unwrap();
+        let path = Toolpath::<3, 8>::new(job.start(), &program, 0.02, job.arc_tolerance()).unwrap();
+        let blended = marks(&job, &program, &[CornerKind::Blended; 4]);
+        assert_eq!(blended.blends.len(), 4);
+        for (drawn, j) in blended.blends.iter().zip(path.junctions()) {
+            let Junction::Blend(b) = j else {
+                panic!("a blend")
+            };
+            let mid = b.curve().eval(0.5).to_vec();
+            assert_eq!(drawn[16], mid);
+        }
+        // a starved corner in the middle: the blends before and after it are not chained to it
+        let corners = [
+            CornerKind::Blended,
+            CornerKind::Starved,
+            CornerKind::Blended,
+            CornerKind::Blended,
+        ];
+        let starved = marks(&job, &program, &corners);
+        assert_eq!((starved.blends.len(), starved.stops.len()), (3, 1));
+        assert_ne!(starved.blends[0][16], blended.blends[0][16]);
+        assert_eq!(starved.blends[2][16], blended.blends[3][16]);
+    }
 }

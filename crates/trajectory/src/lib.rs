@@ -34,5 +34,5 @@ pub use play::guard::{FeedGuard, MAX_DELAY, MAX_RAMP_TICKS, Schedule};
 pub use play::{Kernel, Sampler, SamplerState, StreamSampler};
 pub use stream::{
     Blend, Junction, Move, MoveCurve, PieceQueue, REVERSAL_ANGLE, Shape, Stream, StreamOptions,
-    StreamStats, Toolpath, junction,
+    StreamStats, Toolpath, chain_junctions, junction,
 };

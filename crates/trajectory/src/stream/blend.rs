@@ -480,6 +480,45 @@ impl<const D: usize> Blend<D> {
     }
 }
 
+/// Joins the blends of `junctions` (the junction after each move of `moves` but the last,
+/// from [`junction`]) at both ends of each line they take all of between them, in order
+/// along the path, as a [`Stream`](crate::Stream) does with the moves pushed into it: in
+/// place of the line's zero curvature where they meet, both take one shared curvature
+/// where it keeps them within `tolerance` (see the module docs, "Chains").
+///
+/// ```
+/// use strak_trajectory::{Junction, Move, MoveCurve, chain_junctions, junction};
+/// use strak_curves::ParamCurveDeriv;
+/// // three chords of 0.2 mm on a circle of radius 10: both blends take all of the middle one
+/// let p = |i: f64| [10.0 * (0.02 * i).cos(), 10.0 * (0.02 * i).sin()];
+/// let moves = [
+///     MoveCurve::new(p(0.0), &Move::line(p(1.0)), 0.0)?,
+///     MoveCurve::new(p(1.0), &Move::line(p(2.0)), 0.0)?,
+///     MoveCurve::new(p(2.0), &Move::line(p(3.0)), 0.0)?,
+/// ];
+/// let mut junctions = [junction(&moves[0], &moves[1], 0.02)?, junction(&moves[1], &moves[2], 0.02)?];
+/// chain_junctions(&moves, &mut junctions, 0.02);
+/// let Junction::Blend(first) = &junctions[0] else { panic!("a blend") };
+/// let k = first.curve().deriv(1.0, 2); // where it meets the next blend: curved
+/// assert!(k[0].hypot(k[1]) > 0.0);
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
+pub fn chain_junctions<const D: usize>(
+    moves: &[MoveCurve<D>],
+    junctions: &mut [Junction<D>],
+    tolerance: f64,
+) {
+    for i in 1..junctions.len() {
+        let (done, rest) = junctions.split_at_mut(i);
+        if let (Some(Junction::Blend(before)), Some(Junction::Blend(after)), Some(through)) =
+            (done.last_mut(), rest.first_mut(), moves.get(i))
+            && before.join() >= after.leave() - 1e-12
+        {
+            chain(before, after, through, tolerance);
+        }
+    }
+}
+
 /// Joins the blends `before` and `after` of the two corners of the line `through` where
 /// they take all of it between them (they meet at one point of it): in place of the line's
 /// zero curvature at that point, both take the mean of their mean curvatures there (or half

@@ -10,7 +10,7 @@ mod queue;
 mod segment;
 mod toolpath;
 
-pub use blend::{Blend, Junction, REVERSAL_ANGLE, junction};
+pub use blend::{Blend, Junction, REVERSAL_ANGLE, chain_junctions, junction};
 pub use moves::{Move, MoveCurve, Shape};
 pub use queue::{PieceQueue, Stream, StreamOptions, StreamStats};
 pub use toolpath::Toolpath;

@@ -4,7 +4,7 @@
 use heapless::Vec;
 use strak_curves::{ParamCurve, ParamCurveDeriv, PieceDeriv, Point};
 
-use super::blend::{Junction, chain, junction};
+use super::blend::{Junction, chain_junctions, junction};
 use super::moves::{Move, MoveCurve};
 use crate::error::Error;
 
@@ -101,18 +101,10 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
         Ok(path)
     }
 
-    /// Joins the blends at both ends of each line they take all of between them, in order
-    /// along the path, as a [`Stream`](crate::Stream) does ([`chain`]).
+    /// Joins the blends at both ends of each line they take all of between them, as a
+    /// [`Stream`](crate::Stream) does ([`chain_junctions`]).
     fn chain_blends(&mut self, tolerance: f64) {
-        for i in 1..self.junctions.len() {
-            let (done, rest) = self.junctions.split_at_mut(i);
-            if let (Some(Junction::Blend(before)), Some(Junction::Blend(after))) =
-                (done.last_mut(), rest.first_mut())
-                && !has_span((before.join(), after.leave()))
-            {
-                chain(before, after, &self.moves[i], tolerance);
-            }
-        }
+        chain_junctions(&self.moves, &mut self.junctions, tolerance);
     }
 
     /// The number of blended corners.
