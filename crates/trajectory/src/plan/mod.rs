@@ -34,7 +34,7 @@ mod trapezoid;
 mod window;
 
 #[cfg(test)]
-mod testcurves;
+pub(crate) mod testcurves;
 
 use strak_curves::{ParamCurve, Point, Scalar, ScalarOf};
 

@@ -854,15 +854,7 @@ mod tests {
     /// on 32 intervals.
     #[test]
     fn grid_arc_lengths_from_the_samples() {
-        let b = Bezier::new([
-            [0.0, 0.0],
-            [0.4, 0.0],
-            [0.75, 0.02],
-            [1.0, 0.25],
-            [1.0, 0.6],
-            [1.0, 1.0],
-        ])
-        .unwrap();
+        let b = crate::plan::testcurves::blend_like_quintic();
         let arcs = Exact(&b);
         let limits = Limits::<2>::new(100.0, 1000.0, 1e4).unwrap();
         let refiner = Refiner {

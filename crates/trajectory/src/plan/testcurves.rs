@@ -2,7 +2,21 @@
 
 extern crate std;
 
-use strak_curves::{ParamCurve, ParamCurveDeriv};
+use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv};
+
+/// A quintic shaped like a corner blend, turning by a right angle with its curvature
+/// rising from zero and falling back.
+pub(crate) fn blend_like_quintic() -> Bezier<[f64; 2], 6> {
+    let points = [
+        [0.0, 0.0],
+        [0.4, 0.0],
+        [0.75, 0.02],
+        [1.0, 0.25],
+        [1.0, 0.6],
+        [1.0, 1.0],
+    ];
+    Bezier::new(points).unwrap_or_else(|e| panic!("{e}"))
+}
 
 /// Time-optimal rest-to-rest double S duration for a distance `l` (Biagiotti & Melchiorri,
 /// §3.4, eqs. 3.25–3.27 with `v0 = v1 = 0`), written independently of the planner.

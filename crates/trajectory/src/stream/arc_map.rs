@@ -165,15 +165,7 @@ mod tests {
     /// `1e-12` of its length in parameter times speed.
     #[test]
     fn inverts_like_the_adaptive_quadrature() {
-        let b = Bezier::new([
-            [0.0, 0.0],
-            [0.4, 0.0],
-            [0.75, 0.02],
-            [1.0, 0.25],
-            [1.0, 0.6],
-            [1.0, 1.0],
-        ])
-        .unwrap();
+        let b = crate::plan::testcurves::blend_like_quintic();
         let map = ArcMap::new(&b, (0.0, 1.0)).unwrap();
         let length = strak_curves::arc_length(&b, 1e-13).unwrap();
         assert!((map.length() - length).abs() < 1e-12 * length);
