@@ -32,6 +32,34 @@ pub(crate) struct PathMeta {
     pub(crate) feed_share: f64,
 }
 
+/// What a feed ramp is sized from: the control rate, the motion's peaks, the limits and
+/// the feed share of them kept free (see [`feed_ramp_f64`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct RampBasis {
+    pub(crate) rate: f64,
+    pub(crate) peak_velocity: f64,
+    pub(crate) peak_acceleration: f64,
+    pub(crate) peak_jerk: f64,
+    pub(crate) acceleration_limit: f64,
+    pub(crate) jerk_limit: f64,
+    pub(crate) feed_share: f64,
+}
+
+impl PathMeta {
+    /// What the path's feed ramps are sized from.
+    pub(crate) fn ramp_basis(&self) -> RampBasis {
+        RampBasis {
+            rate: self.rate,
+            peak_velocity: self.peak_velocity,
+            peak_acceleration: self.peak_acceleration,
+            peak_jerk: self.peak_jerk,
+            acceleration_limit: self.acceleration_limit,
+            jerk_limit: self.jerk_limit,
+            feed_share: self.feed_share,
+        }
+    }
+}
+
 /// The feed-ramp constants of a path in its number format, per tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FeedRampLimits<N> {
@@ -176,7 +204,7 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
     }
 }
 
-/// The feed-ramp constants (per tick) from the path's kinematic description.
+/// The feed-ramp constants (per tick) from the motion's kinematic description `meta`.
 ///
 /// Played with the feed factor `φ(t)` (`θ̇ = φ`, `x = p(θ)`), the motion is, by the chain
 /// rule, `ẋ = φ·p′`, `ẍ = φ²·p″ + φ̇·p′`, `x⃛ = φ³·p‴ + 3·φ·φ̇·p″ + φ̈·p′`: a ramp with
@@ -195,7 +223,7 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
 /// A path without a reserve (`share = 0`) sizes its ramps as if
 /// [`UNRESERVED_RAMP_SHARE`] of the limits were free: nothing keeps them free, so its feed
 /// changes keep the limits only where a [`FeedGuard`](crate::FeedGuard) has checked them.
-pub(crate) fn feed_ramp_f64(meta: &PathMeta) -> (f64, f64) {
+pub(crate) fn feed_ramp_f64(meta: &RampBasis) -> (f64, f64) {
     let share = if meta.feed_share > 0.0 {
         meta.feed_share
     } else {
@@ -470,7 +498,7 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
         {
             return Err(Error::InvalidLimit);
         }
-        let (omega, alpha) = feed_ramp_f64(meta);
+        let (omega, alpha) = feed_ramp_f64(&meta.ramp_basis());
         let ramp = FeedRampLimits::from_rates(omega, alpha, meta.rate)?;
         let phi_dot_max = ramp.phi_dot_max(meta.rate);
         header.ramp = ramp;
@@ -690,7 +718,7 @@ mod tests {
             jerk_limit: 10_000.0,
             feed_share: 0.25,
         };
-        let (omega, alpha) = feed_ramp_f64(&meta);
+        let (omega, alpha) = feed_ramp_f64(&meta.ramp_basis());
         let (f, v) = (meta.rate, meta.peak_velocity);
         // a_ramp = max(400, 250) = 400, R = j_ramp = max(9000, 2500) = 9000, c = 3·600/100:
         // the split √v·R/(√R + c·√v) = 327.4 < a_ramp
@@ -709,7 +737,7 @@ mod tests {
             peak_acceleration: 0.0,
             ..meta
         };
-        let (omega, alpha) = feed_ramp_f64(&flat);
+        let (omega, alpha) = feed_ramp_f64(&flat.ramp_basis());
         assert!((alpha - 9e-5).abs() < 1e-18);
         assert!((omega - 9e-5_f64.sqrt()).abs() < 1e-15);
         // a small jerk budget: ω is capped by √α
@@ -719,7 +747,7 @@ mod tests {
             peak_acceleration: 0.0,
             ..meta
         };
-        let (omega, alpha) = feed_ramp_f64(&tight);
+        let (omega, alpha) = feed_ramp_f64(&tight.ramp_basis());
         assert!((alpha - 1e-8).abs() < 1e-22);
         assert!((omega - 1e-4).abs() < 1e-15);
     }

@@ -12,7 +12,7 @@ pub(crate) mod view;
 
 pub use blob::{AlignedBlob, BLOB_MAGIC, BLOB_VERSION, PathBlob, crc32};
 pub use header::{END_AGREEMENT_SLACK, PathHeader};
-pub(crate) use header::{FeedRampLimits, MIN_ALPHA, PathEnd, PathMeta, feed_ramp_f64};
+pub(crate) use header::{FeedRampLimits, MIN_ALPHA, PathEnd, PathMeta, RampBasis, feed_ramp_f64};
 pub use owned::Path;
 pub use sample::Sample;
 pub(crate) use state::Newton;

@@ -35,7 +35,7 @@ use crate::compile::StretchFit;
 use crate::compile::TickMotion;
 use crate::error::Error;
 use crate::num::Number;
-use crate::path::{AxisState, MIN_ALPHA, PathMeta, Piece, feed_ramp_f64};
+use crate::path::{AxisState, MIN_ALPHA, Piece, RampBasis, feed_ramp_f64};
 use crate::plan::{
     Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones, zones_into,
 };
@@ -916,10 +916,8 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
 fn feed_ramp<const D: usize>(limits: &Limits<D>, options: &StreamOptions) -> (f64, f64) {
     let share = options.plan.feed_share();
     let rate = options.plan.rate();
-    let meta = PathMeta {
+    let meta = RampBasis {
         rate,
-        plan_duration: 1.0,
-        tolerance: 1.0,
         peak_velocity: limits.velocity(),
         peak_acceleration: (1.0 - share) * limits.acceleration(),
         peak_jerk: (1.0 - share) * limits.jerk(),
