@@ -23,7 +23,7 @@ use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 
 use crate::error::{Error, Quantity, Units};
 use crate::num::{Number, RATE_RANGE};
-use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta};
+use crate::path::{AxisState, Path, PathEnd, PathHeader, PathMeta, RampBasis};
 use crate::plan::{FeedReserve, MotionLimits, Timing, Trajectory};
 use knots::{Knots, PieceKnots};
 use law::TickLaw;
@@ -576,15 +576,17 @@ fn path_meta(
         .min(a_free / acceleration_limit)
         .min(j_free / jerk_limit);
     Ok(PathMeta {
-        rate: rate_hz,
         plan_duration: duration,
         tolerance,
-        peak_velocity: peaks.velocity_bound,
-        peak_acceleration: peaks.acceleration,
-        peak_jerk: peaks.jerk,
-        acceleration_limit,
-        jerk_limit,
-        feed_share,
+        ramp: RampBasis {
+            rate: rate_hz,
+            peak_velocity: peaks.velocity_bound,
+            peak_acceleration: peaks.acceleration,
+            peak_jerk: peaks.jerk,
+            acceleration_limit,
+            jerk_limit,
+            feed_share,
+        },
     })
 }
 

@@ -22,7 +22,7 @@ use crate::num::{Number, RATE_RANGE};
 use crate::online::{
     AxisLimits, AxisProfile, Kinematics, MAX_PHASES, MoveOptions, OnlineMove, Real,
 };
-use crate::path::{AxisState, Path, PathMeta, Sample};
+use crate::path::{AxisState, Path, PathMeta, RampBasis, Sample};
 
 /// An axis's motion with its phases' start times, read in `f64` (every value converted
 /// exactly where it is used: the profile is not copied).
@@ -485,16 +485,18 @@ fn meta<N: Number, R: Real, const A: usize>(
         .max(1e-12 * (1.0 + big))
         .max(16.0 * (N::rounding_error(big) + N::OUT_ERROR));
     let meta = PathMeta {
-        rate,
         // Whole ticks, at least the one a move that takes no time stands for.
         plan_duration: m.duration().to_f64().max(1.0 / rate),
         tolerance,
-        peak_velocity: libm::sqrt(v),
-        peak_acceleration: libm::sqrt(a),
-        peak_jerk: libm::sqrt(j),
-        acceleration_limit: libm::sqrt(a_lim).max(libm::sqrt(a)),
-        jerk_limit: libm::sqrt(j_lim).max(libm::sqrt(j)),
-        feed_share: CompileOptions::DEFAULT_FEED_SHARE,
+        ramp: RampBasis {
+            rate,
+            peak_velocity: libm::sqrt(v),
+            peak_acceleration: libm::sqrt(a),
+            peak_jerk: libm::sqrt(j),
+            acceleration_limit: libm::sqrt(a_lim).max(libm::sqrt(a)),
+            jerk_limit: libm::sqrt(j_lim).max(libm::sqrt(j)),
+            feed_share: CompileOptions::DEFAULT_FEED_SHARE,
+        },
     };
     (meta, big)
 }

@@ -186,15 +186,15 @@ impl<N: Number, const A: usize, const P: usize> Path<N, A, P> {
         w.bytes(&self.header.ticks.to_le_bytes());
         let meta = &self.header.meta;
         for v in [
-            meta.rate,
+            meta.ramp.rate,
             meta.plan_duration,
             meta.tolerance,
-            meta.peak_velocity,
-            meta.peak_acceleration,
-            meta.peak_jerk,
-            meta.acceleration_limit,
-            meta.jerk_limit,
-            meta.feed_share,
+            meta.ramp.peak_velocity,
+            meta.ramp.peak_acceleration,
+            meta.ramp.peak_jerk,
+            meta.ramp.acceleration_limit,
+            meta.ramp.jerk_limit,
+            meta.ramp.feed_share,
         ] {
             w.bytes(&v.to_le_bytes());
         }
@@ -325,15 +325,15 @@ fn read_fixed<'b, N: Number, const A: usize>(
     let ticks = r.u32();
     let meta = &mut header.meta;
     for field in [
-        &mut meta.rate,
+        &mut meta.ramp.rate,
         &mut meta.plan_duration,
         &mut meta.tolerance,
-        &mut meta.peak_velocity,
-        &mut meta.peak_acceleration,
-        &mut meta.peak_jerk,
-        &mut meta.acceleration_limit,
-        &mut meta.jerk_limit,
-        &mut meta.feed_share,
+        &mut meta.ramp.peak_velocity,
+        &mut meta.ramp.peak_acceleration,
+        &mut meta.ramp.peak_jerk,
+        &mut meta.ramp.acceleration_limit,
+        &mut meta.ramp.jerk_limit,
+        &mut meta.ramp.feed_share,
     ] {
         *field = r.f64();
     }

@@ -17,19 +17,14 @@ pub(crate) struct PathEnd<T, const A: usize> {
     pub(crate) acceleration: [T; A],
 }
 
-/// The scalar description of a path (all `f64`): rate, timing, tolerance and the kinematic
-/// peaks and limits the feed ramps are derived from.
+/// The scalar description of a path (all `f64`): timing, tolerance, and the rate, kinematic
+/// peaks and limits its feed ramps are sized from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PathMeta {
-    pub(crate) rate: f64,
     pub(crate) plan_duration: f64,
     pub(crate) tolerance: f64,
-    pub(crate) peak_velocity: f64,
-    pub(crate) peak_acceleration: f64,
-    pub(crate) peak_jerk: f64,
-    pub(crate) acceleration_limit: f64,
-    pub(crate) jerk_limit: f64,
-    pub(crate) feed_share: f64,
+    /// What the path's feed ramps are sized from.
+    pub(crate) ramp: RampBasis,
 }
 
 /// What a feed ramp is sized from: the control rate, the motion's peaks, the limits and
@@ -43,21 +38,6 @@ pub(crate) struct RampBasis {
     pub(crate) acceleration_limit: f64,
     pub(crate) jerk_limit: f64,
     pub(crate) feed_share: f64,
-}
-
-impl PathMeta {
-    /// What the path's feed ramps are sized from.
-    pub(crate) fn ramp_basis(&self) -> RampBasis {
-        RampBasis {
-            rate: self.rate,
-            peak_velocity: self.peak_velocity,
-            peak_acceleration: self.peak_acceleration,
-            peak_jerk: self.peak_jerk,
-            acceleration_limit: self.acceleration_limit,
-            jerk_limit: self.jerk_limit,
-            feed_share: self.feed_share,
-        }
-    }
 }
 
 /// The feed-ramp constants of a path in its number format, per tick.
@@ -204,7 +184,7 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
     }
 }
 
-/// The feed-ramp constants (per tick) from the motion's kinematic description `meta`.
+/// The feed-ramp constants (per tick) from the motion's kinematic description `basis`.
 ///
 /// Played with the feed factor `φ(t)` (`θ̇ = φ`, `x = p(θ)`), the motion is, by the chain
 /// rule, `ẋ = φ·p′`, `ẍ = φ²·p″ + φ̇·p′`, `x⃛ = φ³·p‴ + 3·φ·φ̇·p″ + φ̈·p′`: a ramp with
@@ -223,23 +203,23 @@ pub(crate) fn piece_bounds<N: Number>(state: &AxisState<N>, ticks: u32) -> Piece
 /// A path without a reserve (`share = 0`) sizes its ramps as if
 /// [`UNRESERVED_RAMP_SHARE`] of the limits were free: nothing keeps them free, so its feed
 /// changes keep the limits only where a [`FeedGuard`](crate::FeedGuard) has checked them.
-pub(crate) fn feed_ramp_f64(meta: &RampBasis) -> (f64, f64) {
-    let share = if meta.feed_share > 0.0 {
-        meta.feed_share
+pub(crate) fn feed_ramp_f64(basis: &RampBasis) -> (f64, f64) {
+    let share = if basis.feed_share > 0.0 {
+        basis.feed_share
     } else {
         UNRESERVED_RAMP_SHARE
     };
     let a_ramp =
-        (meta.acceleration_limit - meta.peak_acceleration).max(share * meta.acceleration_limit);
-    let j_ramp = (meta.jerk_limit - meta.peak_jerk).max(share * meta.jerk_limit);
-    let (omega, alpha) = if meta.peak_velocity > 0.0 {
-        let v = meta.peak_velocity;
-        let c = 3.0 * meta.peak_acceleration / v;
+        (basis.acceleration_limit - basis.peak_acceleration).max(share * basis.acceleration_limit);
+    let j_ramp = (basis.jerk_limit - basis.peak_jerk).max(share * basis.jerk_limit);
+    let (omega, alpha) = if basis.peak_velocity > 0.0 {
+        let v = basis.peak_velocity;
+        let c = 3.0 * basis.peak_acceleration / v;
         let (sv, sr) = (libm::sqrt(v), libm::sqrt(j_ramp));
         let a = a_ramp.min(sv * j_ramp / (sr + c * sv));
         (
-            a / (v * meta.rate),
-            (j_ramp - c * a) / (v * meta.rate * meta.rate),
+            a / (v * basis.rate),
+            (j_ramp - c * a) / (v * basis.rate * basis.rate),
         )
     } else {
         (0.5, 0.25)
@@ -323,15 +303,17 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
     pub(crate) const EMPTY: Self = PathHeader {
         ticks: 0,
         meta: PathMeta {
-            rate: RATE_RANGE.0,
             plan_duration: 0.0,
             tolerance: 0.0,
-            peak_velocity: 0.0,
-            peak_acceleration: 0.0,
-            peak_jerk: 0.0,
-            acceleration_limit: 0.0,
-            jerk_limit: 0.0,
-            feed_share: 0.0,
+            ramp: RampBasis {
+                rate: RATE_RANGE.0,
+                peak_velocity: 0.0,
+                peak_acceleration: 0.0,
+                peak_jerk: 0.0,
+                acceleration_limit: 0.0,
+                jerk_limit: 0.0,
+                feed_share: 0.0,
+            },
         },
         end: PathEnd {
             position: [<N::Out as Scalar>::ZERO; A],
@@ -355,17 +337,17 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
 
     /// The control rate in Hz.
     pub fn rate(&self) -> f64 {
-        self.meta.rate
+        self.meta.ramp.rate
     }
 
     /// The tick period `T = 1/rate` in seconds.
     pub fn period(&self) -> f64 {
-        1.0 / self.meta.rate
+        1.0 / self.meta.ramp.rate
     }
 
     /// The duration of the compiled motion, `ticks · T` seconds.
     pub fn duration(&self) -> f64 {
-        f64::from(self.ticks) / self.meta.rate
+        f64::from(self.ticks) / self.meta.ramp.rate
     }
 
     /// The duration of the time law the path was compiled from (≤ [`duration`](Self::duration)).
@@ -416,30 +398,30 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
 
     /// An upper bound of the speed `|ẋ|` (Euclidean norm over the axes) along the path.
     pub fn peak_velocity(&self) -> f64 {
-        self.meta.peak_velocity
+        self.meta.ramp.peak_velocity
     }
 
     /// The largest acceleration `|ẍ|` along the path.
     pub fn peak_acceleration(&self) -> f64 {
-        self.meta.peak_acceleration
+        self.meta.ramp.peak_acceleration
     }
 
     /// The largest jerk `|x⃛|` along the path.
     pub fn peak_jerk(&self) -> f64 {
-        self.meta.peak_jerk
+        self.meta.ramp.peak_jerk
     }
 
     /// The acceleration limit feed changes respect: [`peak_acceleration`](Self::peak_acceleration)
     /// plus what a feed ramp may add (from the limits given or derived, each axis's free
     /// part included; see [`CompileOptions`](crate::CompileOptions)).
     pub fn acceleration_limit(&self) -> f64 {
-        self.meta.acceleration_limit
+        self.meta.ramp.acceleration_limit
     }
 
     /// The jerk limit of feed changes: [`peak_jerk`](Self::peak_jerk) plus what a feed
     /// ramp may add.
     pub fn jerk_limit(&self) -> f64 {
-        self.meta.jerk_limit
+        self.meta.ramp.jerk_limit
     }
 
     /// The share of the limits reserved for feed changes (at most what the ramps may add,
@@ -447,7 +429,7 @@ impl<N: Number, const A: usize> PathHeader<N, A> {
     /// [`jerk_limit`](Self::jerk_limit)); 0 for a path planned at the full limits, whose
     /// feed changes need a [`FeedGuard`](crate::FeedGuard).
     pub fn feed_share(&self) -> f64 {
-        self.meta.feed_share
+        self.meta.ramp.feed_share
     }
 
     /// The end as a sample in `f64` (at tick `⌊tick⌋`).
@@ -482,25 +464,25 @@ impl<'h, N: Number, const A: usize> Validator<'h, N, A> {
     /// for bad kinematic data; [`Error::OutOfRange`] when the ramp constants do not fit `N`.
     pub(crate) fn begin(header: &'h mut PathHeader<N, A>) -> Result<Self, Error> {
         let meta = &header.meta;
-        if !(meta.rate >= RATE_RANGE.0 && meta.rate <= RATE_RANGE.1) {
+        if !(meta.ramp.rate >= RATE_RANGE.0 && meta.ramp.rate <= RATE_RANGE.1) {
             return Err(Error::InvalidRate);
         }
         let nonneg = |x: f64| x.is_finite() && x >= 0.0;
         if !(positive(meta.plan_duration)
             && positive(meta.tolerance)
-            && nonneg(meta.peak_velocity)
-            && nonneg(meta.peak_acceleration)
-            && nonneg(meta.peak_jerk)
-            && positive(meta.acceleration_limit)
-            && positive(meta.jerk_limit)
-            && nonneg(meta.feed_share)
-            && meta.feed_share <= 1.0)
+            && nonneg(meta.ramp.peak_velocity)
+            && nonneg(meta.ramp.peak_acceleration)
+            && nonneg(meta.ramp.peak_jerk)
+            && positive(meta.ramp.acceleration_limit)
+            && positive(meta.ramp.jerk_limit)
+            && nonneg(meta.ramp.feed_share)
+            && meta.ramp.feed_share <= 1.0)
         {
             return Err(Error::InvalidLimit);
         }
-        let (omega, alpha) = feed_ramp_f64(&meta.ramp_basis());
-        let ramp = FeedRampLimits::from_rates(omega, alpha, meta.rate)?;
-        let phi_dot_max = ramp.phi_dot_max(meta.rate);
+        let (omega, alpha) = feed_ramp_f64(&meta.ramp);
+        let ramp = FeedRampLimits::from_rates(omega, alpha, meta.ramp.rate)?;
+        let phi_dot_max = ramp.phi_dot_max(meta.ramp.rate);
         header.ramp = ramp;
         Ok(Validator {
             header,
@@ -660,7 +642,7 @@ fn check_continuation<N: Number, const A: usize>(
     };
     let tolerance = b.playback_error + 0.5 * meta.tolerance;
     if near(position, x.to_f64(), tolerance, 0.0)
-        && near(velocity, v.to_f64(), v_bound, meta.peak_velocity)
+        && near(velocity, v.to_f64(), v_bound, meta.ramp.peak_velocity)
         && near(acceleration, acc.to_f64(), a_bound, 0.0)
     {
         Ok(())
@@ -707,10 +689,8 @@ mod tests {
 
     #[test]
     fn feed_ramp_constants() {
-        let meta = PathMeta {
+        let ramp = RampBasis {
             rate: 1000.0,
-            plan_duration: 1.0,
-            tolerance: 1e-3,
             peak_velocity: 100.0,
             peak_acceleration: 600.0,
             peak_jerk: 1000.0,
@@ -718,8 +698,8 @@ mod tests {
             jerk_limit: 10_000.0,
             feed_share: 0.25,
         };
-        let (omega, alpha) = feed_ramp_f64(&meta.ramp_basis());
-        let (f, v) = (meta.rate, meta.peak_velocity);
+        let (omega, alpha) = feed_ramp_f64(&ramp);
+        let (f, v) = (ramp.rate, ramp.peak_velocity);
         // a_ramp = max(400, 250) = 400, R = j_ramp = max(9000, 2500) = 9000, c = 3·600/100:
         // the split √v·R/(√R + c·√v) = 327.4 < a_ramp
         let (r, c) = (9000.0, 18.0);
@@ -727,27 +707,27 @@ mod tests {
         assert!(split < 400.0);
         assert!((omega * v * f - split).abs() < 1e-9);
         // the jerk terms 3·φ̇·a_peak + φ̈·v_peak use exactly R
-        let jerk = 3.0 * omega * f * meta.peak_acceleration + alpha * f * f * v;
+        let jerk = 3.0 * omega * f * ramp.peak_acceleration + alpha * f * f * v;
         assert!((jerk - r).abs() < 1e-9, "{jerk}");
         // and the split is the fastest ramp over 1: 1/φ̇ + φ̇/φ̈ is least there
         let time = |a: f64| v / a + a / (r - c * a);
         assert!(time(split) < time(split * 1.01) && time(split) < time(split * 0.99));
         // without acceleration at the peak (c = 0): ω = min(a_ramp/(v f), √α), α = R/(v f²)
-        let flat = PathMeta {
+        let flat = RampBasis {
             peak_acceleration: 0.0,
-            ..meta
+            ..ramp
         };
-        let (omega, alpha) = feed_ramp_f64(&flat.ramp_basis());
+        let (omega, alpha) = feed_ramp_f64(&flat);
         assert!((alpha - 9e-5).abs() < 1e-18);
         assert!((omega - 9e-5_f64.sqrt()).abs() < 1e-15);
         // a small jerk budget: ω is capped by √α
-        let tight = PathMeta {
+        let tight = RampBasis {
             jerk_limit: 1.0,
             peak_jerk: 0.0,
             peak_acceleration: 0.0,
-            ..meta
+            ..ramp
         };
-        let (omega, alpha) = feed_ramp_f64(&tight.ramp_basis());
+        let (omega, alpha) = feed_ramp_f64(&tight);
         assert!((alpha - 1e-8).abs() < 1e-22);
         assert!((omega - 1e-4).abs() < 1e-15);
     }

@@ -916,7 +916,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
 fn feed_ramp<const D: usize>(limits: &Limits<D>, options: &StreamOptions) -> (f64, f64) {
     let share = options.plan.feed_share();
     let rate = options.plan.rate();
-    let meta = RampBasis {
+    let basis = RampBasis {
         rate,
         peak_velocity: limits.velocity(),
         peak_acceleration: (1.0 - share) * limits.acceleration(),
@@ -925,7 +925,7 @@ fn feed_ramp<const D: usize>(limits: &Limits<D>, options: &StreamOptions) -> (f6
         jerk_limit: limits.jerk(),
         feed_share: share,
     };
-    let (mut omega, alpha) = feed_ramp_f64(&meta);
+    let (mut omega, alpha) = feed_ramp_f64(&basis);
     for (v, a) in limits
         .axis_velocity()
         .into_iter()
