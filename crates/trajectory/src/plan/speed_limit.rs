@@ -263,12 +263,11 @@ const REFINE_DEPTH: u32 = 4;
 /// limits.
 const RESOLVED_SHARE: f64 = 0.125;
 
-/// A speed-limit sample: its parameter, arc length, parametric speed `|c'|` and loads.
+/// A speed-limit sample: its parameter, arc length and loads (with the parametric speed).
 #[derive(Clone, Copy)]
 struct Sampled<const A: usize> {
     u: f64,
     s: f64,
-    speed: f64,
     loads: Local<A>,
 }
 
@@ -276,7 +275,7 @@ struct Sampled<const A: usize> {
 /// Hermite interpolant of `s(u)` (slopes `|c'|`): it weighs the turn of the tangents
 /// between samples ([`bent`]) and places no zone.
 fn halfway<const A: usize>(a: &Sampled<A>, b: &Sampled<A>) -> f64 {
-    0.5 * (a.s + b.s) + (b.u - a.u) / 8.0 * (a.speed - b.speed)
+    0.5 * (a.s + b.s) + (b.u - a.u) / 8.0 * (a.loads.speed - b.loads.speed)
 }
 
 /// The curvature that turning from the tangent of `a` to that of `b` needs at least:
@@ -308,12 +307,7 @@ impl<C: ParamCurveDeriv, L: ArcLengths, const A: usize> Refiner<'_, C, L, A> {
     /// no tangent).
     fn sample_at(&self, u: f64, s: f64) -> Result<Option<Sampled<A>>, Error> {
         let loads = local(self.curve, u, self.limits, self.jerk, self.share)?;
-        Ok(loads.map(|loads| Sampled {
-            u,
-            s,
-            speed: loads.speed,
-            loads,
-        }))
+        Ok(loads.map(|loads| Sampled { u, s, loads }))
     }
 
     /// The sample at the parameter `u` of the sampling grid, at its arc length.
@@ -439,7 +433,7 @@ fn grid_pair<C: ParamCurveDeriv, L: ArcLengths, const A: usize>(
     if let Some(b) = next.as_mut() {
         b.s = match (prev, &mid) {
             (Some(a), Some(m)) if simpson => {
-                a.s + (b.u - a.u) / 6.0 * (a.speed + 4.0 * m.speed + b.speed)
+                a.s + (b.u - a.u) / 6.0 * (a.loads.speed + 4.0 * m.loads.speed + b.loads.speed)
             }
             _ => refiner.arcs.length_at(u_next),
         };

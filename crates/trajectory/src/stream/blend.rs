@@ -480,6 +480,12 @@ impl<const D: usize> Blend<D> {
     }
 }
 
+/// Whether a move's parameters `(begin, end)` between its blends hold a part of it: not
+/// where the blends at both ends take half of the move each (up to rounding).
+pub(super) fn has_span((begin, end): (f64, f64)) -> bool {
+    end - begin > 1e-12
+}
+
 /// Joins the blends of `junctions` (the junction after each move of `moves` but the last,
 /// from [`junction`]) at both ends of each line they take all of between them, in order
 /// along the path, as a [`Stream`](crate::Stream) does with the moves pushed into it: in
@@ -512,7 +518,7 @@ pub fn chain_junctions<const D: usize>(
         let (done, rest) = junctions.split_at_mut(i);
         if let (Some(Junction::Blend(before)), Some(Junction::Blend(after)), Some(through)) =
             (done.last_mut(), rest.first_mut(), moves.get(i))
-            && before.join() >= after.leave() - 1e-12
+            && !has_span((before.join(), after.leave()))
         {
             chain(before, after, through, tolerance);
         }

@@ -27,7 +27,7 @@ use heapless::spsc::Producer;
 use heapless::{Deque, Vec};
 use strak_curves::ParamCurve;
 
-use super::blend::{Blend, Junction, chain, junction};
+use super::blend::{Blend, Junction, chain, has_span, junction};
 use super::committed::{Committed, PHASES};
 use super::moves::{Move, MoveCurve};
 use super::segment::Segment;
@@ -599,7 +599,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             Junction::Blend(b) => (b.leave(), b.join(), Some(b)),
             _ => (1.0, 0.0, None),
         };
-        let through = leave - prev.from > 1e-12;
+        let through = has_span((prev.from, leave));
         let mut before = prev.before;
         if let (Some((b, _)), Some(a), false) = (before.as_mut(), after.as_mut(), through) {
             chain(b, a, &prev.curve, self.options.tolerance);

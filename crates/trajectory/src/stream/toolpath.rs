@@ -4,7 +4,7 @@
 use heapless::Vec;
 use strak_curves::{ParamCurve, ParamCurveDeriv, PieceDeriv, Point};
 
-use super::blend::{Junction, chain_junctions, junction};
+use super::blend::{Junction, chain_junctions, has_span, junction};
 use super::moves::{Move, MoveCurve};
 use crate::error::Error;
 
@@ -182,12 +182,6 @@ impl<const D: usize, const M: usize> Toolpath<D, M> {
         let piece = (libm::floor(u) as usize).min(self.pieces - 1);
         (piece, u - piece as f64)
     }
-}
-
-/// Whether a move's parameters between its blends hold a piece: not where the blends at
-/// both ends take half of the move each (up to rounding).
-fn has_span((begin, end): (f64, f64)) -> bool {
-    end - begin > 1e-12
 }
 
 impl<const D: usize, const M: usize> ParamCurve for Toolpath<D, M> {
