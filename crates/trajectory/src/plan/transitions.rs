@@ -19,8 +19,8 @@
 //! last; a zone whose start was changed by one boundary may be changed again at the next,
 //! starting from a state with acceleration.
 
-use super::motion::{Phase, ProfileZone};
-use crate::online::{AxisLimits, Kinematics, solve_axis};
+use super::motion::{MotionState, Phase, ProfileZone};
+use crate::online::{AxisLimits, AxisProfile, Kinematics, solve_axis};
 
 /// The relative rounding allowed on a zone's speed and acceleration limit: the transition is
 /// solved at the limits, and its integrated phases may pass them by a few ulp.
@@ -40,15 +40,25 @@ type Rising = bool;
 pub(super) fn carry_acceleration(zones: &mut [ProfileZone]) {
     for i in 1..zones.len() {
         if let [.., before, after] = &mut zones[..=i] {
-            for rising in [true, false] {
-                if let Some((b, a)) = transition(before, after, rising) {
-                    (*before, *after) = (b, a);
-                    break;
-                }
-            }
+            carry_across(before, after);
         }
     }
-    retime(zones);
+    retime(zones, 0.0);
+}
+
+/// Replaces the stretch around the boundary of `before` and `after` whose speed changes in
+/// one direction on both sides by the transition that carries the acceleration across it,
+/// in place, `after` timed on from the end of `before`; `false` (the zones unchanged)
+/// where there is none, it is not faster, or it leaves a limit.
+pub(super) fn carry_across(before: &mut ProfileZone, after: &mut ProfileZone) -> bool {
+    for rising in [true, false] {
+        if let Some((b, a)) = transition(before, after, rising) {
+            (*before, *after) = (b, a);
+            retime(core::slice::from_mut(after), before.t_end());
+            return true;
+        }
+    }
+    false
 }
 
 /// The two zones with the transition through their boundary in the direction `rising`, or
@@ -82,13 +92,47 @@ fn transition(
     if profile.duration() >= old || profile.duration().is_nan() {
         return None;
     }
-    let phases = profile
+    split_at(before, after, first, tail, phases_of(profile))
+}
+
+/// The phases of an online profile: their durations, start accelerations and jerks (the
+/// empty ones left out).
+fn phases_of(profile: &AxisProfile<f64>) -> impl Iterator<Item = (f64, f64, f64)> + Clone + '_ {
+    profile
         .phases()
         .iter()
         .zip(profile.states())
         .filter(|(ph, _)| ph.duration > 0.0)
-        .map(|(ph, st)| (ph.duration, st.acceleration, ph.jerk));
-    split_at(before, after, first, tail, phases)
+        .map(|(ph, st)| (ph.duration, st.acceleration, ph.jerk))
+}
+
+/// `zone` (its extent, limits, entry time and end speed) entered in the state `start`, with
+/// acceleration: the time-optimal motion from there to the zone's end at its end speed and
+/// without acceleration (the online solver's). `None` where that leaves the zone's limits,
+/// takes more than its phases, or misses its end.
+pub(super) fn entered_with(zone: &ProfileZone, start: MotionState) -> Option<ProfileZone> {
+    let limits = AxisLimits::new(zone.v_limit, zone.a_limit, zone.j_limit).ok()?;
+    let from = Kinematics::new(start.s, start.v, start.a);
+    let to = Kinematics::new(zone.end, zone.v_end, 0.0);
+    let block = solve_axis(&from, &to, &limits).ok()?;
+    let mut out = cleared(zone);
+    out.v_start = start.v;
+    let mut state = start;
+    for (duration, a0, j) in phases_of(block.profile()) {
+        let phase = Phase {
+            t0: 0.0,
+            duration,
+            s0: state.s,
+            v0: state.v,
+            a0,
+            j,
+        };
+        push_within(&mut out, &phase)?;
+        state = phase.local(duration);
+    }
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()));
+    let ends = close(state.s, zone.end) && close(state.v, zone.v_end);
+    (ends && state.a.abs() <= 1e-6 * zone.a_limit).then_some(out)
 }
 
 /// The number of phases at the start of `phases` (taken in the order given) that change
@@ -232,9 +276,8 @@ fn crossing(phase: &Phase, s: f64) -> f64 {
     hi
 }
 
-/// Sets the start time of every zone and phase from the durations, in order from 0.
-fn retime(zones: &mut [ProfileZone]) {
-    let mut t = 0.0;
+/// Sets the start time of every zone and phase from the durations, in order from `t`.
+fn retime(zones: &mut [ProfileZone], mut t: f64) {
     for zone in zones.iter_mut() {
         zone.t_start = t;
         for ph in zone.phases_mut() {

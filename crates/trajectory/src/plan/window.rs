@@ -1,7 +1,8 @@
 //! Look-ahead over a path that grows while the motion runs: zones of constant limits are
 //! appended as moves arrive, the boundary speeds of the zones not yet committed are planned
 //! so that the motion can always come to rest at the end of what is known, and the first
-//! zone is committed (its double S) when the motion needs it.
+//! zone is committed (its double S, or its transition into the next zone where that carries
+//! the acceleration across their boundary) when the motion needs it.
 //!
 //! Why committing is always safe: the boundary speeds come from a forward pass from the
 //! committed speed and a backward pass from rest at the window's end, so the first zone's
@@ -9,13 +10,17 @@
 //! zones only moves the point of rest further on, which can only raise the speeds the
 //! backward pass allows, never lower them; so the speed a committed zone ends at stays one
 //! the next zone can start from, whatever arrives later, and a producer that falls behind
-//! only makes the motion slow down and rest at the end of what it sent.
+//! only makes the motion slow down and rest at the end of what it sent. A zone entered
+//! with acceleration keeps the motion that entered it with (ending at the speed planned at
+//! that time) as its fallback, so the same holds for it: its planned end speed is never
+//! below its fallback's, and the fallback's end stays one the next zone can start from.
 
 use heapless::Vec;
 
 use super::motion::ProfileZone;
 use super::scurve::{change_distance, fill_zone, last_fitting, reach};
 use super::speed_limit::ZoneSink;
+use super::transitions::{carry_across, entered_with};
 use crate::error::Error;
 
 /// The boundary speeds of the window's zones: the first starts at `v_entry`, the last ends
@@ -38,15 +43,18 @@ use crate::error::Error;
 /// A zone's cap and fastest start depend only on the zones after it, so when zones are
 /// appended the backward pass stops at the first zone whose cap and fastest start come out
 /// as before (the zones before it keep theirs), and the forward pass starts again there.
-fn plan_speeds(zones: &mut [WindowZone], v_entry: f64) {
-    plan_speeds_under(zones, v_entry, |_, z| z.v_limit());
+///
+/// The first zone ends no slower than `floor`: the end speed of its fallback where the
+/// motion enters it with acceleration (see [`LookAhead`]), which it can always keep to.
+fn plan_speeds(zones: &mut [WindowZone], (v_entry, floor): (f64, f64)) {
+    plan_speeds_under(zones, (v_entry, floor), |_, z| z.v_limit());
 }
 
 /// [`plan_speeds`] with the speed limit `limit(i, zone)` of each zone `i` (the zones' own,
 /// or those a feed scale would give them).
 fn plan_speeds_under(
     zones: &mut [WindowZone],
-    v_entry: f64,
+    (v_entry, floor): (f64, f64),
     limit: impl Fn(usize, &WindowZone) -> f64,
 ) {
     let mut bound = 0.0;
@@ -70,9 +78,30 @@ fn plan_speeds_under(
         Some(z) => z.v_end,
         None => v_entry,
     };
-    for z in zones.iter_mut().skip(from) {
+    for (i, z) in zones.iter_mut().enumerate().skip(from) {
         z.v_start = v;
         z.v_end = fastest_end(v, z.cap, z.end - z.start, z.a_limit, z.j_limit);
+        if i == 0 {
+            z.v_end = z.v_end.max(floor);
+        }
+        v = z.v_end;
+    }
+}
+
+/// The forward pass of [`plan_speeds`] alone, for a new entry speed `v_entry` of zones
+/// whose caps are planned, up to the first zone whose start speed comes out as before
+/// (the zones from there on keep theirs).
+fn forward_from(zones: &mut [WindowZone], (v_entry, floor): (f64, f64)) {
+    let mut v = v_entry;
+    for (i, z) in zones.iter_mut().enumerate() {
+        if i > 0 && z.v_start == v {
+            break;
+        }
+        z.v_start = v;
+        z.v_end = fastest_end(v, z.cap, z.end - z.start, z.a_limit, z.j_limit);
+        if i == 0 {
+            z.v_end = z.v_end.max(floor);
+        }
         v = z.v_end;
     }
 }
@@ -192,6 +221,26 @@ impl WindowZone {
         })
     }
 
+    /// The zone to its planned end speed, entered at time `t` and speed `v`, without
+    /// phases.
+    fn blank(&self, t: f64, v: f64) -> ProfileZone {
+        let (v_limit, a_limit, j_limit) = (self.v_limit(), self.a_limit, self.j_limit);
+        let mut zone = ProfileZone::new(self.start, self.end, v_limit, a_limit, j_limit);
+        zone.exit_cap = self.exit_cap;
+        zone.v_start = v;
+        zone.v_end = self.v_end;
+        zone.t_start = t;
+        zone
+    }
+
+    /// The zone's double S from the speed `v` to its planned end speed, entered at time `t`
+    /// and arc length `s`.
+    fn profile(&self, (t, s, v): (f64, f64, f64)) -> ProfileZone {
+        let mut zone = self.blank(t, v);
+        fill_zone(&mut zone, s);
+        zone
+    }
+
     /// The zone of [`new`](Self::new), its values not checked.
     const fn unchecked(
         (start, end): (f64, f64),
@@ -223,7 +272,16 @@ impl WindowZone {
 /// zones pushed so far.
 ///
 /// Pushing a zone runs the forward/backward pass over the window (`O(Z)`); committing
-/// fills one zone's double S ([`ProfileZone`]) and shifts the window (`O(Z)`).
+/// fills one zone's double S ([`ProfileZone`]) and shifts the window (`O(Z)`). Where the
+/// speed changes in one direction on both sides of the boundary after the committed zone,
+/// the commit carries the acceleration across it, as a whole path's plan does (see
+/// [`PathTiming`](crate::PathTiming)): the time-optimal transition from the start of the
+/// committed zone's last speed change to the end of the next zone's first, under the
+/// tighter limits of the two, kept where it is faster and keeps each zone's limits. The
+/// next zone is then entered with acceleration; its motion with the transition (ending at
+/// the speed planned then) is kept as its fallback, so that the window stays one the
+/// motion can keep to, while the next commit goes from the state it is entered in to the
+/// end speed planned by then, by the online solver, where that keeps the zone's limits.
 ///
 /// ```
 /// use strak_trajectory::{LookAhead, WindowZone};
@@ -242,9 +300,12 @@ impl WindowZone {
 #[derive(Clone, Debug)]
 pub struct LookAhead<const Z: usize> {
     zones: Vec<WindowZone, Z>,
-    /// Where the committed motion ends: time, arc length and speed (the acceleration is 0
-    /// there: zones start and end without acceleration).
+    /// Where the committed motion ends: time, arc length and speed.
     entry: (f64, f64, f64),
+    /// Where the committed motion ends with acceleration (it carries it into the first
+    /// zone): the first zone's motion from there to the end speed planned when it was
+    /// committed, which keeps the limits.
+    carry: Option<ProfileZone>,
 }
 
 impl<const Z: usize> Default for LookAhead<Z> {
@@ -264,12 +325,14 @@ impl<const Z: usize> LookAhead<Z> {
         LookAhead {
             zones: Vec::new(),
             entry: (0.0, 0.0, 0.0),
+            carry: None,
         }
     }
 
     /// Empties the window, in place: at rest at arc length 0 and time 0.
     pub(crate) fn clear(&mut self) {
         self.zones.clear();
+        self.carry = None;
         self.entry = (0.0, 0.0, 0.0);
     }
 
@@ -293,7 +356,28 @@ impl<const Z: usize> LookAhead<Z> {
         self.zones.is_empty()
     }
 
-    /// The time, arc length and speed where the committed motion ends.
+    /// The speed the first zone is entered at and the least it ends at (the end speed of
+    /// its fallback where it is entered with acceleration, else 0), for [`plan_speeds`].
+    fn planned_entry(&self) -> (f64, f64) {
+        (self.entry.2, self.carry.as_ref().map_or(0.0, |f| f.v_end))
+    }
+
+    /// Whether the committed motion can go on within the window's plan: entered without
+    /// acceleration, at a speed at most the first zone's fastest start; entered with
+    /// acceleration, its fallback ends at a speed the rest of the window can start from
+    /// (rest at the window's end).
+    fn entry_fits(&self) -> bool {
+        match &self.carry {
+            None => self.zones.first().is_none_or(|z| self.entry.2 <= z.bound),
+            Some(fallback) => match self.zones.get(1) {
+                Some(next) => fallback.v_end <= next.bound,
+                None => fallback.v_end == 0.0,
+            },
+        }
+    }
+
+    /// The time, arc length and speed where the committed motion ends (it may still
+    /// accelerate there).
     ///
     /// ```
     /// use strak_trajectory::{LookAhead, WindowZone};
@@ -349,7 +433,8 @@ impl<const Z: usize> LookAhead<Z> {
         for zone in zones {
             let _ = self.zones.push(*zone);
         }
-        plan_speeds(&mut self.zones, self.entry.2);
+        let entry = self.planned_entry();
+        plan_speeds(&mut self.zones, entry);
         Ok(())
     }
 
@@ -381,7 +466,8 @@ impl<const Z: usize> LookAhead<Z> {
     /// acceleration) would let the speed change by a sliver. The merged zones stay short,
     /// as a committed zone is planned no further: longer ones would take the look-ahead of
     /// a short queue. A merge that would leave the committed speed no way to keep to the
-    /// window (it lowers the last zone's limits) is taken back.
+    /// window (it lowers the last zone's limits) is taken back, and a zone entered with
+    /// acceleration is not merged into (its fallback ends where it ends).
     ///
     /// # Errors
     /// As [`extend`](Self::extend).
@@ -393,7 +479,11 @@ impl<const Z: usize> LookAhead<Z> {
     ) -> Result<(), Error> {
         self.check(zones)?;
         let mut rest = zones;
-        while let (Some(next), Some(last)) = (rest.first(), self.zones.last_mut()) {
+        let fixed = usize::from(self.carry.is_some());
+        while let (Some(next), Some(last)) = (
+            rest.first(),
+            self.zones.get_mut(fixed..).and_then(<[_]>::last_mut),
+        ) {
             if last.end - last.start >= MIN_ZONE_TICKS * period * last.v_limit() {
                 break;
             }
@@ -401,8 +491,9 @@ impl<const Z: usize> LookAhead<Z> {
                 break;
             };
             let kept = core::mem::replace(last, merged);
-            plan_speeds(&mut self.zones, self.entry.2);
-            if self.zones.first().is_some_and(|z| self.entry.2 > z.bound) {
+            let entry = self.planned_entry();
+            plan_speeds(&mut self.zones, entry);
+            if !self.entry_fits() {
                 if let Some(last) = self.zones.last_mut() {
                     *last = kept;
                 }
@@ -425,7 +516,7 @@ impl<const Z: usize> LookAhead<Z> {
     /// ```
     pub fn hold_until(&mut self, t: f64) {
         let (t0, s, v) = self.entry;
-        if v == 0.0 && t > t0 {
+        if v == 0.0 && t > t0 && self.carry.is_none() {
             self.entry = (t, s, v);
         }
     }
@@ -435,17 +526,16 @@ impl<const Z: usize> LookAhead<Z> {
     /// speed no way to keep to the window, the fewest zones at its front keep the override
     /// they had (the motion cannot slow down in time for them).
     pub(crate) fn scale_feeds(&mut self, scale: f32) {
-        let v_entry = self.entry.2;
         let (mut lo, mut hi) = (0, self.zones.len());
         while lo < hi {
             let keep = lo + (hi - lo) / 2;
-            if self.fits_from(keep, scale, v_entry) {
+            if self.fits_from(keep, scale) {
                 hi = keep;
             } else {
                 lo = keep + 1;
             }
         }
-        let keep = if self.fits_from(lo, scale, v_entry) {
+        let keep = if self.fits_from(lo, scale) {
             lo
         } else {
             self.zones.len()
@@ -456,20 +546,22 @@ impl<const Z: usize> LookAhead<Z> {
         self.replan();
     }
 
-    /// Whether the window, its zones from `keep` on planned with the override `scale`, can
-    /// be entered at `v_entry` (the speeds planned are left for [`replan`](Self::replan)).
-    fn fits_from(&mut self, keep: usize, scale: f32, v_entry: f64) -> bool {
+    /// Whether the committed motion can keep to the window with its zones from `keep` on
+    /// planned with the override `scale` (the speeds planned are left for
+    /// [`replan`](Self::replan)).
+    fn fits_from(&mut self, keep: usize, scale: f32) -> bool {
         for z in self.zones.iter_mut() {
             z.bound = f64::NAN;
         }
-        plan_speeds_under(&mut self.zones, v_entry, |i, z| {
+        let entry = self.planned_entry();
+        plan_speeds_under(&mut self.zones, entry, |i, z| {
             if i < keep {
                 z.v_limit()
             } else {
                 z.limit_at(scale)
             }
         });
-        self.zones.first().is_none_or(|z| v_entry <= z.bound)
+        self.entry_fits()
     }
 
     /// Plans every zone's speeds afresh.
@@ -477,31 +569,55 @@ impl<const Z: usize> LookAhead<Z> {
         for z in self.zones.iter_mut() {
             z.bound = f64::NAN;
         }
-        plan_speeds(&mut self.zones, self.entry.2);
+        let entry = self.planned_entry();
+        plan_speeds(&mut self.zones, entry);
     }
 
-    /// Commits the first zone: its double S from the committed speed to the end speed the
-    /// window allows, as a [`ProfileZone`] with its phases (entered at the committed time
-    /// and arc length); `None` for an empty window.
+    /// Commits the first zone, as a [`ProfileZone`] with its phases from the committed
+    /// time, arc length and speed to the end speed the window allows: its double S, or,
+    /// where the motion enters it with acceleration, the online solver's motion (its
+    /// fallback where that leaves a limit). Where the speed changes in one direction on both
+    /// sides of its end, the zone ends with the transition that carries the acceleration
+    /// across. `None` for an empty window.
     ///
     /// ```
     /// use strak_trajectory::LookAhead;
     /// assert!(LookAhead::<4>::new().commit().is_none());
     /// ```
     pub fn commit(&mut self) -> Option<ProfileZone> {
-        if self.zones.is_empty() {
-            return None;
+        let first = *self.zones.first()?;
+        let (t, _, v) = self.entry;
+        let zone = match self.carry.take() {
+            None => first.profile(self.entry),
+            Some(fallback) => match fallback.phases().first() {
+                Some(p) => entered_with(&first.blank(t, v), p.local(0.0)).unwrap_or(fallback),
+                None => fallback,
+            },
+        };
+        self.zones.remove(0);
+        self.entry = (zone.t_end(), zone.end, zone.v_end);
+        if zone.v_end != first.v_end {
+            let entry = self.planned_entry();
+            forward_from(&mut self.zones, entry);
         }
-        let w = self.zones.remove(0);
-        let (t, s, v) = self.entry;
-        let mut zone = ProfileZone::new(w.start, w.end, w.v_limit(), w.a_limit, w.j_limit);
-        zone.exit_cap = w.exit_cap;
-        zone.v_start = v;
-        zone.v_end = w.v_end;
-        zone.t_start = t;
-        fill_zone(&mut zone, s);
-        self.entry = (zone.t_end(), w.end, w.v_end);
-        Some(zone)
+        Some(self.carry_on(zone))
+    }
+
+    /// `zone`, just committed, with the transition into the window's first zone where that
+    /// carries the acceleration across their boundary (the first zone keeps the rest of the
+    /// transition as its fallback, and its speeds are planned again from the new entry).
+    fn carry_on(&mut self, mut zone: ProfileZone) -> ProfileZone {
+        let Some(next) = self.zones.first().filter(|_| self.zones.len() > 1) else {
+            return zone;
+        };
+        let mut next = next.profile(self.entry);
+        if carry_across(&mut zone, &mut next) {
+            self.entry = (zone.t_end(), zone.end, zone.v_end);
+            self.carry = Some(next);
+            let entry = self.planned_entry();
+            forward_from(&mut self.zones, entry);
+        }
+        zone
     }
 }
 
@@ -659,14 +775,22 @@ mod tests {
             .collect()
     }
 
-    /// The committed zones are one continuous motion (time, arc length, speed; the zones
-    /// meet at zero acceleration) within every zone's limits and cap, sampled at 64 points
-    /// of every phase; returns the duration.
-    fn check_motion(zones: &[ProfileZone]) -> f64 {
-        let (mut t, mut s, mut v) = (0.0, 0.0, 0.0);
+    /// The committed zones are one continuous motion (time, arc length, speed and
+    /// acceleration) within every zone's limits and cap, sampled at 64 points of every
+    /// phase; returns the duration and the number of boundaries passed with acceleration.
+    fn check_motion(zones: &[ProfileZone]) -> (f64, usize) {
+        let (mut t, mut s, mut v, mut a) = (0.0, 0.0, 0.0, 0.0);
+        let mut carried = 0;
         let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()));
         for z in zones {
             assert!(close(z.t_start, t) && close(z.start, s) && close(z.v_start, v));
+            let a0 = z.phases().first().map_or(0.0, |p| p.a0);
+            assert!((a0 - a).abs() <= 1e-6 * z.a_limit, "{a0} {a} {z:?}");
+            let mut t_phase = z.t_start;
+            for p in z.phases() {
+                assert!(close(p.t0, t_phase), "{z:?}");
+                t_phase = p.end();
+            }
             for p in z.phases() {
                 for i in 0..=64 {
                     let st = p.state_at(p.t0 + p.duration * f64::from(i) / 64.0);
@@ -680,14 +804,19 @@ mod tests {
             }
             let end = z.end_state();
             assert!(
-                close(end.s, z.end) && close(end.v, z.v_end) && end.a.abs() <= 1e-6 * z.a_limit,
+                close(end.s, z.end) && close(end.v, z.v_end),
                 "{end:?} {z:?}"
             );
             assert!(z.v_end <= z.exit_cap);
-            (t, s, v) = (z.t_end(), z.end, z.v_end);
+            carried += usize::from(end.a.abs() > 1e-6 * z.a_limit);
+            (t, s, v, a) = (z.t_end(), z.end, z.v_end, end.a);
         }
-        assert_eq!(v, 0.0, "the motion ends at rest");
-        t
+        let a_limit = zones.last().map_or(0.0, |z| z.a_limit);
+        assert!(
+            v == 0.0 && a.abs() <= 1e-6 * a_limit,
+            "the motion ends at rest"
+        );
+        (t, carried)
     }
 
     /// Zones streamed into a window that commits as soon as it holds more than `ahead`:
@@ -715,20 +844,72 @@ mod tests {
     fn streamed_zones_keep_the_limits() {
         let mut rng = Rng(0x5eed_1234_abcd_0001);
         let mut ratios = [0.0_f64; 4];
+        let mut carried = 0;
         for _ in 0..200 {
             let n = 2 + (rng.next() * 40.0) as usize;
             let zones = random_zones(&mut rng, n);
             let (whole, _) = stream(&zones, 64);
-            let whole_time = check_motion(&whole);
+            let (whole_time, whole_carried) = check_motion(&whole);
+            carried += whole_carried;
             for (k, ahead) in [0, 1, 3, 8].into_iter().enumerate() {
                 let (streamed, ends) = stream(&zones, ahead);
-                ratios[k] = ratios[k].max(check_motion(&streamed) / whole_time);
+                ratios[k] = ratios[k].max(check_motion(&streamed).0 / whole_time);
                 if ahead == 0 {
                     assert!(ends.iter().all(|&e| e == 0.0));
                 }
             }
         }
         std::println!("largest duration against the whole plan, look-ahead 0, 1, 3, 8: {ratios:?}");
+        std::println!("boundaries passed with acceleration: {carried}");
+        assert!(carried > 100);
+    }
+
+    /// Zones of the limits `(v, a, j)` = `(100, a, 20 000)` over the extents `(start, end, a)`.
+    fn rising(extents: &[(f64, f64, f64)]) -> StdVec<WindowZone> {
+        let limits = |a| (100.0, a, 20_000.0);
+        let zone = |&(start, end, a)| WindowZone::new((start, end), limits(a), f64::INFINITY);
+        extents.iter().map(|e| zone(e).unwrap()).collect()
+    }
+
+    /// A speed that rises through two zones of different acceleration limits keeps rising
+    /// across their boundary: the committed zones meet with acceleration, and the motion is
+    /// faster than each zone's double S.
+    #[test]
+    fn a_commit_carries_the_acceleration_across_a_boundary() {
+        let mut window = LookAhead::<4>::new();
+        let zones = rising(&[(0.0, 2.0, 1_000.0), (2.0, 5.0, 800.0), (5.0, 9.0, 800.0)]);
+        window.extend(&zones).unwrap();
+        let mut double_s = 0.0;
+        let mut entry = window.entry();
+        for w in &window.zones {
+            let z = w.profile(entry);
+            double_s += z.t_end() - z.t_start;
+            entry = (z.t_end(), z.end, z.v_end);
+        }
+        let first = window.commit().unwrap();
+        assert!(first.end_state().a > 100.0, "{first:?}");
+        let mut committed = std::vec![first];
+        committed.extend(core::iter::from_fn(|| window.commit()));
+        let (duration, carried) = check_motion(&committed);
+        assert!(carried >= 1);
+        assert!(duration < double_s - 1e-3, "{duration} {double_s}");
+    }
+
+    /// A zone entered with acceleration ends at the speed the window plans when it is
+    /// committed (the online solver's motion), above its fallback's once more is known.
+    #[test]
+    fn a_zone_entered_with_acceleration_ends_as_planned_when_committed() {
+        let mut window = LookAhead::<4>::new();
+        let zones = rising(&[(0.0, 2.0, 1_000.0), (2.0, 5.0, 800.0), (5.0, 5.5, 800.0)]);
+        window.extend(&zones).unwrap();
+        let first = window.commit().unwrap();
+        let fallback = window.carry.map(|f| f.v_end).unwrap();
+        window.push(rising(&[(5.5, 40.0, 800.0)])[0]).unwrap();
+        let second = window.commit().unwrap();
+        assert!(second.v_end > fallback + 1.0, "{} {fallback}", second.v_end);
+        let mut committed = std::vec![first, second];
+        committed.extend(core::iter::from_fn(|| window.commit()));
+        check_motion(&committed);
     }
 
     /// Chains of short zones whose limits differ by up to 4 % (a dense chain of blends),
