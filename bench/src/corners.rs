@@ -14,8 +14,8 @@ use strak_curves::{ParamCurve, Plane, Turn};
 
 use strak_curves::heapless::Deque;
 use strak_trajectory::{
-    Junction, Limits, Move, PathTiming, Piece, PlanOptions, Shape, Stream, StreamOptions, Timing,
-    Toolpath,
+    Junction, Limits, Move, PathTiming, Piece, PlanOptions, Shape, Stream, StreamOptions,
+    StreamStats, Timing, Toolpath,
 };
 
 /// The machine: speed, acceleration and jerk limits (mm, s), and the blend tolerance (mm).
@@ -143,10 +143,11 @@ pub fn strak(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64) {
 /// The control rate of the streamed motion (Hz).
 const RATE: f64 = 1_000.0;
 
-/// strak's stream over the moves, corners blended within `tolerance`: the motion's
-/// duration (s), and the moves per second it plans and compiles on this machine (the
-/// pieces in `f32`, wall-clock time of one run).
-pub fn streamed(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64) {
+/// strak's stream over the moves, corners blended within `tolerance` (or stopped where that
+/// is estimated faster): the motion's duration (s), the moves per second it plans and
+/// compiles on this machine (the pieces in `f32`, wall-clock time of one run), and its
+/// counts.
+pub fn streamed(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64, StreamStats) {
     let limits = Limits::<2>::new(V, A, J).expect("limits");
     let options = StreamOptions::new(RATE)
         .with_tolerance(tolerance)
@@ -175,6 +176,7 @@ pub fn streamed(start: [f64; 2], moves: &[Move<2>], tolerance: f64) -> (f64, f64
     (
         f64::from(stream.ticks()) / RATE,
         moves.len() as f64 / seconds,
+        stream.stats(),
     )
 }
 
@@ -307,25 +309,29 @@ pub fn section() -> String {
         o,
         "| path | moves | blended, whole path (s) | streamed (s) | exact stops (s) | JD, whole \
          path (s) | JD, {BLOCKS} lines ahead (s) | streamed / JD | streamed / JD {BLOCKS} | stops / \
-         streamed | largest deviation / tolerance | streamed moves/s (host) |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+         streamed | streamed blends / stops | largest deviation / tolerance (whole path, \
+         streamed) | streamed moves/s (host) |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for (name, start, moves, tolerance) in cases() {
         let (blended, deviation) = strak(start, &moves, tolerance);
-        let (stream, per_second) = streamed(start, &moves, tolerance);
-        let (stops, _) = streamed(start, &moves, 0.0);
+        let (stream, per_second, stats) = streamed(start, &moves, tolerance);
+        let (stops, _, _) = streamed(start, &moves, 0.0);
         let line = polyline(start, &moves);
         let jd = junction_deviation(&line, tolerance, usize::MAX);
         let jd_ahead = junction_deviation(&line, tolerance, BLOCKS);
         let _ = writeln!(
             o,
             "| {name} | {} | {blended:.3} | {stream:.3} | {stops:.3} | {jd:.3} | {jd_ahead:.3} | \
-             {:.2} | {:.2} | {:.2} | {:.3} | {per_second:.0} |",
+             {:.2} | {:.2} | {:.2} | {} / {} | {:.3}, {:.3} | {per_second:.0} |",
             moves.len(),
             stream / jd,
             stream / jd_ahead,
             stops / stream,
-            deviation / tolerance
+            stats.blends,
+            stats.stops,
+            deviation / tolerance,
+            stats.max_deviation / tolerance
         );
     }
     let _ = writeln!(o, "\n{STREAMED}");
@@ -344,7 +350,10 @@ their speed limits are within the zone tolerance), which is why it is faster tha
 whole-path plan on the walk and the contour. Where the speed changes in one direction on \
 both sides of a zone's end, the window carries the acceleration across it by the online \
 solver, as the whole-path plan does (without it the 0.2 mm chords take 1.102 s and the \
-0.5 mm ones 0.948 s). \
+0.5 mm ones 0.948 s). At a corner that turns by more than 5° the stream stops where a \
+stop is estimated to take less time than the blend (its lowest speed limit and its zones' \
+crossing times against a stop, from the speed reached in half the shorter move beside it; \
+every corner blended, the random walk takes 6.116 s and the contour 2.074 s). \
 On the dense circles it is slower than the \
 whole-path plan: its look-ahead is the 64 segments it holds (12.8 mm of 0.2 mm chords, \
 3.2 mm of 0.05 mm ones), within which it must be able to stop with what the turning leaves \
@@ -366,9 +375,10 @@ dense circles alone for the second. A jerk limit binds the speed through a blend
 of about `c(φ)/ε²` (c = 0.012 at 30°, 0.22 at 90°, 2.2 at 120°): at ε = 0.02 mm and \
 j = 10⁵ mm/s³ that bound is about 6 mm/s at a right angle, and the planner's speed limit \
 through such a blend (with the shares of the limits for the turning) is 4.2 to 4.6 mm/s, \
-which costs as much time as stopping at the corner (the last 0.1 mm of a jerk-limited stop \
-take 18 ms; the table's single right angle). Blended within 0.5 mm the corner is passed at \
-36 mm/s and still takes longer than a stop, as the planner's zones through the blend keep \
+which costs more time than stopping at the corner (the last 0.1 mm of a jerk-limited stop \
+take 18 ms; blended, the table's single right angle takes 0.417 s), so the stream stops \
+there. Blended within 0.5 mm the corner is passed at \
+36 mm/s and still takes longer than a stop (0.431 s), as the planner's zones through the blend keep \
 only 340 mm/s² and 12 600 mm/s³ for speed changes (the turning takes the rest of the \
 jerk). The junction-deviation planner passes the right angle at 12 mm/s (within 0.02) \
 without any jerk limit. On the dense circles the blends at both ends of each chord take half \
@@ -379,6 +389,5 @@ of 3 000 mm/s²; the junction-deviation planner passes their junctions (1.15° f
 chords) at its full \
 200 mm/s, where the circle's centripetal acceleration is 4 000 mm/s², above its own limit \
 (it bounds the speed at junctions, not along the path's turning). What will close more of \
-the gap: choosing at each corner between the blend and an exact stop by their times under \
-the limits, and a larger share of the acceleration for the turning where the speed does not \
-change.";
+the gap: a larger share of the acceleration for the turning where the speed does not \
+change, and a longer look-ahead for the same memory.";

@@ -249,7 +249,8 @@ fn column_peak(csv: &str, first: usize, axes: usize) -> f64 {
 }
 
 /// The bundled moves contour (lines, arcs, a Bézier, feeds; ε = 0.02 mm) runs: exit 0, every
-/// corner blended within ε, the samples (from `samples.csv`) within the limits, the end on
+/// corner blended within ε (the tangent join of its first line and arc) or stopped where
+/// that is estimated faster, the samples (from `samples.csv`) within the limits, the end on
 /// the last move's end.
 #[test]
 fn the_moves_contour_streams_within_its_limits() {
@@ -259,14 +260,10 @@ fn the_moves_contour_streams_within_its_limits() {
     assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
     agrees(&r);
     let s = &r.summary["stream"];
-    assert_eq!(
-        (s["moves"].as_u64(), s["blends"].as_u64()),
-        (Some(6), Some(5))
-    );
-    assert_eq!(
-        (s["stops"].as_u64(), s["starved"].as_u64()),
-        (Some(0), Some(0))
-    );
+    let (blends, stops) = (s["blends"].as_u64().unwrap(), s["stops"].as_u64().unwrap());
+    assert_eq!((s["moves"].as_u64(), blends + stops), (Some(6), 5));
+    assert!(blends >= 1, "{s}");
+    assert_eq!(s["starved"].as_u64(), Some(0));
     assert_eq!(s["underruns"], 0);
     assert!(s["max_deviation"]["max"].as_f64().unwrap() <= 0.02);
     assert!(s["planning_per_move_s"].as_f64().is_some());

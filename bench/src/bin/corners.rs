@@ -7,7 +7,7 @@
 fn main() {
     if std::env::args().any(|a| a == "--stream") {
         for (name, start, moves, tolerance) in strak_bench::corners::cases() {
-            let (duration, rate) = strak_bench::corners::streamed(start, &moves, tolerance);
+            let (duration, rate, _) = strak_bench::corners::streamed(start, &moves, tolerance);
             println!("{name}: streamed {duration:.3} s, {rate:.0} moves/s");
         }
         return;

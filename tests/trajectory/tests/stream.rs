@@ -956,14 +956,15 @@ fn largest_sag(moves: &[Move<3>]) -> f64 {
 /// and a Bézier, with a slower feed on one line, pushed at once and played: the pieces
 /// meet without a seam, the speed, acceleration and jerk from the played ticks stay within
 /// the promised limits, every tick lies within the tolerance of the programmed moves, and
-/// the motion ends at rest on the last move's end.
+/// the motion ends at rest on the last move's end (every corner blended that can be).
 #[test]
 fn a_stream_plays_within_the_limits_and_the_tolerance() {
     let (rate, tol, fit) = (1000.0, 0.05, 1e-5);
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let options = StreamOptions::new(rate)
         .with_tolerance(tol)
-        .with_fit_tolerance(fit);
+        .with_fit_tolerance(fit)
+        .with_faster_stops(false);
     let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
     let moves = contour_moves();
     let played = run_stream::<f64, 32, 256>(&mut stream, &moves, moves.len());
@@ -1010,7 +1011,9 @@ fn a_stream_plays_within_the_limits_and_the_tolerance() {
 fn a_starved_stream_rests_and_resumes_within_the_limits() {
     let (rate, tol) = (1000.0, 0.02);
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
-    let options = StreamOptions::new(rate).with_tolerance(tol);
+    let options = StreamOptions::new(rate)
+        .with_tolerance(tol)
+        .with_faster_stops(false);
     let moves: Vec<Move<3>> = (1..=20)
         .map(|i| {
             let x = 7.5 * f64::from(i);
@@ -1132,10 +1135,10 @@ fn format_allowance<N: Number>() -> (f64, f64) {
 /// on the last move's end.
 fn check_random_stream<N: Number>(
     moves: &[Move<3>],
-    tolerance: f64,
+    options: StreamOptions,
 ) -> Result<StreamStats, TestCaseError> {
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
-    let options = StreamOptions::new(1000.0).with_tolerance(tolerance);
+    let tolerance = options.tolerance();
     let mut stream = Stream::<3, 32, 512>::new([0.0; 3], limits, options).unwrap();
     let mut accepted = Vec::new();
     for mv in moves {
@@ -1184,6 +1187,11 @@ fn check_random_stream<N: Number>(
     Ok(stream.stats())
 }
 
+/// A stream at 1 kHz with corners blended within `tolerance` (or stopped where faster).
+fn within(tolerance: f64) -> StreamOptions {
+    StreamOptions::new(1000.0).with_tolerance(tolerance)
+}
+
 /// The moves of `kinds` from the origin: kind 4 a line of 0.05 to 0.5 mm, the others
 /// [`random_move`]; with a feed of 20 to 200 where `x[8] < 0.3`.
 fn random_moves(kinds: &[(u8, [f64; 10])]) -> Vec<Move<3>> {
@@ -1212,8 +1220,8 @@ fn random_moves(kinds: &[(u8, [f64; 10])]) -> Vec<Move<3>> {
 
 /// Two lines of 10 mm meeting at a turn of 5°, 90°, 135°, 179° and 180° (a reversal),
 /// played in `f64`, `f32` and `Q40` ([`check_random_stream`]: the limits from the played
-/// ticks, the tolerance of 0.05 mm, the exact end): the corners up to 135° are blended, the
-/// near-reversal and the reversal are exact stops.
+/// ticks, the tolerance of 0.05 mm, the exact end): with every corner blended that can be,
+/// the corners up to 135° are blended, the near-reversal and the reversal are exact stops.
 #[test]
 fn every_corner_angle_keeps_the_limits_and_the_tolerance() {
     for degrees in [5.0, 90.0, 135.0, 179.0, 180.0] {
@@ -1223,10 +1231,11 @@ fn every_corner_angle_keeps_the_limits_and_the_tolerance() {
             Move::line(corner),
             Move::line([10.0 + 10.0 * turn.cos(), 10.0 * turn.sin(), 0.0]),
         ];
+        let blending = within(0.05).with_faster_stops(false);
         let stats = [
-            check_random_stream::<f64>(&moves, 0.05),
-            check_random_stream::<f32>(&moves, 0.05),
-            check_random_stream::<Q40>(&moves, 0.05),
+            check_random_stream::<f64>(&moves, blending),
+            check_random_stream::<f32>(&moves, blending),
+            check_random_stream::<Q40>(&moves, blending),
         ]
         .map(|checked| checked.unwrap_or_else(|e| panic!("{degrees}°: {e}")));
         let blended = degrees < 170.0;
@@ -1240,6 +1249,62 @@ fn every_corner_angle_keeps_the_limits_and_the_tolerance() {
         }
         println!("{degrees}°: {:?}", stats[0]);
     }
+}
+
+/// The ticks of `moves` streamed from the origin under the bench's limits (200 mm/s,
+/// 3 000 mm/s², 100 000 mm/s³) with `options`, and the stream's counts.
+fn streamed_ticks(moves: &[Move<3>], options: StreamOptions) -> (usize, StreamStats) {
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let mut stream = Stream::<3, 32, 512>::new([0.0; 3], limits, options).unwrap();
+    let played = run_stream::<f64, 32, 512>(&mut stream, moves, moves.len());
+    (played.x.len(), stream.stats())
+}
+
+/// A right angle between lines of 20 mm within 0.02 mm: its blend is passed at about
+/// 4.5 mm/s, so the stream stops at the corner instead, and is faster for it than when it
+/// blends every corner; a turn of 5° keeps its blend. A zig-zag of 40 lines of 1 to 5 mm
+/// turning by 10° to 120° takes less time with the choice than both with every corner
+/// blended and with every corner stopped.
+#[test]
+fn a_corner_stops_where_a_stop_is_faster_than_its_blend() {
+    let blending = within(0.02).with_faster_stops(false);
+    let turn = |degrees: f64| {
+        let t = f64::to_radians(degrees);
+        [
+            Move::line([20.0, 0.0, 0.0]),
+            Move::line([20.0 + 20.0 * t.cos(), 20.0 * t.sin(), 0.0]),
+        ]
+    };
+    let (chosen, stats) = streamed_ticks(&turn(90.0), within(0.02));
+    let (blended, blend_stats) = streamed_ticks(&turn(90.0), blending);
+    assert_eq!((stats.blends, stats.stops, blend_stats.blends), (0, 1, 1));
+    assert!(chosen < blended, "{chosen} {blended}");
+    assert_eq!(streamed_ticks(&turn(5.0), within(0.02)).1.blends, 1);
+    let (mut from, mut heading) = ([0.0; 3], 0.0_f64);
+    let zigzag: Vec<Move<3>> = (0..40_u32)
+        .map(|i| {
+            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+            heading += sign * f64::to_radians(10.0 + f64::from(i * 37 % 111));
+            let d = 1.0 + f64::from(i * 13 % 41) / 10.0;
+            from = [
+                from[0] + d * heading.cos(),
+                from[1] + d * heading.sin(),
+                0.0,
+            ];
+            Move::line(from)
+        })
+        .collect();
+    let (chosen, stats) = streamed_ticks(&zigzag, within(0.02));
+    let (blended, _) = streamed_ticks(&zigzag, blending);
+    let (stopped, _) = streamed_ticks(&zigzag, within(0.0));
+    println!(
+        "zig-zag: {chosen} ticks, every corner blended {blended}, stopped {stopped}; {stats:?}"
+    );
+    assert!(stats.blends > 0 && stats.stops > 0, "{stats:?}");
+    assert!(
+        chosen < blended.min(stopped),
+        "{chosen} {blended} {stopped}"
+    );
 }
 
 /// Chains of short lines as a slicer writes curved walls, blended within 0.02 mm and
@@ -1270,9 +1335,9 @@ fn chains_of_short_lines_keep_the_limits_and_the_tolerance() {
         ("0.2 mm chords along a wave", wave),
     ] {
         let stats = [
-            check_random_stream::<f64>(&moves, 0.02),
-            check_random_stream::<f32>(&moves, 0.02),
-            check_random_stream::<Q40>(&moves, 0.02),
+            check_random_stream::<f64>(&moves, within(0.02)),
+            check_random_stream::<f32>(&moves, within(0.02)),
+            check_random_stream::<Q40>(&moves, within(0.02)),
         ]
         .map(|checked| checked.unwrap_or_else(|e| panic!("{name}: {e}")));
         for s in stats {
@@ -1304,9 +1369,9 @@ fn random_streams_keep_the_limits_in_every_number_format() {
             let moves = random_moves(&kinds);
             let tolerance = [0.0, 0.01, 0.05][t];
             let checked = match format {
-                0 => check_random_stream::<f64>(&moves, tolerance),
-                1 => check_random_stream::<f32>(&moves, tolerance),
-                _ => check_random_stream::<Q40>(&moves, tolerance),
+                0 => check_random_stream::<f64>(&moves, within(tolerance)),
+                1 => check_random_stream::<f32>(&moves, within(tolerance)),
+                _ => check_random_stream::<Q40>(&moves, within(tolerance)),
             };
             checked.map(|_| ())
         })
@@ -1714,7 +1779,7 @@ fn a_bezier_near_cusp_keeps_the_jerk() {
         0.0,
     ];
     let moves = random_moves(&[(0, [0.0; 10]), (3, x), (0, [0.0; 10])]);
-    check_random_stream::<f64>(&moves, 0.0).unwrap();
+    check_random_stream::<f64>(&moves, within(0.0)).unwrap();
 }
 
 /// Arcs and lines with exact stops, one of which comes to rest just before a tick: the
@@ -1801,6 +1866,28 @@ fn an_exact_stop_leaves_along_the_next_move() {
         ),
         (4, [0.0; 10]),
     ];
-    let stats = check_random_stream::<f64>(&random_moves(&kinds), 0.0).unwrap();
+    let stats = check_random_stream::<f64>(&random_moves(&kinds), within(0.0)).unwrap();
     assert_eq!((stats.moves, stats.stops), (6, 5));
+}
+
+/// A square of 20 mm lines at a feed of 150 mm/s with exact stops, in `f64`, `f32` and
+/// `Q40`: the motion comes to rest at each corner a sliver after a tick, where the spline of
+/// a stretch would pass the jerk limit by parts in 10⁵; its pieces there are one tick long
+/// and keep the limits ([`check_random_stream`]).
+#[test]
+fn a_square_of_exact_stops_keeps_the_limits() {
+    let square = [
+        [20.0, 0.0, 0.0],
+        [20.0, 20.0, 0.0],
+        [0.0, 20.0, 0.0],
+        [0.0, 0.0, 0.0],
+    ];
+    let moves = square.map(|corner| Move::line(corner).with_feed(150.0));
+    for stats in [
+        check_random_stream::<f64>(&moves, within(0.0)),
+        check_random_stream::<f32>(&moves, within(0.0)),
+        check_random_stream::<Q40>(&moves, within(0.0)),
+    ] {
+        assert_eq!(stats.unwrap().stops, 3);
+    }
 }

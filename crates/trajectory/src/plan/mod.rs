@@ -77,5 +77,6 @@ pub use trajectory::{Along, Trajectory};
 pub use window::{LookAhead, WindowZone};
 
 pub(crate) use motion::PHASES_PER_ZONE;
+pub(crate) use scurve::{reach, slowing_loss};
 pub(crate) use speed_limit::{ArcLengths, zones_into};
 pub(crate) use window::SegmentZones;

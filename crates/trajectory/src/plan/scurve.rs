@@ -92,10 +92,22 @@ pub(super) fn change_distance(v0: f64, v1: f64, a: f64, j: f64) -> f64 {
     0.5 * (v0 + v1) * Change::new((v1 - v0).abs(), a, j).time()
 }
 
+/// The time that a motion cruising at `v_cruise` loses against cruising on by slowing to
+/// `v_low` and speeding up again: each a jerk-limited change under `a`, `j`, of duration
+/// `T`, losing `T·Δv/(2·v_cruise)` against the cruise over the distance it covers. For an
+/// exact stop (`v_low = 0`) that is `T(v_cruise)`; nothing is lost at `v_low ≥ v_cruise`.
+pub(crate) fn slowing_loss(v_low: f64, v_cruise: f64, a: f64, j: f64) -> f64 {
+    if v_low >= v_cruise {
+        return 0.0;
+    }
+    let dv = v_cruise - v_low;
+    Change::new(dv, a, j).time() * dv / v_cruise
+}
+
 /// The largest `v ∈ [v_from, cap]` with `D(v_from, v) ≤ length` (`cap` itself when
 /// `cap ≤ v_from`). By the symmetry of `D` this is both the speed reachable by accelerating
 /// from `v_from` and the highest speed from which `v_from` can be reached by braking.
-pub(super) fn reach(v_from: f64, length: f64, cap: f64, a: f64, j: f64) -> f64 {
+pub(crate) fn reach(v_from: f64, length: f64, cap: f64, a: f64, j: f64) -> f64 {
     if cap <= v_from || change_distance(v_from, cap, a, j) <= length {
         return cap;
     }

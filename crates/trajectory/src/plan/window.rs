@@ -695,6 +695,22 @@ impl<const K: usize> SegmentZones<K> {
         }
     }
 
+    /// The lowest speed limit of the zones (feeds included); `∞` without zones.
+    pub(crate) fn slowest(&self) -> f64 {
+        self.zones
+            .iter()
+            .map(WindowZone::v_limit)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The time the zones take at their speed limits (feeds included).
+    pub(crate) fn crossing_time(&self) -> f64 {
+        self.zones
+            .iter()
+            .map(|z| (z.end - z.start) / z.v_limit())
+            .sum()
+    }
+
     /// The zones.
     pub(crate) fn zones(&self) -> &[WindowZone] {
         &self.zones

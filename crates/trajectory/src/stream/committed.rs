@@ -29,6 +29,10 @@ pub(super) const RECENT: usize = 8;
 /// Bisection steps locating a join of segments in a phase: to well below a nanosecond.
 const JOIN_BISECTION_STEPS: usize = 48;
 
+/// How far past a join (relative to the arc length, at least 1 unit) a braking motion is
+/// still taken to be on the segment it arrives on: the rounding of the arc lengths.
+const JOIN_ROUNDING: f64 = 1e-12;
+
 /// The committed motion of a stream: its phases in time order and the segments they run
 /// along, on the grid of `period` seconds, within the limits `limits`, up to `end`.
 pub(super) struct Committed<'a, const D: usize, const Q: usize> {
@@ -87,7 +91,7 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
             return Ok((st, f));
         }
         let st = self.state(f64::from(k) * self.period);
-        let f = self.frame(st.s)?;
+        let f = self.frame(st.s, st.a < 0.0)?;
         slot.set(Some((k, st, f)));
         Ok((st, f))
     }
@@ -120,13 +124,21 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
     /// before it (the first one before the start). At a join the motion is on the segment
     /// it enters, so that after an exact stop at a corner it leaves along the next segment
     /// from its first tick (the previous segment's end, `start + length`, can exceed the
-    /// join by its rounding).
-    pub(super) fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
+    /// join by its rounding); but while it is `braking` it is on the segment it arrives on
+    /// up to [`JOIN_ROUNDING`] past the join, so that a tick a sliver before it comes to
+    /// rest at a corner keeps the direction it arrives from (the corner turns its
+    /// acceleration, which the jerk from tick to tick would otherwise take as a step).
+    pub(super) fn frame(&self, s: f64, braking: bool) -> Result<Frame<D>, Error> {
+        let slack = if braking {
+            JOIN_ROUNDING * s.abs().max(1.0)
+        } else {
+            0.0
+        };
         let segment = self
             .segments
             .iter()
             .rev()
-            .find(|g| g.start <= s)
+            .find(|g| g.start + slack < s || (!braking && g.start <= s))
             .or_else(|| self.segments.front());
         segment.ok_or(Error::EmptyPath)?.frame(s)
     }

@@ -25,7 +25,7 @@ use core::cell::Cell;
 
 use heapless::spsc::Producer;
 use heapless::{Deque, Vec};
-use strak_curves::ParamCurve;
+use strak_curves::{ParamCurve, ParamCurveDeriv, Point};
 
 use super::blend::{Blend, Junction, chain, has_span, junction};
 use super::committed::{Committed, PHASES};
@@ -37,11 +37,17 @@ use crate::error::Error;
 use crate::num::Number;
 use crate::path::{AxisState, MIN_ALPHA, Piece, RampBasis, feed_ramp_f64};
 use crate::plan::{
-    Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones, zones_into,
+    Limits, LookAhead, MotionLimits, PHASES_PER_ZONE, Phase, PlanOptions, SegmentZones, reach,
+    slowing_loss, zones_into,
 };
 
 /// The speed-limit samples of a segment whose loads vary (a blend, a Bézier move).
 const LOAD_SAMPLES: usize = 32;
+
+/// The least turn of the tangent (radians) at a corner that may come to an exact stop in
+/// place of its blend: joins with a continuous tangent (a line meeting an arc tangentially)
+/// and slight turns are always blended, as a machine is expected to pass them moving.
+const STOP_TURN: f64 = 5.0 * core::f64::consts::PI / 180.0;
 
 /// The most zones of one segment.
 const SEGMENT_ZONES: usize = 24;
@@ -102,13 +108,15 @@ pub struct StreamOptions {
     fit_tolerance: f64,
     max_piece_ticks: u32,
     stretch_ticks: u32,
+    faster_stops: bool,
     plan: PlanOptions,
 }
 
 impl StreamOptions {
     /// Exact stops at every corner, arcs' ends within `1e-6` units of their circles, the
     /// compiled pieces within `1e-5` units of the motion, pieces of at most 256 ticks,
-    /// stretches of 64 ticks, and the default [`PlanOptions`] at the control rate `rate_hz`.
+    /// stretches of 64 ticks, exact stops where they are estimated faster than a blend, and
+    /// the default [`PlanOptions`] at the control rate `rate_hz`.
     pub const fn new(rate_hz: f64) -> Self {
         StreamOptions {
             tolerance: 0.0,
@@ -116,6 +124,7 @@ impl StreamOptions {
             fit_tolerance: 1e-5,
             max_piece_ticks: 256,
             stretch_ticks: 64,
+            faster_stops: true,
             plan: PlanOptions::new().with_rate(rate_hz),
         }
     }
@@ -182,6 +191,31 @@ impl StreamOptions {
         self
     }
 
+    /// Whether a corner that could be blended comes to an exact stop where the stop is
+    /// estimated to take less time than the blend (`true`, the default: at a sharp corner
+    /// under a jerk limit the blend's speed limit can cost more than a stop); `false` blends
+    /// every corner it can.
+    ///
+    /// ```
+    /// # use strak_trajectory::StreamOptions;
+    /// let blends = StreamOptions::new(1_000.0).with_tolerance(0.02).with_faster_stops(false);
+    /// assert!(!blends.faster_stops() && StreamOptions::new(1_000.0).faster_stops());
+    /// ```
+    pub const fn with_faster_stops(mut self, on: bool) -> Self {
+        self.faster_stops = on;
+        self
+    }
+
+    /// Whether corners stop where that is estimated faster than their blends.
+    ///
+    /// ```
+    /// # use strak_trajectory::StreamOptions;
+    /// assert!(StreamOptions::new(1_000.0).faster_stops());
+    /// ```
+    pub const fn faster_stops(&self) -> bool {
+        self.faster_stops
+    }
+
     /// The corner blend tolerance.
     ///
     /// ```
@@ -215,7 +249,8 @@ pub struct StreamStats {
     pub moves: usize,
     /// Corners blended.
     pub blends: usize,
-    /// Exact stops at corners (a zero tolerance, a near-reversal).
+    /// Exact stops at corners (a zero tolerance, a near-reversal, a stop estimated faster
+    /// than the blend).
     pub stops: usize,
     /// Rests at the end of a move because the next one had not arrived.
     pub starved: usize,
@@ -245,7 +280,7 @@ struct Pending<const D: usize> {
 /// let options = StreamOptions::new(1_000.0).with_tolerance(0.05);
 /// let mut stream = Stream::<2, 16, 64>::new([0.0, 0.0], limits, options)?;
 /// stream.push(&Move::line([10.0, 0.0]))?;
-/// stream.push(&Move::line([10.0, 10.0]))?;
+/// stream.push(&Move::line([20.0, 2.0]))?; // a turn of 11°
 /// stream.finish()?;
 /// let mut pieces = Deque::<Piece<f32, 2>, 64>::new();
 /// let mut ticks = 0;
@@ -595,6 +630,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             return Ok(());
         };
         let corner = junction(&prev.curve, &curve, self.options.tolerance)?;
+        let corner = self.blend_or_stop(corner, &prev, &curve, feed)?;
         let (leave, from, mut after) = match corner {
             Junction::Blend(b) => (b.leave(), b.join(), Some(b)),
             _ => (1.0, 0.0, None),
@@ -678,6 +714,52 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         self.note_deviation(prev.before);
         self.pending = None;
         Ok(())
+    }
+
+    /// `corner`, or an exact stop where the motion is estimated to pass the corner sooner by
+    /// stopping there than through its blend: at a sharp corner under a jerk limit the
+    /// blend's curvature changes so fast along it that its speed limit costs more than a
+    /// stop. The estimate ([`slowing_loss`]) slows to the blend's lowest speed limit and
+    /// crosses its zones at their limits, against a stop, both from the speed reached from
+    /// rest in half the shorter of the two moves' parts beside the blend (at most the feeds
+    /// and the velocity limit), under the path's acceleration and jerk limits. Blends of
+    /// turns up to [`STOP_TURN`] and blends that take all of a move (a chain of short moves)
+    /// are kept, and so is every blend without [`StreamOptions::with_faster_stops`].
+    ///
+    /// # Errors
+    /// [`Error::Curve`] for a blend whose arc length does not converge.
+    fn blend_or_stop(
+        &self,
+        corner: Junction<D>,
+        prev: &Pending<D>,
+        next: &MoveCurve<D>,
+        feed: f64,
+    ) -> Result<Junction<D>, Error> {
+        let Junction::Blend(blend) = corner else {
+            return Ok(corner);
+        };
+        if !self.options.faster_stops {
+            return Ok(corner);
+        }
+        let (leave, join) = (blend.leave(), blend.join());
+        let (incoming, outgoing) = (prev.curve.deriv(1.0, 1), next.deriv(0.0, 1));
+        let cos_turn = incoming.dot(outgoing) / (incoming.norm() * outgoing.norm());
+        let sharp = cos_turn < libm::cos(STOP_TURN);
+        if !(sharp && has_span((prev.from, leave)) && has_span((join, 1.0))) {
+            return Ok(corner);
+        }
+        let beside = (prev.curve.length() * (leave - prev.from)).min(next.length() * (1.0 - join));
+        let feed = prev.feed.min(feed);
+        let segment = Segment::blend(&blend, 0.0, feed)?;
+        let mut zones = SegmentZones::<SEGMENT_ZONES>::new();
+        self.zones_of(&segment, &mut zones)?;
+        let (a, j) = (self.planned.acceleration(), self.planned.jerk());
+        let cap = feed.min(self.planned.velocity());
+        let v_cruise = reach(0.0, 0.5 * beside, cap, a, j);
+        let crossing = zones.crossing_time() - segment.length / v_cruise;
+        let pass = slowing_loss(zones.slowest(), v_cruise, a, j) + crossing.max(0.0);
+        let stop = slowing_loss(0.0, v_cruise, a, j);
+        Ok(if stop < pass { Junction::Stop } else { corner })
     }
 
     /// The segment of the blend `before` (with its feed) at the path's arc length `start`,
@@ -771,8 +853,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// left to compile, or `out` has too little room).
     ///
     /// # Errors
-    /// [`Error::LimitExceeded`] when a stretch's pieces exceed the promised limits even at a
-    /// tighter fit; [`Error::OutOfRange`] for a value that does not fit `N`;
+    /// [`Error::OutOfRange`] for a value that does not fit `N`;
     /// [`Error::Curve`] for a segment whose arc length does not converge.
     ///
     /// ```
@@ -826,7 +907,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         // exactly (the state at the tick can fall short of it by the rounding of the last
         // phase's speed).
         let (_, s, _) = self.window.entry();
-        let end = self.motion().frame(s)?.point;
+        let end = self.motion().frame(s, false)?.point;
         let mut axes = [AxisState::ZERO; D];
         for (axis, x) in axes.iter_mut().zip(end) {
             axis.position = N::from_f64(x).ok_or(Error::OutOfRange)?;
