@@ -7,6 +7,7 @@
 //! number = "f32"              # f64 | f32 | fixed
 //! unit = "mm"                 # optional, for the summary and the plots
 //! tolerance = 0.02            # corner blend tolerance ε in units (0: exact stops)
+//! faster_stops = true         # optional: stop at a sharp corner where that is faster
 //! queue = 32                  # look-ahead segments: 8, 16, 32 or 64 (zones: 4 per segment)
 //! start = [0, 0, 0]           # optional, default the origin
 //!
@@ -113,6 +114,11 @@ pub struct MovesJob {
     /// Corner blend tolerance ε in units (0: exact stops; default 0).
     #[serde(default)]
     pub tolerance: f64,
+    /// Whether a sharp corner comes to an exact stop where that is estimated faster than
+    /// its blend ([`StreamOptions::with_faster_stops`](strak_trajectory::StreamOptions::with_faster_stops);
+    /// default true; false blends every corner it can).
+    #[serde(default = "default_faster_stops")]
+    pub faster_stops: bool,
     /// Look-ahead segments ([`QUEUE_SIZES`]; default 32).
     #[serde(default = "default_queue")]
     pub queue: usize,
@@ -128,6 +134,10 @@ pub struct MovesJob {
 
 fn default_queue() -> usize {
     32
+}
+
+fn default_faster_stops() -> bool {
+    true
 }
 
 /// Whether the TOML `text` is a moves job (it has `moves` at the top level): `strak-sim run`

@@ -151,10 +151,11 @@ fn stream_limits<const D: usize>(job: &MovesJob) -> Result<Limits<D>, JobError> 
     crate::pipeline::limits_of::<D>(&job.limits, 1.0)
 }
 
-/// The stream's options: the job's rate and tolerances.
+/// The stream's options: the job's rate, tolerances and choice of stops.
 fn stream_options(job: &MovesJob) -> StreamOptions {
     StreamOptions::new(job.rate_hz)
         .with_tolerance(job.tolerance)
+        .with_faster_stops(job.faster_stops)
         .with_arc_tolerance(job.arc_tolerance())
         .with_fit_tolerance(FIT_TOLERANCE)
 }

@@ -280,6 +280,28 @@ fn the_moves_contour_streams_within_its_limits() {
     assert!(dir.path().join("moves-contour/path.svg").exists());
 }
 
+/// The moves contour with `faster_stops = false`: every corner blended (5), none stopped,
+/// within the limits and ε.
+#[test]
+fn the_moves_contour_blends_every_corner_without_faster_stops() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(common::jobs_dir().join("moves-contour.toml")).unwrap();
+    let job = text.replace(
+        "tolerance = 0.02 ",
+        "faster_stops = false\ntolerance = 0.02 ",
+    );
+    let r = run("blends", &job, dir.path());
+    assert_eq!(r.output.status.code(), Some(0), "{}", r.stderr);
+    agrees(&r);
+    let s = &r.summary["stream"];
+    assert_eq!(
+        (s["blends"].as_u64(), s["stops"].as_u64()),
+        (Some(5), Some(0)),
+        "{s}"
+    );
+    assert_eq!(r.summary["limits_respected"], true);
+}
+
 /// Moves that arrive more slowly than the machine runs them: the stream rests at the end of
 /// what it has ("starved"), and the limits hold.
 #[test]
