@@ -119,14 +119,7 @@ pub(super) fn entered_with(zone: &ProfileZone, start: MotionState) -> Option<Pro
     out.v_start = start.v;
     let mut state = start;
     for (duration, a0, j) in phases_of(block.profile()) {
-        let phase = Phase {
-            t0: 0.0,
-            duration,
-            s0: state.s,
-            v0: state.v,
-            a0,
-            j,
-        };
+        let phase = phase_from(&state, duration, a0, j);
         push_within(&mut out, &phase)?;
         state = phase.local(duration);
     }
@@ -171,14 +164,7 @@ fn split_at(
     let mut state = start;
     let mut crossed = false;
     for (duration, a0, j) in phases {
-        let phase = Phase {
-            t0: 0.0,
-            duration,
-            s0: state.s,
-            v0: state.v,
-            a0,
-            j,
-        };
+        let phase = phase_from(&state, duration, a0, j);
         let end = phase.local(duration);
         if crossed {
             push_within(&mut a, &phase)?;
@@ -212,6 +198,19 @@ fn split_at(
         push_counted(&mut a, ph)?;
     }
     (crossed && b.v_end <= before.exit_cap).then_some((b, a))
+}
+
+/// The phase of `duration` from `state`'s arc length and speed with the acceleration `a0`
+/// and the jerk `j` (its start time is set where it is pushed).
+fn phase_from(state: &MotionState, duration: f64, a0: f64, j: f64) -> Phase {
+    Phase {
+        t0: 0.0,
+        duration,
+        s0: state.s,
+        v0: state.v,
+        a0,
+        j,
+    }
 }
 
 /// `zone` without phases.

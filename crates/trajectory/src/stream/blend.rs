@@ -141,6 +141,11 @@ struct End<const D: usize> {
 }
 
 impl<const D: usize> Blend<D> {
+    /// `cos φ` of the turn of the tangent at the corner.
+    pub(super) fn cos_turn(&self) -> f64 {
+        self.corner.cos_phi
+    }
+
     /// The blend curve, a quintic Bézier from where it leaves the incoming move to where it
     /// joins the outgoing one.
     ///

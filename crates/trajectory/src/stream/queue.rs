@@ -25,7 +25,7 @@ use core::cell::Cell;
 
 use heapless::spsc::Producer;
 use heapless::{Deque, Vec};
-use strak_curves::{ParamCurve, ParamCurveDeriv, Point};
+use strak_curves::ParamCurve;
 
 use super::blend::{Blend, Junction, chain, has_span, junction};
 use super::committed::{Committed, PHASES};
@@ -747,9 +747,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             return Ok(corner);
         }
         let (leave, join) = (blend.leave(), blend.join());
-        let (incoming, outgoing) = (prev.curve.deriv(1.0, 1), next.deriv(0.0, 1));
-        let cos_turn = incoming.dot(outgoing) / (incoming.norm() * outgoing.norm());
-        let sharp = cos_turn < libm::cos(STOP_TURN);
+        let sharp = blend.cos_turn() < libm::cos(STOP_TURN);
         if !(sharp && has_span((prev.from, leave)) && has_span((join, 1.0))) {
             return Ok(corner);
         }
