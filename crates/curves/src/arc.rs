@@ -26,7 +26,7 @@
 
 use core::f64::consts::{FRAC_PI_2, TAU};
 
-use crate::curve::{ParamCurve, ParamCurveDeriv};
+use crate::curve::{ParamCurve, ParamCurveDeriv, PieceDeriv};
 use crate::error::Error;
 use crate::point::{MAX_DIM, Point};
 use crate::scalar::Scalar;
@@ -402,6 +402,13 @@ impl<P: Point> ParamCurveDeriv for CircularArc<P> {
         }
         let u = u.to_f64().clamp(0.0, 1.0);
         to_point(&self.deriv_f64(u, k))
+    }
+}
+
+/// An arc is one piece: its derivatives are those of [`ParamCurveDeriv::deriv`].
+impl<P: Point> PieceDeriv for CircularArc<P> {
+    fn piece_deriv(&self, _piece: usize, u: P::Scalar, k: usize) -> P {
+        self.deriv(u, k)
     }
 }
 

@@ -91,3 +91,47 @@ pub trait PieceDeriv: ParamCurveDeriv {
     /// `piece >= piece_count()`) at `u` clamped to that piece's interval.
     fn piece_deriv(&self, piece: usize, u: ScalarOf<Self>, k: usize) -> Self::Point;
 }
+
+/// A reference to a curve is the curve: analysis, planning and streaming take curves by
+/// value where they keep them (a [`Copy`] reference then stands for a curve they borrow),
+/// and `&dyn PieceDeriv<Point = P>` lets one collection hold curves of different types.
+///
+/// ```
+/// use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv, PieceDeriv};
+/// let b = Bezier::new([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])?;
+/// let r: &dyn PieceDeriv<Point = [f64; 2]> = &b;
+/// assert_eq!((&b).eval(0.5), b.eval(0.5));
+/// assert_eq!(r.deriv(0.5, 1), b.deriv(0.5, 1));
+/// # Ok::<(), strak_curves::Error>(())
+/// ```
+impl<C: ParamCurve + ?Sized> ParamCurve for &C {
+    type Point = C::Point;
+
+    fn domain(&self) -> (ScalarOf<Self>, ScalarOf<Self>) {
+        (**self).domain()
+    }
+
+    fn eval(&self, u: ScalarOf<Self>) -> Self::Point {
+        (**self).eval(u)
+    }
+
+    fn piece_count(&self) -> usize {
+        (**self).piece_count()
+    }
+
+    fn piece_domain(&self, i: usize) -> (ScalarOf<Self>, ScalarOf<Self>) {
+        (**self).piece_domain(i)
+    }
+}
+
+impl<C: ParamCurveDeriv + ?Sized> ParamCurveDeriv for &C {
+    fn deriv(&self, u: ScalarOf<Self>, k: usize) -> Self::Point {
+        (**self).deriv(u, k)
+    }
+}
+
+impl<C: PieceDeriv + ?Sized> PieceDeriv for &C {
+    fn piece_deriv(&self, piece: usize, u: ScalarOf<Self>, k: usize) -> Self::Point {
+        (**self).piece_deriv(piece, u, k)
+    }
+}

@@ -6,11 +6,11 @@ use proptest::test_runner::{Config, TestRunner};
 use strak_curves::Scalar;
 use strak_curves::heapless::Deque;
 use strak_curves::heapless::spsc::Queue;
-use strak_curves::{ParamCurve, ParamCurveDeriv, Plane, Point, Turn};
+use strak_curves::{BSpline, Nurbs, ParamCurve, ParamCurveDeriv, PieceDeriv, Plane, Point, Turn};
 use strak_trajectory::{
     Along, AxisState, CompileOptions, Error, Junction, Kernel, Limits, Move, MoveCurve, Number,
     Path, PathTiming, Piece, PlanOptions, Q40, REVERSAL_ANGLE, Sample, Sampler, Shape, Stream,
-    StreamOptions, StreamSampler, StreamStats, Stretches, Timing, Toolpath, junction,
+    StreamCurve, StreamOptions, StreamSampler, StreamStats, Stretches, Timing, Toolpath, junction,
 };
 use strak_trajectory_tests::compile_boxed;
 
@@ -209,7 +209,7 @@ fn exact_stops_and_straight_joins() {
     assert!(REVERSAL_ANGLE < f64::to_radians(171.0));
     // an arc going on along the same circle
     let arc = |from: [f64; 2], to: [f64; 2]| {
-        let shape = Shape::ArcCenter {
+        let shape = Shape::<2>::ArcCenter {
             center: [0.0, 0.0],
             plane: Plane::XY,
             turn: Turn::CounterClockwise,
@@ -233,10 +233,10 @@ fn bad_junctions_are_errors() {
         assert_eq!(junction(&a, &b, tol), Err(Error::InvalidTolerance));
     }
     assert_eq!(
-        MoveCurve::new([0.0, 0.0], &Move::line([0.0, 0.0]), 0.0),
+        MoveCurve::new([0.0, 0.0], &Move::<2>::line([0.0, 0.0]), 0.0),
         Err(Error::DegenerateMove)
     );
-    let cusp = Move::new(
+    let cusp = Move::<2>::new(
         [1.0, 0.0],
         Shape::Bezier {
             c1: [0.5, 1.0],
@@ -247,12 +247,12 @@ fn bad_junctions_are_errors() {
         MoveCurve::new([0.0, 0.0], &cusp, 0.0),
         Err(Error::DegenerateMove)
     );
-    let bad_feed = Move::line([1.0, 0.0]).with_feed(0.0);
+    let bad_feed = Move::<2>::line([1.0, 0.0]).with_feed(0.0);
     assert_eq!(
         MoveCurve::new([0.0, 0.0], &bad_feed, 0.0),
         Err(Error::InvalidLimit)
     );
-    let nan = Move::line([f64::NAN, 0.0]);
+    let nan = Move::<2>::line([f64::NAN, 0.0]);
     assert!(matches!(
         MoveCurve::new([0.0, 0.0], &nan, 0.0),
         Err(Error::Curve(_))
@@ -803,6 +803,8 @@ struct Played {
     a: Vec<[f64; 3]>,
     seam: [f64; 3],
     pieces: usize,
+    /// The moves the stream refused (by index), but for a lack of room.
+    refused: Vec<usize>,
 }
 
 impl Played {
@@ -846,10 +848,11 @@ impl Played {
 }
 
 /// Runs a stream over `moves`: pushes up to `batch` moves before each poll (then finishes
-/// it), and plays every piece the polls compile.
-fn run_stream<N: Number, const Q: usize, const Z: usize>(
-    stream: &mut Stream<3, Q, Z>,
-    moves: &[Move<3>],
+/// it; a move refused for a lack of room is pushed again after the poll, one refused for
+/// another reason is skipped and noted), and plays every piece the polls compile.
+fn run_stream<N: Number, const Q: usize, const Z: usize, C: StreamCurve<3>>(
+    stream: &mut Stream<3, Q, Z, C>,
+    moves: &[Move<3, C>],
     batch: usize,
 ) -> Played {
     let mut pieces = Deque::<Piece<N, 3>, 64>::new();
@@ -860,7 +863,10 @@ fn run_stream<N: Number, const Q: usize, const Z: usize>(
             match stream.push(mv) {
                 Ok(()) => next += 1,
                 Err(Error::CapacityExceeded { .. } | Error::ZoneCapacityExceeded { .. }) => break,
-                Err(e) => panic!("move {next}: {e}"),
+                Err(_) => {
+                    played.refused.push(next);
+                    next += 1;
+                }
             }
         }
         if next == moves.len() {
@@ -914,7 +920,7 @@ fn contour_moves() -> Vec<Move<3>> {
 }
 
 /// The moves from the origin as polygons of their samples (see [`Polygon`]).
-fn programmed(moves: &[Move<3>]) -> Vec<Polygon<3>> {
+fn programmed<C: StreamCurve<3>>(moves: &[Move<3, C>]) -> Vec<Polygon<3>> {
     let mut from = [0.0; 3];
     moves
         .iter()
@@ -935,7 +941,7 @@ fn programmed(moves: &[Move<3>]) -> Vec<Polygon<3>> {
 /// which exceeds the distance by at most twice the [`largest_sag`] of the moves (a point of
 /// a move lies within the sag of its polygon, and the polygon's distance gets the sag
 /// added).
-fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
+fn distance_from_moves<C: StreamCurve<3>>(moves: &[Move<3, C>], x: &[[f64; 3]]) -> f64 {
     let polygons = programmed(moves);
     x.iter()
         .map(|&p| {
@@ -948,7 +954,7 @@ fn distance_from_moves(moves: &[Move<3>], x: &[[f64; 3]]) -> f64 {
 }
 
 /// The largest departure of the polygons of [`distance_from_moves`] from their moves.
-fn largest_sag(moves: &[Move<3>]) -> f64 {
+fn largest_sag<C: StreamCurve<3>>(moves: &[Move<3, C>]) -> f64 {
     programmed(moves).iter().map(|p| p.sag).fold(0.0, f64::max)
 }
 
@@ -967,7 +973,7 @@ fn a_stream_plays_within_the_limits_and_the_tolerance() {
         .with_faster_stops(false);
     let mut stream = Stream::<3, 32, 256>::new([0.0; 3], limits, options).unwrap();
     let moves = contour_moves();
-    let played = run_stream::<f64, 32, 256>(&mut stream, &moves, moves.len());
+    let played = run_stream::<f64, 32, 256, _>(&mut stream, &moves, moves.len());
     let stats = stream.stats();
     let peaks = played.peaks(rate);
     let worst = distance_from_moves(&moves, &played.x);
@@ -1095,7 +1101,7 @@ fn each_move_keeps_its_feed() {
         Move::line([30.0, 0.0, 0.0]).with_feed(150.0),
         Move::line([60.0, 0.0, 0.0]).with_feed(50.0),
     ];
-    let played = run_stream::<f64, 8, 64>(&mut stream, &moves, 2);
+    let played = run_stream::<f64, 8, 64, _>(&mut stream, &moves, 2);
     let speeds: Vec<(f64, f64)> = played
         .x
         .windows(2)
@@ -1133,21 +1139,19 @@ fn format_allowance<N: Number>() -> (f64, f64) {
 /// `f64` the speed from differences of positions and the seams as well; every tick within
 /// the tolerance of the moves (plus the fit's and the format's position error); the end
 /// on the last move's end.
-fn check_random_stream<N: Number>(
-    moves: &[Move<3>],
+fn check_random_stream<N: Number, C: StreamCurve<3>>(
+    moves: &[Move<3, C>],
     options: StreamOptions,
 ) -> Result<StreamStats, TestCaseError> {
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let tolerance = options.tolerance();
-    let mut stream = Stream::<3, 32, 512>::new([0.0; 3], limits, options).unwrap();
-    let mut accepted = Vec::new();
-    for mv in moves {
-        if stream.push(mv).is_ok() {
-            accepted.push(*mv);
-        }
-    }
+    let mut stream = Stream::<3, 32, 512, C>::new([0.0; 3], limits, options).unwrap();
+    let played = run_stream::<N, 32, 512, _>(&mut stream, moves, moves.len());
+    let accepted: Vec<Move<3, C>> = (0..moves.len())
+        .filter(|i| !played.refused.contains(i))
+        .map(|i| moves[i])
+        .collect();
     prop_assume!(!accepted.is_empty());
-    let played = run_stream::<N, 32, 512>(&mut stream, &[], 0);
     let (channel, jerk) = format_allowance::<N>();
     let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
     let peak = |xs: &[[f64; 3]]| xs.iter().map(|x| x.norm()).fold(0.0, f64::max);
@@ -1228,14 +1232,14 @@ fn every_corner_angle_keeps_the_limits_and_the_tolerance() {
         let turn = f64::to_radians(degrees);
         let corner = [10.0, 0.0, 0.0];
         let moves = [
-            Move::line(corner),
+            Move::<3>::line(corner),
             Move::line([10.0 + 10.0 * turn.cos(), 10.0 * turn.sin(), 0.0]),
         ];
         let blending = within(0.05).with_faster_stops(false);
         let stats = [
-            check_random_stream::<f64>(&moves, blending),
-            check_random_stream::<f32>(&moves, blending),
-            check_random_stream::<Q40>(&moves, blending),
+            check_random_stream::<f64, _>(&moves, blending),
+            check_random_stream::<f32, _>(&moves, blending),
+            check_random_stream::<Q40, _>(&moves, blending),
         ]
         .map(|checked| checked.unwrap_or_else(|e| panic!("{degrees}°: {e}")));
         let blended = degrees < 170.0;
@@ -1256,7 +1260,7 @@ fn every_corner_angle_keeps_the_limits_and_the_tolerance() {
 fn streamed_ticks(moves: &[Move<3>], options: StreamOptions) -> (usize, StreamStats) {
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let mut stream = Stream::<3, 32, 512>::new([0.0; 3], limits, options).unwrap();
-    let played = run_stream::<f64, 32, 512>(&mut stream, moves, moves.len());
+    let played = run_stream::<f64, 32, 512, _>(&mut stream, moves, moves.len());
     (played.x.len(), stream.stats())
 }
 
@@ -1335,9 +1339,9 @@ fn chains_of_short_lines_keep_the_limits_and_the_tolerance() {
         ("0.2 mm chords along a wave", wave),
     ] {
         let stats = [
-            check_random_stream::<f64>(&moves, within(0.02)),
-            check_random_stream::<f32>(&moves, within(0.02)),
-            check_random_stream::<Q40>(&moves, within(0.02)),
+            check_random_stream::<f64, _>(&moves, within(0.02)),
+            check_random_stream::<f32, _>(&moves, within(0.02)),
+            check_random_stream::<Q40, _>(&moves, within(0.02)),
         ]
         .map(|checked| checked.unwrap_or_else(|e| panic!("{name}: {e}")));
         for s in stats {
@@ -1369,9 +1373,9 @@ fn random_streams_keep_the_limits_in_every_number_format() {
             let moves = random_moves(&kinds);
             let tolerance = [0.0, 0.01, 0.05][t];
             let checked = match format {
-                0 => check_random_stream::<f64>(&moves, within(tolerance)),
-                1 => check_random_stream::<f32>(&moves, within(tolerance)),
-                _ => check_random_stream::<Q40>(&moves, within(tolerance)),
+                0 => check_random_stream::<f64, _>(&moves, within(tolerance)),
+                1 => check_random_stream::<f32, _>(&moves, within(tolerance)),
+                _ => check_random_stream::<Q40, _>(&moves, within(tolerance)),
             };
             checked.map(|_| ())
         })
@@ -1439,7 +1443,7 @@ fn a_stream_sampler_plays_the_pieces_as_they_come() {
             StreamOptions::new(1000.0).with_tolerance(0.05),
         )
         .unwrap();
-        let played = run_stream::<N, 32, 256>(&mut stream, &moves, moves.len());
+        let played = run_stream::<N, 32, 256, _>(&mut stream, &moves, moves.len());
         assert_eq!(underruns, 0);
         assert_eq!(stats.starved, 0);
         assert!(samples.len() >= played.x.len());
@@ -1779,7 +1783,7 @@ fn a_bezier_near_cusp_keeps_the_jerk() {
         0.0,
     ];
     let moves = random_moves(&[(0, [0.0; 10]), (3, x), (0, [0.0; 10])]);
-    check_random_stream::<f64>(&moves, within(0.0)).unwrap();
+    check_random_stream::<f64, _>(&moves, within(0.0)).unwrap();
 }
 
 /// Arcs and lines with exact stops, one of which comes to rest just before a tick: the
@@ -1866,7 +1870,7 @@ fn an_exact_stop_leaves_along_the_next_move() {
         ),
         (4, [0.0; 10]),
     ];
-    let stats = check_random_stream::<f64>(&random_moves(&kinds), within(0.0)).unwrap();
+    let stats = check_random_stream::<f64, _>(&random_moves(&kinds), within(0.0)).unwrap();
     assert_eq!((stats.moves, stats.stops), (6, 5));
 }
 
@@ -1882,12 +1886,273 @@ fn a_square_of_exact_stops_keeps_the_limits() {
         [0.0, 20.0, 0.0],
         [0.0, 0.0, 0.0],
     ];
-    let moves = square.map(|corner| Move::line(corner).with_feed(150.0));
+    let moves = square.map(|corner| Move::<3>::line(corner).with_feed(150.0));
     for stats in [
-        check_random_stream::<f64>(&moves, within(0.0)),
-        check_random_stream::<f32>(&moves, within(0.0)),
-        check_random_stream::<Q40>(&moves, within(0.0)),
+        check_random_stream::<f64, _>(&moves, within(0.0)),
+        check_random_stream::<f32, _>(&moves, within(0.0)),
+        check_random_stream::<Q40, _>(&moves, within(0.0)),
     ] {
         assert_eq!(stats.unwrap().stops, 3);
     }
+}
+
+/// A curve of strak-curves as the stream traces it, whatever its type.
+type AnyCurve<'a> = &'a dyn PieceDeriv<Point = [f64; 3]>;
+
+/// Curves of strak-curves for [`curve_moves`]: a cubic B-spline wave (five pieces,
+/// curvature-continuous), a rational quarter circle, a quadratic B-spline (its curvature
+/// steps at its knots) and a cubic B-spline with a kink (an inner knot of multiplicity 3).
+struct Curves {
+    wave: BSpline<[f64; 3], 8, 12>,
+    quarter: Nurbs<[f64; 3], 3, 6>,
+    quadratic: BSpline<[f64; 3], 5, 8>,
+    kinked: BSpline<[f64; 3], 7, 11>,
+}
+
+impl Curves {
+    fn new() -> Self {
+        let w = core::f64::consts::FRAC_1_SQRT_2;
+        let wave = [
+            [20.0, 0.0, 0.0],
+            [26.0, 0.0, 0.0],
+            [30.0, 8.0, 1.0],
+            [36.0, -6.0, 2.0],
+            [42.0, 8.0, 2.0],
+            [48.0, -4.0, 1.0],
+            [54.0, 0.0, 0.0],
+            [60.0, 0.0, 0.0],
+        ];
+        let quarter = [[70.0, 10.0, 0.0], [80.0, 10.0, 0.0], [80.0, 20.0, 0.0]];
+        let quadratic = [
+            [80.0, 20.0, 0.0],
+            [80.0, 30.0, 0.0],
+            [70.0, 35.0, 1.0],
+            [60.0, 30.0, 2.0],
+            [55.0, 20.0, 2.0],
+        ];
+        let kinked = [
+            [55.0, 20.0, 2.0],
+            [52.0, 12.0, 2.0],
+            [50.0, 8.0, 2.0],
+            [48.0, 4.0, 2.0],
+            [40.0, 4.0, 2.0],
+            [34.0, 2.0, 2.0],
+            [30.0, 0.0, 2.0],
+        ];
+        let uniform = [0., 0., 0., 0., 1., 2., 3., 4., 5., 5., 5., 5.];
+        Curves {
+            wave: BSpline::new(3, &wave, &uniform).unwrap(),
+            quarter: Nurbs::new(2, &quarter, &[1.0, w, 1.0], &[0., 0., 0., 1., 1., 1.]).unwrap(),
+            quadratic: BSpline::new(2, &quadratic, &[0., 0., 0., 1., 2., 3., 3., 3.]).unwrap(),
+            kinked: BSpline::new(3, &kinked, &[0., 0., 0., 0., 1., 1., 1., 2., 2., 2., 2.])
+                .unwrap(),
+        }
+    }
+
+    /// Lines and the curves as one move each, from the origin: every join a corner or a
+    /// curvature step but the last.
+    fn moves(&self) -> Vec<Move<3, AnyCurve<'_>>> {
+        vec![
+            Move::line([20.0, 0.0, 0.0]),
+            Move::curve(&self.wave as AnyCurve),
+            Move::line([70.0, 10.0, 0.0]).with_feed(120.0),
+            Move::curve(&self.quarter as AnyCurve),
+            Move::curve(&self.quadratic as AnyCurve).with_feed(150.0),
+            Move::curve(&self.kinked as AnyCurve),
+            Move::line([0.0, 0.0, 0.0]),
+        ]
+    }
+}
+
+/// Curves of strak-curves streamed as moves among lines, in `f64`, `f32` and `Q40`: the
+/// speed, acceleration and jerk from the played ticks stay within the limits, every tick
+/// lies within the tolerance of the programmed curves, the motion ends on the last move's
+/// end, and it comes to rest at the kink inside the last curve (a join of its pieces that
+/// turns) and nowhere else but the ends.
+#[test]
+fn curves_of_strak_curves_stream_as_moves() {
+    let curves = Curves::new();
+    let moves = curves.moves();
+    for stats in [
+        check_random_stream::<f64, _>(&moves, within(0.02)),
+        check_random_stream::<f32, _>(&moves, within(0.02)),
+        check_random_stream::<Q40, _>(&moves, within(0.02)),
+    ] {
+        let stats = stats.unwrap();
+        assert_eq!(stats.moves, 7, "{stats:?}");
+        assert!(
+            stats.blends >= 3 && stats.max_deviation <= 0.02,
+            "{stats:?}"
+        );
+    }
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let mut stream = Stream::new([0.0; 3], limits, within(0.02)).unwrap();
+    let played = run_stream::<f64, 32, 512, _>(&mut stream, &moves, moves.len());
+    // the rest falls between ticks: the tick nearest the kink is within one tick of a
+    // jerk-limited rest (x ≤ j·T³/6, v ≤ j·T²/2)
+    let kink = [48.0, 4.0, 2.0];
+    let (gap, speed) = played
+        .x
+        .iter()
+        .zip(&played.v)
+        .map(|(x, v)| (x.minus(kink).norm(), v.norm()))
+        .fold((f64::INFINITY, 0.0), |a, b| if b.0 < a.0 { b } else { a });
+    assert!(
+        gap < 1e5 * 1e-9 / 6.0 && speed < 1e5 * 1e-6 / 2.0,
+        "{gap} {speed}"
+    );
+    let rests = played
+        .x
+        .iter()
+        .zip(&played.v)
+        .filter(|(_, v)| v.norm() < 1e-9);
+    let elsewhere = rests.filter(|(x, _)| [[0.0; 3]].iter().all(|p| x.minus(*p).norm() > 1e-6));
+    assert_eq!(elsewhere.count(), 0);
+}
+
+/// A curve move that does not start where the stream is, or whose end is not its `to`, is
+/// refused and changes nothing.
+#[test]
+fn a_curve_move_off_the_path_is_refused() {
+    let curves = Curves::new();
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let mut stream = Stream::<3, 8, 64, AnyCurve>::new([0.0; 3], limits, within(0.02)).unwrap();
+    let wave = Move::curve(&curves.wave as AnyCurve);
+    assert_eq!(stream.push(&wave), Err(Error::DegenerateMove));
+    stream.push(&Move::line([20.0, 0.0, 0.0])).unwrap();
+    let mut off = wave;
+    off.to = [60.0, 0.0, 1e-3];
+    assert_eq!(stream.push(&off), Err(Error::DegenerateMove));
+    stream.push(&wave).unwrap();
+    assert_eq!(stream.stats().moves, 2);
+}
+
+/// B-splines of degree 2 or 3 through random control points (steps of up to 6 mm, 2 mm in
+/// z) with random inner knots, each from the end of the one before, or lines where the kind
+/// is `false`: the curves and, for each line, its end.
+fn random_curves(kinds: &[(bool, [f64; 10])]) -> Vec<Result<BSpline<[f64; 3], 5, 9>, [f64; 3]>> {
+    let mut from = [0.0; 3];
+    let mut out = Vec::new();
+    for (is_curve, x) in kinds {
+        if !is_curve {
+            let Move { to, .. } = random_move(from, 0, x);
+            out.push(Err(to));
+            from = to;
+            continue;
+        }
+        let mut points = [from; 5];
+        for i in 1..5 {
+            let step = [x[2 * i - 2] - 0.5, x[2 * i - 1] - 0.5, 0.2 * (x[8] - 0.5)];
+            points[i] = points[i - 1].plus(step.times(12.0));
+        }
+        let t = 0.1 + 0.4 * x[8];
+        let knots: &[f64] = if x[9] < 0.5 {
+            &[0.0, 0.0, 0.0, t, t + 0.4, 1.0, 1.0, 1.0]
+        } else {
+            &[0.0, 0.0, 0.0, 0.0, t, 1.0, 1.0, 1.0, 1.0]
+        };
+        let degree = knots.len() - 6;
+        out.push(Ok(BSpline::new(degree, &points, knots).unwrap()));
+        from = points[4];
+    }
+    out
+}
+
+/// Random mixes of B-spline moves and lines, blended within 0.02 or stopped exactly, in
+/// `f64`, `f32` and `Q40` (see [`check_random_stream`]): within the limits and the
+/// tolerance, ending on the last move's end.
+#[test]
+fn random_curve_moves_keep_the_limits_in_every_number_format() {
+    let strategy = (
+        proptest::collection::vec((any::<bool>(), unit10()), 2..6),
+        0_usize..2,
+        0_usize..3,
+    );
+    let config = Config {
+        cases: 12,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    TestRunner::new(config)
+        .run(&strategy, |(kinds, t, format)| {
+            let curves = random_curves(&kinds);
+            let moves: Vec<Move<3, AnyCurve>> = curves
+                .iter()
+                .map(|c| match c {
+                    Ok(curve) => Move::curve(curve as AnyCurve),
+                    Err(to) => Move::line(*to),
+                })
+                .collect();
+            let options = [within(0.0), within(0.02).with_faster_stops(false)][t];
+            let checked = match format {
+                0 => check_random_stream::<f64, _>(&moves, options),
+                1 => check_random_stream::<f32, _>(&moves, options),
+                _ => check_random_stream::<Q40, _>(&moves, options),
+            };
+            checked.map(|_| ())
+        })
+        .unwrap();
+}
+
+/// A rapid semicircle of radius 50 and one of radius 200, where the motion cruises at the
+/// velocity limit along the arc (its curvature allows more), in `f64`, `f32` and `Q40`:
+/// the pieces fitted to it keep the velocity limit.
+#[test]
+fn a_large_arc_at_the_velocity_limit_keeps_it() {
+    for r in [50.0, 200.0] {
+        let arc = Move::<3>::new(
+            [2.0 * r, 0.0, 0.0],
+            Shape::ArcCenter {
+                center: [r, 0.0],
+                plane: Plane::XY,
+                turn: Turn::Clockwise,
+            },
+        );
+        let moves = [arc, Move::line([2.0 * r, -10.0, 0.0])];
+        check_random_stream::<f64, _>(&moves, within(0.02)).unwrap();
+        check_random_stream::<f32, _>(&moves, within(0.02)).unwrap();
+        check_random_stream::<Q40, _>(&moves, within(0.02)).unwrap();
+    }
+}
+
+/// A B-spline of 200 pieces (a spiral of growing radius, in z rising) as one move between
+/// two lines, through a window of 8 segments and 64 zones: its pieces go through as the
+/// played ones make room; the speed, acceleration and jerk from the played ticks stay within
+/// the limits, the pieces meet without a seam, and the motion ends on the last line's end.
+#[test]
+fn a_curve_of_many_pieces_streams_through_a_small_window() {
+    let points: Vec<[f64; 3]> = (0..203)
+        .map(|i| {
+            let t = f64::from(i) * 0.3;
+            let r = 10.0 + 0.2 * t;
+            [r * t.cos(), r * t.sin(), 0.05 * t]
+        })
+        .collect();
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..200).map(f64::from));
+    knots.extend([200.0; 4]);
+    let spiral = BSpline::<[f64; 3], 203, 207>::new(3, &points, &knots).unwrap();
+    let moves: Vec<Move<3, AnyCurve>> = vec![
+        Move::line(points[0]),
+        Move::curve(&spiral as AnyCurve),
+        Move::line([0.0, 0.0, 0.0]),
+    ];
+    let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
+    let mut stream = Stream::<3, 8, 64, AnyCurve>::new([0.0; 3], limits, within(0.02)).unwrap();
+    let played = run_stream::<f64, 8, 64, _>(&mut stream, &moves, moves.len());
+    let peaks = played.peaks(1000.0);
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    let slack = 1.0 + 1e-9;
+    assert!(peaks[0] <= 200.0 * slack, "{peaks:?}");
+    assert!(peaks[1] <= keep * 3000.0 * slack, "{peaks:?}");
+    assert!(peaks[2] <= keep * 100_000.0 * slack, "{peaks:?}");
+    assert!(
+        played.seam[0] < 1e-9 && played.seam[1] < 1e-7,
+        "{:?}",
+        played.seam
+    );
+    assert_eq!((stream.stats().moves, stream.stats().starved), (3, 0));
+    let length = strak_curves::arc_length(&spiral, 1e-9).unwrap();
+    assert!(played.x.len() as f64 > length / 200.0 * 1000.0); // no faster than the limit
+    assert!(played.x.last().unwrap().norm() < 1e-9);
 }

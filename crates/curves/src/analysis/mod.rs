@@ -28,6 +28,7 @@
 //! | [`classify_join`], [`classify_breaks`] | 8 derivative evaluations per join; `piece_count − 1` joins |
 //! | [`flatten`], [`flatten_count`] | at most 2¹² intervals (else [`Error::IterationLimit`]), each 2 derivative evaluations and at most `12·64` chord certificates of 8 evaluations; the counts of all pieces together ≤ 2¹⁶ segments (else [`Error::CapacityExceeded`]) |
 //! | [`arc_length`], [`arc_length_between`] | per piece 16 parts, bisection depth ≤ 32 and at most 2¹² interval splits, so at most `16·(16 + 2·(2·2¹² + 16))` speed evaluations (else [`Error::IterationLimit`]) |
+//! | [`second_derivative_bound`] | a binary search for the first piece, then 28 derivative evaluations per piece the interval touches |
 //! | [`param_at_length`] | the piece lengths, then at most 128 Newton or bisection steps, each one arc-length integral |
 //! | [`ArcLengthTable::new`] | `2(N − 1)` arc-length integrals and `3N` speed evaluations |
 //!
@@ -35,11 +36,13 @@
 //! piece boundary and piece midpoint (`2·piece_count + 2` evaluations).
 
 mod arclength;
+mod bound;
 mod continuity;
 mod counted;
 mod flatten;
 
 pub use arclength::*;
+pub use bound::second_derivative_bound;
 pub use continuity::*;
 pub use counted::Counted;
 pub use flatten::*;

@@ -124,6 +124,15 @@ impl<const A: usize> Limits<A> {
             axis_acceleration: self.axis_acceleration.map(|a| a * keep),
         }
     }
+
+    /// The same limits with the velocities (path and per axis) times `keep`.
+    pub(crate) fn with_velocities_times(&self, keep: f64) -> Self {
+        Limits {
+            velocity: self.velocity * keep,
+            axis_velocity: self.axis_velocity.map(|v| v * keep),
+            ..*self
+        }
+    }
 }
 
 #[cfg(test)]

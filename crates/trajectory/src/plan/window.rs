@@ -623,7 +623,8 @@ impl<const Z: usize> LookAhead<Z> {
 
 /// The zones of one segment of a streamed path on their way into a window. The speed-limit
 /// sampling places them by the segment's own arc lengths; they are shifted to where it
-/// starts on the path (the last one ends exactly at the segment's end).
+/// starts on the path (the first one starts exactly at the segment's start, the last one
+/// ends exactly at its end).
 ///
 /// A zone that its own speed limit crosses in fewer than [`MIN_ZONE_TICKS`] ticks is merged
 /// with its neighbour in the segment, under the lower limits of both: a zone is entered and
@@ -727,7 +728,11 @@ impl<const K: usize> ZoneSink for SegmentZones<K> {
         (v, a, j): (f64, f64, f64),
         exit_cap: f64,
     ) -> usize {
-        let mut zone = WindowZone::unchecked((self.at(start), self.at(end)), (v, a, j), exit_cap);
+        // the segment's first zone starts where it does exactly (its own arc lengths can
+        // put it a rounding past its start)
+        let first = self.zones.len() == self.base;
+        let start = if first { self.start } else { self.at(start) };
+        let mut zone = WindowZone::unchecked((start, self.at(end)), (v, a, j), exit_cap);
         (zone.feed, zone.scale) = self.feed;
         let merge = self.zones.len() > self.base
             && self.zones.last().is_some_and(|last| {

@@ -40,7 +40,9 @@
 //! `(K/16)·sin(φ/2) + max|eᵢ|` of a foot on a tangent line, and `C` lies that close to the
 //! blend's midpoint. A move whose parameter runs at the speed `|c'| = σ` at `C` departs from
 //! its tangent line by at most `M₂·(x/σ)²/2` over the length `x` (Taylor's theorem with
-//! `M₂ ≥ |c''|`, [`MoveCurve::second_derivative_bound`]). So
+//! `M₂ ≥ |c''|` over the parameters within `x/σ` of `C`,
+//! [`MoveCurve::second_derivative_bound`]; for a curve move of rational pieces `M₂` is an
+//! estimate, so the bound is too). So
 //!
 //! ```text
 //! deviation ≤ (K/16)·sin(φ/2) + max|eᵢ| + max over both moves of M₂·(x/σ)²/2
@@ -51,7 +53,8 @@
 //! the last two terms vanish and `L = 16·ε / ((16 − 15·0.4 − 10·0.325)·sin(φ/2))` meets the
 //! tolerance `ε` exactly; otherwise `L` starts there and shrinks until the bound holds.
 //! It never exceeds half of either move, so that the blends at both ends of a move never
-//! overlap.
+//! overlap, nor, for a curve move of several pieces, the part of its first or last piece
+//! from that piece's middle on (a stream appends the rest before the next move is known).
 //!
 //! # Chains
 //!
@@ -72,7 +75,7 @@
 
 use strak_curves::{Bezier, ParamCurve, ParamCurveDeriv, Point};
 
-use super::moves::MoveCurve;
+use super::moves::{MoveCurve, StreamCurve};
 use crate::error::Error;
 
 /// `a / L`: the first control leg of a blend, as a share of its trim length.
@@ -106,8 +109,8 @@ const SHRINK_STEPS: usize = 64;
 /// ```
 /// use strak_trajectory::{Junction, Move, MoveCurve, junction};
 /// use strak_curves::ParamCurve;
-/// let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
-/// let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+/// let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0)?;
+/// let b = MoveCurve::new([10.0, 0.0], &Move::<2>::line([10.0, 10.0]), 0.0)?;
 /// let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { panic!("a right angle blends") };
 /// let mid = blend.curve().eval(0.5);
 /// let corner = ((mid[0] - 10.0).powi(2) + mid[1].powi(2)).sqrt();
@@ -151,8 +154,8 @@ impl<const D: usize> Blend<D> {
     ///
     /// ```
     /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
-    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
-    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::<2>::line([10.0, 10.0]), 0.0)?;
     /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
     /// assert_eq!(blend.curve().control_points().len(), 6);
     /// # Ok::<(), strak_trajectory::Error>(())
@@ -165,8 +168,8 @@ impl<const D: usize> Blend<D> {
     ///
     /// ```
     /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
-    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
-    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::<2>::line([10.0, 10.0]), 0.0)?;
     /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
     /// assert!((blend.leave() - (1.0 - blend.trim() / 10.0)).abs() < 1e-15);
     /// # Ok::<(), strak_trajectory::Error>(())
@@ -179,8 +182,8 @@ impl<const D: usize> Blend<D> {
     ///
     /// ```
     /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
-    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
-    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::<2>::line([10.0, 10.0]), 0.0)?;
     /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
     /// assert!((blend.join() - blend.trim() / 10.0).abs() < 1e-15);
     /// # Ok::<(), strak_trajectory::Error>(())
@@ -193,8 +196,8 @@ impl<const D: usize> Blend<D> {
     ///
     /// ```
     /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
-    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
-    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::<2>::line([10.0, 10.0]), 0.0)?;
     /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
     /// // two lines at a right angle: L = 16·ε / (6.75·sin 45°)
     /// let l = 16.0 * 0.05 / (6.75 * core::f64::consts::FRAC_1_SQRT_2);
@@ -210,8 +213,8 @@ impl<const D: usize> Blend<D> {
     ///
     /// ```
     /// # use strak_trajectory::{Junction, Move, MoveCurve, junction};
-    /// # let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0)?;
-    /// # let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0)?;
+    /// # let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0)?;
+    /// # let b = MoveCurve::new([10.0, 0.0], &Move::<2>::line([10.0, 10.0]), 0.0)?;
     /// # let Junction::Blend(blend) = junction(&a, &b, 0.05)? else { unreachable!() };
     /// assert!(blend.deviation() <= 0.05);
     /// # Ok::<(), strak_trajectory::Error>(())
@@ -225,8 +228,8 @@ impl<const D: usize> Blend<D> {
 ///
 /// ```
 /// use strak_trajectory::{Junction, Move, MoveCurve, junction};
-/// let a = MoveCurve::new([0.0, 0.0], &Move::line([1.0, 0.0]), 0.0)?;
-/// let b = MoveCurve::new([1.0, 0.0], &Move::line([2.0, 0.0]), 0.0)?;
+/// let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([1.0, 0.0]), 0.0)?;
+/// let b = MoveCurve::new([1.0, 0.0], &Move::<2>::line([2.0, 0.0]), 0.0)?;
 /// assert_eq!(junction(&a, &b, 0.01)?, Junction::Straight);
 /// assert_eq!(junction(&a, &b, 0.0)?, Junction::Straight);
 /// # Ok::<(), strak_trajectory::Error>(())
@@ -244,7 +247,10 @@ pub enum Junction<const D: usize> {
 
 /// The unit tangent, the curvature vector `d²c/ds²` and the speed `|c'|` at `u`; `None`
 /// where the speed vanishes.
-fn frame<const D: usize>(curve: &MoveCurve<D>, u: f64) -> Option<([f64; D], [f64; D], f64)> {
+fn frame<const D: usize, C: StreamCurve<D>>(
+    curve: &MoveCurve<D, C>,
+    u: f64,
+) -> Option<([f64; D], [f64; D], f64)> {
     let (d1, d2) = (curve.deriv(u, 1), curve.deriv(u, 2));
     let speed = d1.norm();
     if !(speed > 0.0 && speed.is_finite()) {
@@ -259,7 +265,8 @@ fn frame<const D: usize>(curve: &MoveCurve<D>, u: f64) -> Option<([f64; D], [f64
 /// (starting there) within the tolerance `tolerance` (units; 0 for an exact stop): straight
 /// on where tangent and curvature are continuous, an exact stop for a zero tolerance or a
 /// near-reversal, else a [`Blend`] whose deviation from the programmed path is at most the
-/// tolerance (module docs) and which takes at most half of either move.
+/// tolerance (module docs) and which takes at most half of either move (of a curve move of
+/// several pieces, at most its first or last piece from its middle on).
 ///
 /// # Errors
 /// [`Error::InvalidTolerance`] for a negative or non-finite tolerance;
@@ -268,14 +275,14 @@ fn frame<const D: usize>(curve: &MoveCurve<D>, u: f64) -> Option<([f64; D], [f64
 ///
 /// ```
 /// use strak_trajectory::{Junction, Move, MoveCurve, junction};
-/// let a = MoveCurve::new([0.0, 0.0], &Move::line([1.0, 0.0]), 0.0)?;
-/// let back = MoveCurve::new([1.0, 0.0], &Move::line([0.0, 0.0]), 0.0)?;
+/// let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([1.0, 0.0]), 0.0)?;
+/// let back = MoveCurve::new([1.0, 0.0], &Move::<2>::line([0.0, 0.0]), 0.0)?;
 /// assert_eq!(junction(&a, &back, 0.01)?, Junction::Stop); // a reversal
 /// # Ok::<(), strak_trajectory::Error>(())
 /// ```
-pub fn junction<const D: usize>(
-    incoming: &MoveCurve<D>,
-    outgoing: &MoveCurve<D>,
+pub fn junction<const D: usize, C: StreamCurve<D>>(
+    incoming: &MoveCurve<D, C>,
+    outgoing: &MoveCurve<D, C>,
     tolerance: f64,
 ) -> Result<Junction<D>, Error> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
@@ -306,7 +313,7 @@ pub fn junction<const D: usize>(
         cos_phi,
         half_sin: libm::sqrt((1.0 - cos_phi) / 2.0),
     };
-    let half = (incoming.length() / 2.0).min(outgoing.length() / 2.0);
+    let half = incoming.blend_room(true)?.min(outgoing.blend_room(false)?);
     let mut trim = if corner_frame.half_sin > 0.0 {
         // a hair inside, so that the rounding of the control points does not cost a step
         (16.0 * tolerance * (1.0 - 1e-9) / (MIDPOINT_FACTOR * corner_frame.half_sin)).min(half)
@@ -373,10 +380,10 @@ impl<const D: usize> Corner<D> {
     /// The blend of trim length `trim` and its deviation bound; `None` where a move's
     /// speed vanishes at the trim or its tangent-line bound would reach past its start or
     /// end.
-    fn blend(
+    fn blend<C: StreamCurve<D>>(
         &self,
-        incoming: &MoveCurve<D>,
-        outgoing: &MoveCurve<D>,
+        incoming: &MoveCurve<D, C>,
+        outgoing: &MoveCurve<D, C>,
         trim: f64,
     ) -> Result<Option<Blend<D>>, Error> {
         let leave = incoming.param_at(incoming.length() - trim)?;
@@ -397,14 +404,14 @@ impl<const D: usize> Corner<D> {
             },
         ];
         let reach = trim * (1.0 + (-self.cos_phi).max(0.0));
-        let mut departure: f64 = 0.0;
-        for (curve, speed) in [(incoming, self.speeds[0]), (outgoing, self.speeds[1])] {
-            let tau = reach / speed;
-            if tau > 1.0 {
-                return Ok(None);
-            }
-            departure = departure.max(curve.second_derivative_bound() * tau * tau / 2.0);
+        let (tau_in, tau_out) = (reach / self.speeds[0], reach / self.speeds[1]);
+        if tau_in > 1.0 || tau_out > 1.0 {
+            return Ok(None);
         }
+        let departure =
+            (incoming.second_derivative_bound_on((1.0 - tau_in, 1.0)) * tau_in * tau_in)
+                .max(outgoing.second_derivative_bound_on((0.0, tau_out)) * tau_out * tau_out)
+                / 2.0;
         Ok(Blend::shaped(
             *self,
             ends,
@@ -503,9 +510,9 @@ pub(super) fn has_span((begin, end): (f64, f64)) -> bool {
 /// // three chords of 0.2 mm on a circle of radius 10: both blends take all of the middle one
 /// let p = |i: f64| [10.0 * (0.02 * i).cos(), 10.0 * (0.02 * i).sin()];
 /// let moves = [
-///     MoveCurve::new(p(0.0), &Move::line(p(1.0)), 0.0)?,
-///     MoveCurve::new(p(1.0), &Move::line(p(2.0)), 0.0)?,
-///     MoveCurve::new(p(2.0), &Move::line(p(3.0)), 0.0)?,
+///     MoveCurve::new(p(0.0), &Move::<2>::line(p(1.0)), 0.0)?,
+///     MoveCurve::new(p(1.0), &Move::<2>::line(p(2.0)), 0.0)?,
+///     MoveCurve::new(p(2.0), &Move::<2>::line(p(3.0)), 0.0)?,
 /// ];
 /// let mut junctions = [junction(&moves[0], &moves[1], 0.02)?, junction(&moves[1], &moves[2], 0.02)?];
 /// chain_junctions(&moves, &mut junctions, 0.02);
@@ -514,8 +521,8 @@ pub(super) fn has_span((begin, end): (f64, f64)) -> bool {
 /// assert!(k[0].hypot(k[1]) > 0.0);
 /// # Ok::<(), strak_trajectory::Error>(())
 /// ```
-pub fn chain_junctions<const D: usize>(
-    moves: &[MoveCurve<D>],
+pub fn chain_junctions<const D: usize, C: StreamCurve<D>>(
+    moves: &[MoveCurve<D, C>],
     junctions: &mut [Junction<D>],
     tolerance: f64,
 ) {
@@ -540,13 +547,13 @@ pub fn chain_junctions<const D: usize>(
 /// zero. Each end's control point moves by `(5/4)·a²·Δk`; the deviation bound (module
 /// docs) is evaluated again with the moved points, so it still holds. Nothing changes where
 /// the line is not a line or neither mean fits.
-pub(super) fn chain<const D: usize>(
+pub(super) fn chain<const D: usize, C: StreamCurve<D>>(
     before: &mut Blend<D>,
     after: &mut Blend<D>,
-    through: &MoveCurve<D>,
+    through: &MoveCurve<D, C>,
     tolerance: f64,
 ) {
-    if through.second_derivative_bound() != 0.0 {
+    if !through.is_line() {
         return;
     }
     let mean = before

@@ -14,6 +14,7 @@ use core::cell::Cell;
 
 use heapless::Deque;
 
+use super::moves::StreamCurve;
 use super::segment::{Frame, Segment};
 use crate::compile::TickMotion;
 use crate::error::Error;
@@ -35,8 +36,8 @@ const JOIN_ROUNDING: f64 = 1e-12;
 
 /// The committed motion of a stream: its phases in time order and the segments they run
 /// along, on the grid of `period` seconds, within the limits `limits`, up to `end`.
-pub(super) struct Committed<'a, const D: usize, const Q: usize> {
-    pub(super) segments: &'a Deque<Segment<D>, Q>,
+pub(super) struct Committed<'a, const D: usize, const Q: usize, C> {
+    pub(super) segments: &'a Deque<Segment<D, C>, Q>,
     pub(super) phases: &'a Deque<Phase, PHASES>,
     pub(super) period: f64,
     pub(super) limits: MotionLimits,
@@ -48,7 +49,7 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize> {
     pub(super) recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
 }
 
-impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
+impl<const D: usize, const Q: usize, C: StreamCurve<D>> Committed<'_, D, Q, C> {
     /// The state at time `t`: in the last phase that starts at or before it. After a phase
     /// that ends at rest the motion holds still until the next phase, exactly where that
     /// one starts (or at the committed end `end`, the end of its last zone): the rounding
@@ -144,7 +145,7 @@ impl<const D: usize, const Q: usize> Committed<'_, D, Q> {
     }
 }
 
-impl<const D: usize, const Q: usize> TickMotion<D> for Committed<'_, D, Q> {
+impl<const D: usize, const Q: usize, C: StreamCurve<D>> TickMotion<D> for Committed<'_, D, Q, C> {
     fn period(&self) -> f64 {
         self.period
     }

@@ -11,6 +11,6 @@ mod segment;
 mod toolpath;
 
 pub use blend::{Blend, Junction, REVERSAL_ANGLE, chain_junctions, junction};
-pub use moves::{Move, MoveCurve, Shape};
+pub use moves::{Move, MoveCurve, NoCurve, Shape, StreamCurve};
 pub use queue::{PieceQueue, Stream, StreamOptions, StreamStats};
 pub use toolpath::Toolpath;

@@ -20,6 +20,12 @@
 //!    producer has fallen behind), the pending move is finished with an exact stop at its
 //!    end: the motion comes to rest there within the limits, and the next move starts from
 //!    rest. [`Stream::finish`] does the same at the end of a program.
+//!
+//! A curve move of several pieces ([`Move::curve`]) is not held back whole: a blend takes at
+//! most half of its first or its last piece, so the rest is appended while it is pending, a
+//! segment from the middle of one piece to the middle of the next (so that every join of
+//! pieces lies inside a segment, where the speed limits cap it), as the window makes room
+//! (`advance`). A curve of any number of pieces streams through a window of a few.
 
 use core::cell::Cell;
 
@@ -29,7 +35,7 @@ use strak_curves::ParamCurve;
 
 use super::blend::{Blend, Junction, chain, has_span, junction};
 use super::committed::{Committed, PHASES};
-use super::moves::{Move, MoveCurve};
+use super::moves::{Move, MoveCurve, NoCurve, StreamCurve};
 use super::segment::Segment;
 use crate::compile::StretchFit;
 use crate::compile::TickMotion;
@@ -41,7 +47,12 @@ use crate::plan::{
     slowing_loss, zones_into,
 };
 
-/// The speed-limit samples of a segment whose loads vary (a blend, a Bézier move).
+/// The segments of a pending curve move `Stream::advance` appends per call at most: a
+/// bound on the work of a push or a poll.
+const ADVANCE_PIECES: usize = 4;
+
+/// The speed-limit samples of a segment whose loads vary (a blend, a Bézier move), per piece
+/// of a curve move it crosses.
 const LOAD_SAMPLES: usize = 32;
 
 /// The least turn of the tangent (radians) at a corner that may come to an exact stop in
@@ -56,6 +67,12 @@ const SEGMENT_ZONES: usize = 24;
 /// to the planned motion carry rounding noise in their jerk (about `ε·|x|/(j·T³)` relative,
 /// `1e-10` at 10 units from the origin), which stays below the margin's `1e-6`.
 const FIT_MARGIN: f64 = 1.0 - 1e-6;
+
+/// The share of the velocity limits the window plans with: where the motion cruises at a
+/// velocity limit along a curve, the pieces fitted to it deviate from its speed by parts in
+/// 10⁷ at the fit tolerance (more than tightening the fit removes), which stays below the
+/// margin's `1e-5`.
+const VELOCITY_FIT_MARGIN: f64 = 1.0 - 1e-5;
 
 /// The most pieces of one stretch; a stretch that needs more is halved.
 const STRETCH_PIECES: usize = 24;
@@ -263,11 +280,13 @@ pub struct StreamStats {
 /// blend's feed (held back until the next junction is known: where the two blends take all
 /// of the move between them, they are joined as a [`chain`]).
 #[derive(Clone, Copy, Debug)]
-struct Pending<const D: usize> {
-    curve: MoveCurve<D>,
+struct Pending<const D: usize, C> {
+    curve: MoveCurve<D, C>,
     from: f64,
     feed: f64,
     before: Option<(Blend<D>, f64)>,
+    /// The move's arc length up to `from`, for a curve move (its segments' own offsets).
+    offset: f64,
 }
 
 /// A stream of moves in `D` axes: at most `Q` segments (each move's part between its blends,
@@ -294,7 +313,7 @@ struct Pending<const D: usize> {
 /// # Ok::<(), strak_trajectory::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
+pub struct Stream<const D: usize, const Q: usize, const Z: usize, C = NoCurve<D>> {
     /// Whether limits and options are set ([`Stream::reset`]).
     ready: bool,
     /// The limits the window plans with (the feed reserve taken off).
@@ -303,8 +322,8 @@ pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
     promised: MotionLimits,
     options: StreamOptions,
     fit: StretchFit,
-    segments: Deque<Segment<D>, Q>,
-    pending: Option<Pending<D>>,
+    segments: Deque<Segment<D, C>, Q>,
+    pending: Option<Pending<D, C>>,
     /// Where the next move starts.
     end: [f64; D],
     /// The arc length of the path up to the pending move's part.
@@ -320,7 +339,7 @@ pub struct Stream<const D: usize, const Q: usize, const Z: usize> {
     feed_override: f64,
 }
 
-impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
+impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D, Q, Z, C> {
     /// A stream at rest at `start`, under the machine's `limits`.
     ///
     /// ```
@@ -423,7 +442,9 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         self.ramp = feed_ramp(&limits, &options);
         self.feed_override = 1.0;
         let keep = (1.0 - options.plan.feed_share()) * FIT_MARGIN;
-        self.planned = limits.without_reserve(1.0 - keep);
+        self.planned = limits
+            .without_reserve(1.0 - keep)
+            .with_velocities_times(VELOCITY_FIT_MARGIN);
         self.promised = options.plan.promised(&limits);
         self.options = options;
         self.fit = StretchFit {
@@ -594,8 +615,9 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when fewer than two segments are free (checked first, at
-    /// no cost) or the window is full (poll, then push again; nothing changed); the errors of
-    /// [`MoveCurve::new`] and [`junction`] for a bad move (nothing changed).
+    /// no cost), the window is full, or the pending curve move is not yet appended up to
+    /// the middle of its last piece (poll, then push again; the move was not taken); the
+    /// errors of [`MoveCurve::new`] and [`junction`] for a bad move (nothing changed).
     ///
     /// ```
     /// # use strak_trajectory::{Error, Limits, Move, Stream, StreamOptions};
@@ -605,7 +627,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// assert_eq!(stream.stats().moves, 0);
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
-    pub fn push(&mut self, mv: &Move<D>) -> Result<(), Error> {
+    pub fn push(&mut self, mv: &Move<D, C>) -> Result<(), Error> {
         if !self.ready {
             return Err(Error::InvalidLimit);
         }
@@ -618,12 +640,20 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         }
         let curve = MoveCurve::new(self.end, mv, self.options.arc_tolerance)?;
         let feed = mv.feed.unwrap_or(f64::INFINITY);
+        if !self.advance()? {
+            // the pending curve's pieces before its last are not all appended yet
+            return Err(Error::CapacityExceeded {
+                capacity: Q,
+                required: Q + 1,
+            });
+        }
         let Some(prev) = self.pending else {
             self.pending = Some(Pending {
                 curve,
                 from: 0.0,
                 feed,
                 before: None,
+                offset: 0.0,
             });
             self.end = curve.eval(1.0);
             self.stats.moves += 1;
@@ -643,11 +673,17 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         let stop = matches!(corner, Junction::Stop);
         self.emit(&prev, before, through.then_some((leave, stop)))?;
         let before = after.map(|b| (b, prev.feed.min(feed)));
+        let offset = if curve.is_curve() {
+            curve.length_to(from)?
+        } else {
+            0.0
+        };
         self.pending = Some(Pending {
             curve,
             from,
             feed,
             before,
+            offset,
         });
         self.end = curve.eval(1.0);
         self.stats.moves += 1;
@@ -664,8 +700,9 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when too few segments are free (checked first, at no
-    /// cost), [`Error::ZoneCapacityExceeded`] when the window is full (poll, then finish
-    /// again; nothing changed).
+    /// cost) or the pending curve move is not yet appended up to the middle of its last
+    /// piece, [`Error::ZoneCapacityExceeded`] when the window is full (poll, then finish
+    /// again; the move is not finished).
     ///
     /// ```
     /// # use heapless::Deque;
@@ -680,6 +717,12 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn finish(&mut self) -> Result<(), Error> {
+        if !self.advance()? {
+            return Err(Error::CapacityExceeded {
+                capacity: Q,
+                required: Q + 1,
+            });
+        }
         let Some(prev) = self.pending else {
             return Ok(());
         };
@@ -687,6 +730,52 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         self.emit(&prev, prev.before, Some((1.0, true)))?;
         self.pending = None;
         Ok(())
+    }
+
+    /// Whether nothing of the pending move is left to append before its end junction is
+    /// known (see [`Self::advance`]).
+    fn caught_up(&self) -> bool {
+        self.pending
+            .is_none_or(|p| !p.curve.is_curve() || p.from >= p.curve.streamed_until())
+    }
+
+    /// Appends the part of the pending curve move that no blend with a next move can take
+    /// (up to the middle of its last piece, [`MoveCurve`]), a segment from the middle of one
+    /// piece to the middle of the next (with the blend before the move ahead of the first),
+    /// while there is room, at most [`ADVANCE_PIECES`] per call.
+    /// Returns whether the pending move is caught up: nothing of it is left to append before
+    /// its end junction is known.
+    ///
+    /// # Errors
+    /// The errors of [`Self::emit`], but for a lack of room while segments are buffered
+    /// ahead (they make room as they are played).
+    fn advance(&mut self) -> Result<bool, Error> {
+        for _ in 0..ADVANCE_PIECES {
+            let Some(prev) = self.pending else {
+                return Ok(true);
+            };
+            if self.caught_up() {
+                return Ok(true);
+            }
+            let to = prev.curve.next_cut(prev.from);
+            match self.emit(&prev, prev.before, Some((to, false))) {
+                Ok(()) => {}
+                Err(Error::CapacityExceeded { .. } | Error::ZoneCapacityExceeded { .. })
+                    if !self.segments.is_empty() =>
+                {
+                    return Ok(false);
+                }
+                Err(e) => return Err(e),
+            }
+            let length = self.segments.back().map_or(0.0, |g| g.length);
+            self.pending = Some(Pending {
+                from: to,
+                before: None,
+                offset: prev.offset + length,
+                ..prev
+            });
+        }
+        Ok(self.caught_up())
     }
 
     /// Appends the path of the pending move `prev` that is now known: the blend `before` it
@@ -698,11 +787,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     #[inline(always)]
     fn emit(
         &mut self,
-        prev: &Pending<D>,
+        prev: &Pending<D, C>,
         before: Option<(Blend<D>, f64)>,
         span: Option<(f64, bool)>,
     ) -> Result<(), Error> {
-        let mut added = Vec::<Segment<D>, 2>::new();
+        let mut added = Vec::<Segment<D, C>, 2>::new();
         let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
         let mut s = self.length;
         if let Some(blend) = self.blend_of(before, s, &mut zones)? {
@@ -736,8 +825,8 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     fn blend_or_stop(
         &self,
         corner: Junction<D>,
-        prev: &Pending<D>,
-        next: &MoveCurve<D>,
+        prev: &Pending<D, C>,
+        next: &MoveCurve<D, C>,
         feed: f64,
     ) -> Result<Junction<D>, Error> {
         let Junction::Blend(blend) = corner else {
@@ -772,7 +861,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         before: Option<(Blend<D>, f64)>,
         start: f64,
         zones: &mut SegmentZones<K>,
-    ) -> Result<Option<Segment<D>>, Error> {
+    ) -> Result<Option<Segment<D, C>>, Error> {
         let Some((blend, feed)) = before else {
             return Ok(None);
         };
@@ -793,13 +882,13 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// `stop`).
     fn span_of<const K: usize>(
         &self,
-        prev: &Pending<D>,
+        prev: &Pending<D, C>,
         to: f64,
         start: f64,
         stop: bool,
         zones: &mut SegmentZones<K>,
-    ) -> Result<Segment<D>, Error> {
-        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed)?;
+    ) -> Result<Segment<D, C>, Error> {
+        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed, prev.offset)?;
         self.zones_of(&span, zones)?;
         if stop {
             zones.stop_at_end();
@@ -810,12 +899,16 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// The zones of `segment` appended to `out`.
     fn zones_of<const K: usize>(
         &self,
-        segment: &Segment<D>,
+        segment: &Segment<D, C>,
         out: &mut SegmentZones<K>,
     ) -> Result<(), Error> {
         let feed = (segment.feed, self.feed_scale());
         out.place((segment.start, segment.length), self.period(), feed);
-        let samples = if segment.uniform() { 1 } else { LOAD_SAMPLES };
+        let samples = if segment.uniform() {
+            1
+        } else {
+            LOAD_SAMPLES * ParamCurve::piece_count(segment)
+        };
         let options = self.options.plan.with_samples(samples);
         zones_into(segment, segment, &self.planned, &options, out)
     }
@@ -840,7 +933,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     /// Appends segments and their zones (room checked).
     fn append(
         &mut self,
-        segments: &[Segment<D>],
+        segments: &[Segment<D, C>],
         zones: &SegmentZones<{ 2 * SEGMENT_ZONES }>,
     ) -> Result<(), Error> {
         for g in segments {
@@ -874,8 +967,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
         if out.room() <= STRETCH_PIECES {
             return Ok(0);
         }
+        let known = self.caught_up();
+        self.advance()?;
         let first = self.next_tick;
-        let (last, rests) = self.cover(first.saturating_add(self.options.stretch_ticks))?;
+        let want = first.saturating_add(self.options.stretch_ticks);
+        let (last, rests) = self.cover(want, known)?;
         if last <= first {
             return Ok(0);
         }
@@ -923,7 +1019,7 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
     }
 
     /// The committed motion.
-    fn motion(&self) -> Committed<'_, D, Q> {
+    fn motion(&self) -> Committed<'_, D, Q, C> {
         Committed {
             segments: &self.segments,
             phases: &self.committed,
@@ -936,8 +1032,11 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
 
     /// Commits zones until the committed motion reaches tick `want`, and returns the last
     /// tick it covers, at most `want`: the end of the committed motion (the tick after it
-    /// when it rests there), and whether the motion rests from that tick on.
-    fn cover(&mut self, want: u32) -> Result<(u32, bool), Error> {
+    /// when it rests there), and whether the motion rests from that tick on. The pending
+    /// move is finished (the producer has fallen behind) only where it was `known` whole
+    /// before this poll: a curve move whose last pieces were appended during it ends the
+    /// stretch early instead, so that its next move can be pushed.
+    fn cover(&mut self, want: u32, known: bool) -> Result<(u32, bool), Error> {
         let period = self.period();
         loop {
             let (t_end, _, v_end) = self.window.entry();
@@ -946,6 +1045,16 @@ impl<const D: usize, const Q: usize, const Z: usize> Stream<D, Q, Z> {
             }
             let last_zone = self.window.len() <= 1;
             if last_zone && self.pending.is_some() {
+                let length = self.length;
+                self.advance()?;
+                if self.length > length {
+                    continue; // the pending curve went on: no starvation
+                }
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let end = libm::floor(t_end / period) as u32;
+                if !known && end > self.next_tick {
+                    return Ok((end.min(want), false));
+                }
                 match self.finish() {
                     Ok(()) => {
                         self.stats.starved += 1;

@@ -8,7 +8,7 @@ use strak_curves::{
 
 use super::arc_map::ArcMap;
 use super::blend::Blend;
-use super::moves::MoveCurve;
+use super::moves::{MoveCurve, NoCurve, StreamCurve};
 use crate::error::Error;
 use crate::plan::ArcLengths;
 
@@ -22,12 +22,12 @@ const BLEND_LENGTH_ACCURACY: f64 = 1e-10;
 // sizes them for no axis.
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
-enum Trace<const D: usize> {
+enum Trace<const D: usize, C> {
     /// The move `curve` over its parameters `from ..= to`; `offset` is its arc length
     /// before `from`; `map` its arc lengths where they are not proportional to the
     /// parameter (else, or where the map is refused, the move's own inversion).
     Span {
-        curve: MoveCurve<D>,
+        curve: MoveCurve<D, C>,
         from: f64,
         to: f64,
         offset: f64,
@@ -41,8 +41,8 @@ enum Trace<const D: usize> {
 
 /// A segment of the blended path, placed at the arc length `start` of the whole stream.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Segment<const D: usize> {
-    trace: Trace<D>,
+pub(crate) struct Segment<const D: usize, C = NoCurve<D>> {
+    trace: Trace<D, C>,
     /// The arc length of the stream where the segment starts.
     pub(crate) start: f64,
     /// Its arc length.
@@ -60,19 +60,25 @@ pub(crate) struct Frame<const D: usize> {
     pub(crate) normal: [f64; D],
 }
 
-impl<const D: usize> Segment<D> {
+impl<const D: usize, C: StreamCurve<D>> Segment<D, C> {
     /// The part `from ..= to` of the move `curve`, starting at the stream's arc length
-    /// `start`, with the speed limit `feed`.
+    /// `start`, with the speed limit `feed`; a curve move's arc length up to `from` is
+    /// `offset` (the other moves' is computed).
     ///
     /// # Errors
     /// [`Error::Curve`] when the arc length of a curved move does not converge.
     pub(crate) fn span(
-        curve: &MoveCurve<D>,
+        curve: &MoveCurve<D, C>,
         (from, to): (f64, f64),
         start: f64,
         feed: f64,
+        offset: f64,
     ) -> Result<Self, Error> {
-        let offset = curve.length_to(from)?;
+        let offset = if curve.is_curve() {
+            offset
+        } else {
+            curve.length_to(from)?
+        };
         let map = (!curve.has_constant_speed())
             .then(|| ArcMap::new(curve, (from, to)))
             .flatten();
@@ -190,7 +196,7 @@ impl<const D: usize> Segment<D> {
 /// The segment's own arc lengths, by which the speed-limit sampling places its zones (where
 /// an adaptive length does not converge, the parameter's share of the length stands in: it
 /// only moves a zone boundary).
-impl<const D: usize> ArcLengths for Segment<D> {
+impl<const D: usize, C: StreamCurve<D>> ArcLengths for Segment<D, C> {
     fn domain(&self) -> (f64, f64) {
         ParamCurve::domain(self)
     }
@@ -232,7 +238,7 @@ impl<const D: usize> ArcLengths for Segment<D> {
     }
 }
 
-impl<const D: usize> ParamCurve for Segment<D> {
+impl<const D: usize, C: StreamCurve<D>> ParamCurve for Segment<D, C> {
     type Point = [f64; D];
 
     fn domain(&self) -> (f64, f64) {
@@ -240,6 +246,30 @@ impl<const D: usize> ParamCurve for Segment<D> {
             Trace::Span { from, to, .. } => (*from, *to),
             Trace::Blend(..) => (0.0, 1.0),
         }
+    }
+
+    /// The pieces of a curve move the span crosses (one for the other segments), so that
+    /// the speed limits cap its joins of pieces.
+    fn piece_count(&self) -> usize {
+        match &self.trace {
+            Trace::Span {
+                curve, from, to, ..
+            } => curve.pieces_within((*from, *to)).1,
+            Trace::Blend(..) => 1,
+        }
+    }
+
+    fn piece_domain(&self, i: usize) -> (f64, f64) {
+        let (lo, hi) = ParamCurve::domain(self);
+        let Trace::Span {
+            curve, from, to, ..
+        } = &self.trace
+        else {
+            return (lo, hi);
+        };
+        let (first, count) = curve.pieces_within((*from, *to));
+        let (a, b) = curve.piece_domain(first + i.min(count - 1));
+        (a.max(lo), b.min(hi))
     }
 
     fn eval(&self, u: f64) -> [f64; D] {
@@ -250,7 +280,7 @@ impl<const D: usize> ParamCurve for Segment<D> {
     }
 }
 
-impl<const D: usize> ParamCurveDeriv for Segment<D> {
+impl<const D: usize, C: StreamCurve<D>> ParamCurveDeriv for Segment<D, C> {
     fn deriv(&self, u: f64, k: usize) -> [f64; D] {
         match &self.trace {
             Trace::Span { curve, .. } => curve.deriv(u, k),
@@ -272,7 +302,7 @@ mod tests {
     /// and against differences of the points by arc length.
     #[test]
     fn frames_by_arc_length() {
-        let arc = Move::new(
+        let arc = Move::<2>::new(
             [0.0, 2.0],
             crate::stream::Shape::ArcCenter {
                 center: [0.0, 0.0],
@@ -281,7 +311,7 @@ mod tests {
             },
         );
         let curve = MoveCurve::new([2.0, 0.0], &arc, 1e-12).unwrap();
-        let seg = Segment::span(&curve, (0.25, 0.75), 10.0, 100.0).unwrap();
+        let seg = Segment::span(&curve, (0.25, 0.75), 10.0, 100.0, 0.0).unwrap();
         let quarter = core::f64::consts::PI; // of the circle of radius 2
         assert!((seg.length - quarter / 2.0).abs() < 1e-12);
         let f = seg.frame(10.0 + quarter / 4.0).unwrap();
@@ -290,12 +320,12 @@ mod tests {
         assert!(close(f.tangent, [-r, r], 1e-12));
         assert!(close(f.normal, [-r / 2.0, -r / 2.0], 1e-12)); // κ = 1/2 towards the centre
 
-        let a = MoveCurve::new([0.0, 0.0], &Move::line([10.0, 0.0]), 0.0).unwrap();
+        let a = MoveCurve::new([0.0, 0.0], &Move::<2>::line([10.0, 0.0]), 0.0).unwrap();
         let b = MoveCurve::new([10.0, 0.0], &Move::line([10.0, 10.0]), 0.0).unwrap();
         let Junction::Blend(blend) = junction(&a, &b, 0.1).unwrap() else {
             panic!("a right angle blends")
         };
-        let seg = Segment::blend(&blend, 3.0, 50.0).unwrap();
+        let seg = Segment::<2>::blend(&blend, 3.0, 50.0).unwrap();
         assert!(seg.length > 0.0 && seg.end() == 3.0 + seg.length);
         let h = 1e-4;
         for i in 1..10 {
