@@ -4,14 +4,24 @@
 //! iteration, as a printer's firmware streams a curved wall: the RAM, stack and
 //! instructions per move that the `stack` firmware measures.
 //!
-//! The stream, the piece queue and the sampler are values of [`run`]'s frame, so that a
-//! stack measurement around it counts all of them with the stack they need.
+//! A whole curve planned through the same stream ([`run_curve`]): the 16-point B-spline of
+//! [`planning`](crate::planning) pushed as one move ([`Move::curve`]) into a window of
+//! [`CURVE_SEGMENTS`] segments, which its pieces pass through as they are played, so that
+//! the device plans it with the window's memory and not the whole path's.
+//!
+//! The stream, the piece queue and the sampler are values of [`run`]'s (and
+//! [`run_curve`]'s) frame, so that a stack measurement around it counts all of them with
+//! the stack they need.
 
 use heapless::Vec;
 use heapless::spsc::Queue;
-use strak_trajectory::{Error, Kernel, Limits, Move, Piece, Stream, StreamOptions, StreamSampler};
+use strak_curves::ParamCurve;
+use strak_trajectory::{
+    Error, Kernel, Limits, Move, Piece, Stream, StreamCurve, StreamOptions, StreamSampler,
+};
 
 use crate::counter::{Calibration, WideCounter};
+use crate::planning;
 
 /// Segments of the stream: a move's part between its blends and its blend each take one;
 /// these chords are short enough that their blends take all of each, so 64 hold 64 moves.
@@ -27,6 +37,16 @@ const MAX_TICKS: u32 = 100_000;
 
 /// The stream of the job: 3 axes, [`SEGMENTS`] segments, [`ZONES`] zones.
 pub type DeviceStream = Stream<3, SEGMENTS, ZONES>;
+
+/// Segments of the window the whole curve passes through: each from the middle of one of
+/// its pieces to the middle of the next.
+pub const CURVE_SEGMENTS: usize = 8;
+/// Zones of that window.
+pub const CURVE_ZONES: usize = 64;
+
+/// The stream a whole curve passes through: 3 axes, [`CURVE_SEGMENTS`] segments,
+/// [`CURVE_ZONES`] zones, moves along the job's B-spline.
+pub type CurveStream<'a> = Stream<3, CURVE_SEGMENTS, CURVE_ZONES, &'a planning::Curve<f64>>;
 
 /// The circle's radius (mm) and the angle of a chord (rad): chords of `2·R·sin(δ/2)`,
 /// 0.19999 mm.
@@ -87,13 +107,11 @@ fn count<R>(counter: Option<(&WideCounter, &Calibration)>, f: impl FnOnce() -> R
     }
 }
 
-/// Streams the job in `N`: each iteration pushes the next move if the stream takes it (it
-/// refuses while its segments or window are full), polls once and plays one tick; with a
-/// counter, `costs` gets the instructions.
+/// Streams the job in `N` ([`drive`] over the chords); with a counter, `costs` gets the
+/// instructions.
 ///
 /// # Errors
-/// The stream's errors; [`Error::CapacityExceeded`] when it does not end within
-/// [`MAX_TICKS`].
+/// As [`drive`].
 #[inline(never)]
 pub fn run<N: Kernel>(
     counter: Option<(&WideCounter, &Calibration)>,
@@ -101,13 +119,48 @@ pub fn run<N: Kernel>(
 ) -> Result<Streamed, Error> {
     let mut stream = DeviceStream::unset();
     start(&mut stream)?;
+    drive::<N, SEGMENTS, ZONES, _>(&mut stream, (&chord, CHORDS), counter, costs)
+}
+
+/// Plans and plays the whole B-spline of [`planning`] as one move through a
+/// [`CurveStream`] in `N`, at the limits of that job, blended nowhere (it is one move),
+/// compiled at its rate; with a counter, `costs` gets the instructions.
+///
+/// # Errors
+/// The curve's and [`drive`]'s errors.
+#[inline(never)]
+pub fn run_curve<N: Kernel>(
+    counter: Option<(&WideCounter, &Calibration)>,
+    costs: &mut Costs,
+) -> Result<Streamed, Error> {
+    let curve = planning::curve::<f64>()?;
+    let mut stream = CurveStream::unset();
+    let options = StreamOptions::new(planning::RATE_HZ);
+    stream.reset(curve.eval(0.0), planning::limits()?, options)?;
+    let one = |_| Move::curve(&curve);
+    drive::<N, CURVE_SEGMENTS, CURVE_ZONES, _>(&mut stream, (&one, 1), counter, costs)
+}
+
+/// Streams `count` moves (`moves(i)` the `i`-th) through `stream` in `N`: each iteration
+/// pushes the next move if the stream takes it (it refuses while its segments or window are
+/// full), polls once and plays one tick; with a counter, `costs` gets the instructions.
+///
+/// # Errors
+/// The stream's errors; [`Error::CapacityExceeded`] when it does not end within
+/// [`MAX_TICKS`].
+fn drive<N: Kernel, const Q: usize, const Z: usize, C: StreamCurve<3>>(
+    stream: &mut Stream<3, Q, Z, C>,
+    (moves, count_of): (&dyn Fn(usize) -> Move<3, C>, usize),
+    counter: Option<(&WideCounter, &Calibration)>,
+    costs: &mut Costs,
+) -> Result<Streamed, Error> {
     let mut queue = Queue::<Piece<N, 3>, PIECE_QUEUE>::new();
     let (mut producer, consumer) = queue.split();
-    let mut sampler = StreamSampler::new(consumer, &stream)?;
+    let mut sampler = StreamSampler::new(consumer, stream)?;
     let (mut next, mut finished) = (0, false);
     for tick in 0..MAX_TICKS {
-        if next < CHORDS {
-            let mv = chord(next);
+        if next < count_of {
+            let mv = moves(next);
             let (c, pushed) = count(counter, || stream.push(&mv));
             costs.total += c;
             if take(pushed)? {

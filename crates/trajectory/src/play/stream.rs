@@ -12,7 +12,7 @@ use super::feed::FeedRamp;
 use super::kernel::Kernel;
 use crate::error::Error;
 use crate::path::{AxisState, FeedRampLimits, Newton, Piece, Sample};
-use crate::stream::Stream;
+use crate::stream::{Stream, StreamCurve};
 
 /// Plays the pieces of a [`Stream`] from a queue, one [`Sample`] per call of
 /// [`next`](Self::next), in constant time: a forward-differencing tick inside a piece, and
@@ -104,9 +104,9 @@ impl<'q, N: Kernel, const A: usize> StreamSampler<'q, N, A> {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] when the position or the ramp's constants do not fit `N`.
-    pub fn new<const Q: usize, const Z: usize>(
+    pub fn new<const Q: usize, const Z: usize, C: StreamCurve<A>>(
         queue: Consumer<'q, Piece<N, A>>,
-        stream: &Stream<A, Q, Z>,
+        stream: &Stream<A, Q, Z, C>,
     ) -> Result<Self, Error> {
         let mut state = [AxisState::ZERO; A];
         for (s, x) in state.iter_mut().zip(stream.position()?) {

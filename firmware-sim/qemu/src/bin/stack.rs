@@ -18,7 +18,11 @@
 //!   `Stream<3, 64, 128>`, polled into a queue of 32 pieces and played by a
 //!   `StreamSampler`, all in the measured frame): `f32` pieces on the Cortex-M4F, `Q40` on
 //!   the Cortex-M3, the stack with the stream, queue and sampler, and the instructions per
-//!   move (its push and the polls until the next move is taken).
+//!   move (its push and the polls until the next move is taken);
+//! - planning and playing the same B-spline through a stream instead
+//!   ([`streaming::run_curve`]: one move of a `Stream<3, 8, 64, _>`, its pieces passing
+//!   through the window as they are played): the stack with the stream, queue and sampler,
+//!   and the instructions of the whole run.
 //!
 //! This firmware keeps the large RAM of `memory/boards.x` (4 MiB) and reports the RAM each
 //! operation needs.
@@ -40,7 +44,7 @@
 #![deny(unsafe_code)]
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
-use strak_curves::{BSpline, I32F32, Point, Scalar};
+use strak_curves::{BSpline, I32F32, ParamCurve, Point, Scalar};
 use strak_qemu::counter::{Calibration, WideCounter};
 use strak_qemu::jobs::{NumberFormat, find_blob};
 use strak_qemu::online::cases::{BENCH_SEED, OnlineCase, online_cases};
@@ -110,6 +114,10 @@ fn main() -> ! {
     stream::<f32>("stream-f32", &mut lines);
     #[cfg(not(target_abi = "eabihf"))]
     stream::<Q40>("stream-q40", &mut lines);
+    #[cfg(target_abi = "eabihf")]
+    stream_curve::<f32>("stream-bspline16-f32", None, &mut lines);
+    #[cfg(not(target_abi = "eabihf"))]
+    stream_curve::<Q40>("stream-bspline16-q40", None, &mut lines);
     defmt::println!("STACKS {=u32}", lines.stacks);
 
     let counter = WideCounter::start(p.SYST);
@@ -134,6 +142,10 @@ fn main() -> ! {
         &cal,
         &mut lines,
     );
+    #[cfg(target_abi = "eabihf")]
+    stream_curve::<f32>("stream-bspline16-f32", Some((&counter, &cal)), &mut lines);
+    #[cfg(not(target_abi = "eabihf"))]
+    stream_curve::<Q40>("stream-bspline16-q40", Some((&counter, &cal)), &mut lines);
     defmt::println!("DONE {=u32}", lines.cases);
     exit_success()
 }
@@ -159,6 +171,7 @@ fn sizes() {
     size::<OnlineMove<f32, 3>>("OnlineMove<f32,3>");
     size::<OnlineMove<f64, 3>>("OnlineMove<f64,3>");
     size::<streaming::DeviceStream>("Stream<3,64,128>");
+    size::<streaming::CurveStream<'static>>("Stream<3,8,64,&BSpline<[f64;3],16,20>>");
     size::<StreamSampler<'static, f32, 3>>("StreamSampler<f32,3>");
     size::<StreamSampler<'static, Q40, 3>>("StreamSampler<Q40,3>");
     size::<Piece<f32, 3>>("Piece<f32,3>");
@@ -301,9 +314,37 @@ fn stream<N: Kernel>(name: &str, lines: &mut Lines) {
     lines.stacks += 1;
 }
 
+/// Plans and plays the whole B-spline of the plan cases through a stream with pieces in `N`
+/// ([`streaming::run_curve`]): without a counter, logs the stack of the whole run (the
+/// stream, the queue and the sampler are values of its frame); with one, the instructions
+/// of the whole run. Fails unless it ends on the curve's end without an underrun.
+#[inline(never)]
+fn stream_curve<N: Kernel>(
+    name: &str,
+    counter: Option<(&WideCounter, &Calibration)>,
+    lines: &mut Lines,
+) {
+    let mut costs = streaming::Costs::default();
+    let (streamed, used) = stack::usage(|| streaming::run_curve::<N>(counter, &mut costs));
+    let streamed = ok_or_fail(name, streamed);
+    let curve = ok_or_fail(name, planning::curve::<f64>());
+    check_ends(name, &streamed, curve.eval(1.0));
+    if counter.is_some() {
+        instructions(name, costs.total);
+        lines.cases += 1;
+    } else {
+        stack::log(name, used);
+        lines.stacks += 1;
+    }
+}
+
 /// Fails the run unless the stream ended on the last chord's end without an underrun.
 fn check_streamed(name: &str, streamed: &streaming::Streamed) {
-    let end = streaming::chord(streaming::CHORDS - 1).to;
+    check_ends(name, streamed, streaming::chord(streaming::CHORDS - 1).to);
+}
+
+/// Fails the run unless the stream ended on `end` without an underrun.
+fn check_ends(name: &str, streamed: &streaming::Streamed, end: [f64; 3]) {
     let off = (0..3).fold(0.0_f64, |m, i| m.max((streamed.end[i] - end[i]).abs()));
     if off > 1e-5 || streamed.underruns > 0 {
         defmt::error!(
