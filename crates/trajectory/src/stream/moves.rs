@@ -565,16 +565,37 @@ impl<const D: usize, C: StreamCurve<D>> MoveCurve<D, C> {
     /// `u`, so that a piece's derivatives are taken from its own start on; 0 for the other
     /// shapes.
     fn piece_at(&self, u: f64) -> usize {
-        let (mut lo, mut hi) = (0, ParamCurve::piece_count(self) - 1);
+        let n = ParamCurve::piece_count(self);
+        // first the piece of equal pieces (a uniform knot vector's), then a binary search
+        #[allow(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            clippy::cast_precision_loss
+        )]
+        let guess = ((u * n as f64) as usize).min(n - 1);
+        if self.piece_start(guess) <= u && (guess + 1 == n || u < self.piece_start(guess + 1)) {
+            return guess;
+        }
+        let (mut lo, mut hi) = (0, n - 1);
         while lo < hi {
             let mid = hi - (hi - lo) / 2;
-            if self.piece_domain(mid).0 <= u {
+            if self.piece_start(mid) <= u {
                 lo = mid;
             } else {
                 hi = mid - 1;
             }
         }
         lo
+    }
+
+    /// Where piece `i` starts, as [`piece_domain`](ParamCurve::piece_domain) gives it.
+    fn piece_start(&self, i: usize) -> f64 {
+        match &self.shape {
+            Traced::Curve {
+                curve, lo, span, ..
+            } if i > 0 => ((curve.piece_domain(i).0 - lo) / span).clamp(0.0, 1.0),
+            _ => 0.0,
+        }
     }
 
     /// The pieces of the move that its parameters `from ..= to` cross: the first and their
