@@ -2139,6 +2139,17 @@ fn a_curve_of_many_pieces_streams_through_a_small_window() {
     ];
     let limits = Limits::<3>::new(200.0, 3000.0, 100_000.0).unwrap();
     let mut stream = Stream::<3, 8, 64, AnyCurve>::new([0.0; 3], limits, within(0.02)).unwrap();
+    // until the curve is appended up to its last piece, the next move waits for room
+    let mut full = stream.clone();
+    full.push(&moves[0]).unwrap();
+    full.push(&moves[1]).unwrap();
+    let behind = full.push(&moves[2]);
+    assert!(
+        matches!(behind, Err(Error::CapacityExceeded { capacity: 8, required }) if required > 8),
+        "{behind:?}"
+    );
+    assert_eq!(full.finish(), behind);
+    assert_eq!(full.stats().moves, 2);
     let played = run_stream::<f64, 8, 64, _>(&mut stream, &moves, moves.len());
     let peaks = played.peaks(1000.0);
     let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;

@@ -49,7 +49,7 @@ use crate::plan::{
 
 /// The segments of a pending curve move `Stream::advance` appends per call at most: a
 /// bound on the work of a push or a poll.
-const ADVANCE_PIECES: usize = 4;
+const ADVANCE_SEGMENTS: usize = 4;
 
 /// The speed-limit samples of a segment whose loads vary (a blend, a Bézier move), per piece
 /// of a curve move it crosses.
@@ -641,11 +641,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         let curve = MoveCurve::new(self.end, mv, self.options.arc_tolerance)?;
         let feed = mv.feed.unwrap_or(f64::INFINITY);
         if !self.advance()? {
-            // the pending curve's pieces before its last are not all appended yet
-            return Err(Error::CapacityExceeded {
-                capacity: Q,
-                required: Q + 1,
-            });
+            return Err(self.behind());
         }
         let Some(prev) = self.pending else {
             self.pending = Some(Pending {
@@ -718,10 +714,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// ```
     pub fn finish(&mut self) -> Result<(), Error> {
         if !self.advance()? {
-            return Err(Error::CapacityExceeded {
-                capacity: Q,
-                required: Q + 1,
-            });
+            return Err(self.behind());
         }
         let Some(prev) = self.pending else {
             return Ok(());
@@ -730,6 +723,19 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         self.emit(&prev, prev.before, Some((1.0, true)))?;
         self.pending = None;
         Ok(())
+    }
+
+    /// The error of a push or a finish while the pending curve move is not caught up
+    /// ([`Self::advance`]): the segments it would need with those held, about one per piece
+    /// left.
+    fn behind(&self) -> Error {
+        let left = self.pending.map_or(0, |p| {
+            p.curve.pieces_within((p.from, p.curve.streamed_until())).1
+        });
+        Error::CapacityExceeded {
+            capacity: Q,
+            required: self.segments.len() + left,
+        }
     }
 
     /// Whether nothing of the pending move is left to append before its end junction is
@@ -742,7 +748,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// Appends the part of the pending curve move that no blend with a next move can take
     /// (up to the middle of its last piece, [`MoveCurve`]), a segment from the middle of one
     /// piece to the middle of the next (with the blend before the move ahead of the first),
-    /// while there is room, at most [`ADVANCE_PIECES`] per call.
+    /// while there is room, at most [`ADVANCE_SEGMENTS`] per call.
     /// Returns whether the pending move is caught up: nothing of it is left to append before
     /// its end junction is known.
     ///
@@ -750,7 +756,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// The errors of [`Self::emit`], but for a lack of room while segments are buffered
     /// ahead (they make room as they are played).
     fn advance(&mut self) -> Result<bool, Error> {
-        for _ in 0..ADVANCE_PIECES {
+        for _ in 0..ADVANCE_SEGMENTS {
             let Some(prev) = self.pending else {
                 return Ok(true);
             };
@@ -782,7 +788,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// (held back, with its feed) and, with `span = Some((to, stop))`, its part up to its
     /// parameter `to` (ending at rest for a `stop`), with their zones; counts the blend's
     /// deviation. Nothing changes on an error.
-    // Inlined into `push` and `finish`: as a call of its own its frame (the segments' zones)
+    // Inlined into `push`, `finish` and `advance`: as a call of its own its frame (the segments' zones)
     // stacks on that of `push` (measured on the Cortex-M4F; ICOUNT.md).
     #[inline(always)]
     fn emit(
