@@ -588,7 +588,8 @@ impl<const D: usize, C: StreamCurve<D>> MoveCurve<D, C> {
         lo
     }
 
-    /// Where piece `i` starts, as [`piece_domain`](ParamCurve::piece_domain) gives it.
+    /// Where piece `i` starts, mapped onto `[0, 1]` (0 for the first piece and the other
+    /// shapes).
     fn piece_start(&self, i: usize) -> f64 {
         match &self.shape {
             Traced::Curve {
@@ -651,21 +652,17 @@ impl<const D: usize, C: StreamCurve<D>> ParamCurve for MoveCurve<D, C> {
         }
     }
 
-    /// A curve's piece `i` mapped onto `[0, 1]` (its ends exactly 0 and 1).
+    /// A curve's piece `i` mapped onto `[0, 1]` (its ends exactly 0 and 1): from its start
+    /// to the next piece's.
     fn piece_domain(&self, i: usize) -> (f64, f64) {
-        let Traced::Curve {
-            curve, lo, span, ..
-        } = &self.shape
-        else {
-            return (0.0, 1.0);
+        let last = ParamCurve::piece_count(self) - 1;
+        let i = i.min(last);
+        let end = if i == last {
+            1.0
+        } else {
+            self.piece_start(i + 1)
         };
-        let last = curve.piece_count() - 1;
-        let (a, b) = curve.piece_domain(i.min(last));
-        let map = |x: f64| ((x - lo) / span).clamp(0.0, 1.0);
-        (
-            if i == 0 { 0.0 } else { map(a) },
-            if i >= last { 1.0 } else { map(b) },
-        )
+        (self.piece_start(i), end)
     }
 
     fn eval(&self, u: f64) -> [f64; D] {

@@ -757,12 +757,9 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// ahead (they make room as they are played).
     fn advance(&mut self) -> Result<bool, Error> {
         for _ in 0..ADVANCE_SEGMENTS {
-            let Some(prev) = self.pending else {
+            let Some(prev) = self.pending.filter(|_| !self.caught_up()) else {
                 return Ok(true);
             };
-            if self.caught_up() {
-                return Ok(true);
-            }
             let to = prev.curve.next_cut(prev.from);
             match self.emit(&prev, prev.before, Some((to, false))) {
                 Ok(()) => {}
