@@ -33,6 +33,7 @@ pub use play::events::{Event, EventPlayer, Playable, RunEnd, TimedEvent};
 pub use play::guard::{FeedGuard, MAX_DELAY, MAX_RAMP_TICKS, Schedule};
 pub use play::{Kernel, Sampler, SamplerState, StreamSampler};
 pub use stream::{
-    Blend, Junction, Move, MoveCurve, NoCurve, PieceQueue, REVERSAL_ANGLE, Shape, Stream,
-    StreamCurve, StreamOptions, StreamStats, Toolpath, chain_junctions, junction,
+    Blend, Junction, Move, MoveCurve, NoCurve, PieceQueue, REVERSAL_ANGLE, STRETCH_PIECES, Shape,
+    Stream, StreamCurve, StreamOptions, StreamStats, Toolpath, chain_junctions, junction,
+    plan_path_into,
 };

@@ -7,6 +7,7 @@ mod options;
 mod peaks;
 mod planned;
 mod spline_fit;
+mod streamed;
 mod stretch;
 mod tangential;
 #[cfg(test)]
@@ -17,6 +18,7 @@ pub use options::{CompileOptions, Tolerance};
 pub use stretch::Stretches;
 
 pub(crate) use law::TickMotion;
+pub(crate) use streamed::{StreamedPlan, seal_streamed};
 pub(crate) use stretch::StretchFit;
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};

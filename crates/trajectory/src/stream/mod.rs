@@ -9,8 +9,10 @@ mod moves;
 mod queue;
 mod segment;
 mod toolpath;
+mod whole;
 
 pub use blend::{Blend, Junction, REVERSAL_ANGLE, chain_junctions, junction};
 pub use moves::{Move, MoveCurve, NoCurve, Shape, StreamCurve};
-pub use queue::{PieceQueue, Stream, StreamOptions, StreamStats};
+pub use queue::{PieceQueue, STRETCH_PIECES, Stream, StreamOptions, StreamStats};
 pub use toolpath::Toolpath;
+pub use whole::plan_path_into;

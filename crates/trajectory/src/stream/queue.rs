@@ -37,8 +37,8 @@ use super::blend::{Blend, Junction, chain, has_span, junction};
 use super::committed::{Committed, PHASES};
 use super::moves::{Move, MoveCurve, NoCurve, StreamCurve};
 use super::segment::Segment;
-use crate::compile::StretchFit;
 use crate::compile::TickMotion;
+use crate::compile::{StreamedPlan, StretchFit};
 use crate::error::Error;
 use crate::num::Number;
 use crate::path::{AxisState, MIN_ALPHA, Piece, RampBasis, feed_ramp_f64};
@@ -74,8 +74,13 @@ const FIT_MARGIN: f64 = 1.0 - 1e-6;
 /// margin's `1e-5`.
 const VELOCITY_FIT_MARGIN: f64 = 1.0 - 1e-5;
 
-/// The most pieces of one stretch; a stretch that needs more is halved.
-const STRETCH_PIECES: usize = 24;
+/// The most pieces one [`Stream::poll`] writes (a stretch that needs more is halved): it
+/// compiles only into a queue with more room than this.
+///
+/// ```
+/// assert_eq!(strak_trajectory::STRETCH_PIECES, 24);
+/// ```
+pub const STRETCH_PIECES: usize = 24;
 
 /// Where a stream's pieces go: a queue the sampler plays from.
 ///
@@ -519,6 +524,18 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         1.0 / self.options.plan.rate()
     }
 
+    /// What the stream plans and compiles under, with the machine's `limits` it was reset
+    /// with: the header of a path of its pieces is derived from it.
+    pub(super) fn plan_of<'a>(&'a self, limits: &'a Limits<D>) -> StreamedPlan<'a, D> {
+        StreamedPlan {
+            rate: self.options.plan.rate(),
+            tolerance: self.fit.tolerance,
+            promised: &self.promised,
+            limits,
+            feed_share: self.options.plan.feed_share(),
+        }
+    }
+
     /// The feed ramp's largest rate and change per tick of the feed factor, and the rate in
     /// ticks per second, for [`StreamSampler`](crate::StreamSampler).
     pub(crate) fn feed_ramp(&self) -> (f64, f64, f64) {
@@ -545,6 +562,9 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
                 Some(p) if p.from == 0.0 => p.curve.eval(0.0),
                 _ => self.end,
             });
+        }
+        if self.is_idle() {
+            return self.rest_point();
         }
         self.motion().position(self.next_tick)
     }
@@ -1005,11 +1025,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// point, no velocity or acceleration, so that a sampler holding on after it holds
     /// exactly there.
     fn rest_piece<N: Number>(&self, last: u32) -> Result<Piece<N, D>, Error> {
-        // Where the window's committed motion ends, at rest: the end of its last segment
-        // exactly (the state at the tick can fall short of it by the rounding of the last
-        // phase's speed).
-        let (_, s, _) = self.window.entry();
-        let end = self.motion().frame(s, false)?.point;
+        let end = self.rest_point()?;
         let mut axes = [AxisState::ZERO; D];
         for (axis, x) in axes.iter_mut().zip(end) {
             axis.position = N::from_f64(x).ok_or(Error::OutOfRange)?;
@@ -1019,6 +1035,14 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
             start: last,
             ticks: 1,
         })
+    }
+
+    /// Where the motion rests once the window is empty: the end of its last segment exactly
+    /// (the committed motion's arc length can fall short of it by the rounding of the last
+    /// phase's speed, and a curve evaluated short of its end misses the end point).
+    fn rest_point(&self) -> Result<[f64; D], Error> {
+        let last = self.segments.back().ok_or(Error::EmptyPath)?;
+        Ok(last.frame(last.end())?.point)
     }
 
     /// The committed motion.
