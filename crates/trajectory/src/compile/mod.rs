@@ -242,7 +242,7 @@ where
         let law = TickLaw::new(curve, timing, rate_hz, stretch, min_ticks)?;
         let tolerance = fit_law(&law, options, &mut fit)?;
         let tangential = limits.is_some_and(|l| l.tangential_acceleration.is_finite());
-        let peaks = fit_peaks(&fit, period, tangential);
+        let peaks = fit_peaks(&fit, period, tangential, usize::MAX);
         let (factor, quantity) = match &limits {
             Some(limits) => peaks.slowdown(limits)?,
             None => (1.0, None),
@@ -383,10 +383,11 @@ fn fit_peaks<const A: usize, K: Knots<A>, E: EndClamps<A>>(
     fit: &SplineFit<A, K, E>,
     period: f64,
     tangential: bool,
+    path: usize,
 ) -> Peaks {
     let mut peaks = (0..fit.pieces()).fold(Peaks::default(), |m, j| {
         let (coeffs, n) = fit.piece(j);
-        m.max(Peaks::of_piece(&coeffs, f64::from(n), period))
+        m.max(Peaks::of_shaped_piece(&coeffs, f64::from(n), period, path))
     });
     if tangential {
         peaks.tangential = tangential_peak(fit, period);

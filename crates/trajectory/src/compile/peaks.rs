@@ -87,6 +87,26 @@ impl Peaks {
         }
     }
 
+    /// [`of_piece`](Self::of_piece) of a motion whose first `path` axes shape the path: the
+    /// norms over those, the per-axis peaks of every axis.
+    pub(super) fn of_shaped_piece<const A: usize>(
+        coeffs: &[[f64; 4]; A],
+        n: f64,
+        period: f64,
+        path: usize,
+    ) -> Peaks {
+        if path >= A {
+            return Self::of_piece(coeffs, n, period);
+        }
+        let mut shaped = *coeffs;
+        for c in shaped.iter_mut().skip(path) {
+            *c = [0.0; 4];
+        }
+        let mut peaks = Self::of_piece(&shaped, n, period);
+        (peaks.axis_velocity, peaks.axis_acceleration) = axis_peaks(coeffs, n, period);
+        peaks
+    }
+
     /// The smallest factor `λ ≥ 1` by which slowing the motion down (time stretched by `λ`:
     /// speed `/λ`, acceleration `/λ²`, jerk `/λ³`) brings these peaks within `limits`, and the
     /// quantity that needs the most; `(1, None)` when they are within already (up to

@@ -113,6 +113,7 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
         let fit = StretchFit {
             tolerance,
             max_piece_ticks: options.max_piece_ticks(),
+            path_axes: A,
         };
         Ok(Stretches { law, fit, next: 0 })
     }
@@ -189,6 +190,9 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
 pub(crate) struct StretchFit {
     pub(crate) tolerance: f64,
     pub(crate) max_piece_ticks: u32,
+    /// The axes that shape the path: the limits of speed, acceleration and jerk are norms
+    /// over these (the others are held to their own limits).
+    pub(crate) path_axes: usize,
 }
 
 impl StretchFit {
@@ -251,7 +255,7 @@ impl StretchFit {
         let (mut tolerance, mut exceeded) = (self.tolerance, Quantity::Velocity);
         for _ in 0..=TIGHTER_FITS {
             self.fit_span(motion, from, to, tolerance, &mut fit)?;
-            let peaks = fit_peaks(&fit, period, false);
+            let peaks = fit_peaks(&fit, period, false, self.path_axes);
             let quantity = match motion.limits() {
                 Some(limits) => peaks.slowdown(&limits)?.1,
                 None => None,

@@ -38,15 +38,17 @@ use super::{greater, to_param};
 const CUSP_STEPS: usize = 200;
 
 /// The unit tangent `c'/|c'|` at `u` in `f64` (`None` where `c'` vanishes or is not
-/// finite), and `|c'|`.
+/// finite), and `|c'|`, in the first `path` axes (the others, which ride along, are 0).
 pub(super) fn direction<C: ParamCurveDeriv, const A: usize>(
     curve: &C,
     us: ScalarOf<C>,
+    path: usize,
 ) -> Option<([f64; A], f64)> {
     let d = curve.deriv(us, 1);
     let mut t = [0.0; A];
     let mut n2 = 0.0;
-    for (i, slot) in t.iter_mut().enumerate().take(<C::Point as Point>::DIM) {
+    let dim = <C::Point as Point>::DIM.min(path);
+    for (i, slot) in t.iter_mut().enumerate().take(dim) {
         let x = d.coord(i).to_f64();
         *slot = x;
         n2 += x * x;
@@ -59,16 +61,17 @@ pub(super) fn direction<C: ParamCurveDeriv, const A: usize>(
 }
 
 /// The curvature vector `(c'' − (c''·T)·T)/|c'|²` at `u`, where the unit tangent is `t`
-/// and `|c'| = speed`.
+/// and `|c'| = speed`, in the first `path` axes (the others are 0).
 fn curvature<C: ParamCurveDeriv, const A: usize>(
     curve: &C,
     u: ScalarOf<C>,
-    t: &[f64; A],
-    speed: f64,
+    (t, speed): (&[f64; A], f64),
+    path: usize,
 ) -> [f64; A] {
     let d = curve.deriv(u, 2);
     let mut c2 = [0.0; A];
-    for (i, slot) in c2.iter_mut().enumerate().take(<C::Point as Point>::DIM) {
+    let dim = <C::Point as Point>::DIM.min(path);
+    for (i, slot) in c2.iter_mut().enumerate().take(dim) {
         *slot = d.coord(i).to_f64();
     }
     let along = dot(&c2, t);
@@ -88,6 +91,8 @@ pub(super) struct JoinRule<const A: usize> {
     axis_step: [f64; A],
     /// `q·j·T`: the largest `v²·|Δk|`.
     curvature_step: f64,
+    /// The axes that shape the path (see [`PlanOptions`]).
+    path: usize,
 }
 
 impl<const A: usize> JoinRule<A> {
@@ -101,6 +106,7 @@ impl<const A: usize> JoinRule<A> {
             step,
             axis_step: limits.axis_acceleration().map(|a| q * a * period),
             curvature_step: q * jerk * period,
+            path: options.path_axes(),
         }
     }
 
@@ -113,8 +119,8 @@ impl<const A: usize> JoinRule<A> {
         let step = 2.0 * ScalarOf::<C>::EPSILON.to_f64() * u.abs().max(1.0);
         let left_at = to_param(curve, (u - step).max(lo));
         let (Some((left, sl)), Some((right, sr))) = (
-            direction::<C, A>(curve, left_at),
-            direction::<C, A>(curve, u_join),
+            direction::<C, A>(curve, left_at, self.path),
+            direction::<C, A>(curve, u_join, self.path),
         ) else {
             return f64::INFINITY;
         };
@@ -122,8 +128,8 @@ impl<const A: usize> JoinRule<A> {
             return 0.0;
         }
         let mut cap = self.curvature_cap::<ScalarOf<C>>(
-            curvature(curve, left_at, &left, sl),
-            curvature(curve, u_join, &right, sr),
+            curvature(curve, left_at, (&left, sl), self.path),
+            curvature(curve, u_join, (&right, sr), self.path),
         );
         let delta: [f64; A] = core::array::from_fn(|i| right[i] - left[i]);
         let noise = 64.0 * ScalarOf::<C>::EPSILON.to_f64() * (1.0 / sl.min(sr)).max(1.0);
@@ -161,6 +167,7 @@ pub(super) fn locate_reversal<C: ParamCurveDeriv, const A: usize>(
     curve: &C,
     (u_a, t_a): (f64, [f64; A]),
     u_b: f64,
+    path: usize,
 ) -> f64 {
     let (mut lo, mut hi) = (u_a, u_b);
     for _ in 0..CUSP_STEPS {
@@ -173,7 +180,7 @@ pub(super) fn locate_reversal<C: ParamCurveDeriv, const A: usize>(
         if !(mid > lo && mid < hi) || m == l || m == h {
             break;
         }
-        match direction::<C, A>(curve, m) {
+        match direction::<C, A>(curve, m, path) {
             None => return mid,
             Some((t, _)) if dot(&t, &t_a) > 0.0 => lo = mid,
             Some(_) => hi = mid,
@@ -254,16 +261,16 @@ mod tests {
     fn cusp_is_located() {
         // c(u) = (20u − 25u², 0): c' = 20 − 50u vanishes at u = 0.4 and reverses
         let c = Bezier::new([[0.0, 0.0], [10.0, 0.0], [-5.0, 0.0]]).unwrap();
-        let ta = direction::<_, 2>(&c, 0.1).unwrap().0;
-        let tb = direction::<_, 2>(&c, 0.7).unwrap().0;
+        let ta = direction::<_, 2>(&c, 0.1, 2).unwrap().0;
+        let tb = direction::<_, 2>(&c, 0.7, 2).unwrap().0;
         assert!(reverses(&ta, &tb));
-        let u = locate_reversal(&c, (0.1, ta), 0.7);
+        let u = locate_reversal(&c, (0.1, ta), 0.7, 2);
         assert!((u - 0.4).abs() < 1e-12, "{u}");
-        assert!(direction::<_, 2>(&c, 0.4).is_none());
+        assert!(direction::<_, 2>(&c, 0.4, 2).is_none());
         // f32: located to the scalar's resolution
         let c = Bezier::new([[0.0_f32, 0.0], [10.0, 0.0], [-5.0, 0.0]]).unwrap();
-        let ta = direction::<_, 2>(&c, 0.1).unwrap().0;
-        let u = locate_reversal(&c, (0.1, ta), 0.7);
+        let ta = direction::<_, 2>(&c, 0.1, 2).unwrap().0;
+        let u = locate_reversal(&c, (0.1, ta), 0.7, 2);
         assert!((u - 0.4).abs() < 1e-6, "{u}");
     }
 }

@@ -117,6 +117,10 @@ pub struct PlanOptions {
     corner_angle: f64,
     feed_share: f64,
     rate: f64,
+    /// The axes that shape the path (the first ones): the norms of speed, acceleration,
+    /// jerk and curvature are taken over them; the others ride along (a stream's
+    /// [`StreamOptions::with_path_axes`](crate::StreamOptions::with_path_axes)).
+    path_axes: usize,
 }
 
 impl Default for PlanOptions {
@@ -146,6 +150,7 @@ impl PlanOptions {
             corner_angle: 1e-4,
             feed_share: Self::DEFAULT_FEED_SHARE,
             rate: Self::DEFAULT_RATE,
+            path_axes: usize::MAX,
         }
     }
 
@@ -203,6 +208,17 @@ impl PlanOptions {
     pub const fn with_rate(mut self, rate_hz: f64) -> Self {
         self.rate = rate_hz;
         self
+    }
+
+    /// These options with the first `axes` axes shaping the path (see the field).
+    pub(crate) const fn with_path_axes(mut self, axes: usize) -> Self {
+        self.path_axes = axes;
+        self
+    }
+
+    /// How many of the first axes shape the path (all of them: `usize::MAX`).
+    pub(crate) const fn path_axes(&self) -> usize {
+        self.path_axes
     }
 
     /// The turn at a join above which the motion stops there (radians).

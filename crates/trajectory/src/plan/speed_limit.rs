@@ -130,13 +130,13 @@ fn local<C, const A: usize>(
     curve: &C,
     u: f64,
     limits: &Limits<A>,
-    jerk: f64,
-    share: f64,
+    (jerk, share): (f64, f64),
+    path: usize,
 ) -> Result<Option<Local<A>>, Error>
 where
     C: ParamCurveDeriv,
 {
-    let Some(mut out) = loads::<C, A>(curve, u, limits.velocity())? else {
+    let Some(mut out) = loads::<C, A>(curve, u, limits.velocity(), path)? else {
         return Ok(None);
     };
     out.v = speed_limit(&out, limits, jerk, share);
@@ -149,13 +149,19 @@ where
 /// `σ = |c'|`, `T = c'/σ`, `κN = (c'' − σ'T)/σ²` and the third derivative by arc length
 /// `x_sss = (c''' − σ''T − 3σσ'κN)/σ³` (do Carmo, *Differential Geometry of Curves and
 /// Surfaces*, §1-5).
-fn loads<C, const A: usize>(curve: &C, u: f64, v_max: f64) -> Result<Option<Local<A>>, Error>
+fn loads<C, const A: usize>(
+    curve: &C,
+    u: f64,
+    v_max: f64,
+    path: usize,
+) -> Result<Option<Local<A>>, Error>
 where
     C: ParamCurveDeriv,
 {
     let us = to_param(curve, u);
     let (d1, d2, d3) = (curve.deriv(us, 1), curve.deriv(us, 2), curve.deriv(us, 3));
     let dim = <C::Point as Point>::DIM;
+    let shaping = dim.min(path);
     let coords = |i: usize| {
         (
             d1.coord(i).to_f64(),
@@ -164,7 +170,7 @@ where
         )
     };
     let (mut s11, mut s12, mut s22, mut s13, mut s33) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for i in 0..dim {
+    for i in 0..shaping {
         let (x1, x2, x3) = coords(i);
         s11 += x1 * x1;
         s12 += x1 * x2;
@@ -188,17 +194,20 @@ where
         let (x1, x2, x3) = coords(i);
         let t = x1 / sigma;
         let kn = (x2 - sigma1 * t) / s11;
-        let sss = (x3 - sigma2 * t - 3.0 * sigma * sigma1 * kn) / (s11 * sigma);
-        kappa2 += kn * kn;
-        turn2 += sss * sss;
         if let Some(slot) = out.tangent.get_mut(i) {
             *slot = t.abs();
         }
-        if let Some(slot) = out.direction.get_mut(i) {
-            *slot = t;
-        }
         if let Some(slot) = out.normal.get_mut(i) {
             *slot = kn.abs();
+        }
+        if i >= shaping {
+            continue; // an axis riding along: its own velocity and acceleration only
+        }
+        let sss = (x3 - sigma2 * t - 3.0 * sigma * sigma1 * kn) / (s11 * sigma);
+        kappa2 += kn * kn;
+        turn2 += sss * sss;
+        if let Some(slot) = out.direction.get_mut(i) {
+            *slot = t;
         }
     }
     out.kappa = libm::sqrt(kappa2);
@@ -300,13 +309,21 @@ struct Refiner<'a, C, L, const A: usize> {
     limits: &'a Limits<A>,
     jerk: f64,
     share: f64,
+    /// The axes that shape the path ([`PlanOptions`]).
+    path: usize,
 }
 
 impl<C: ParamCurveDeriv, L: ArcLengths, const A: usize> Refiner<'_, C, L, A> {
     /// The sample at the parameter `u`, at the arc length `s` (`None` where the curve has
     /// no tangent).
     fn sample_at(&self, u: f64, s: f64) -> Result<Option<Sampled<A>>, Error> {
-        let loads = local(self.curve, u, self.limits, self.jerk, self.share)?;
+        let loads = local(
+            self.curve,
+            u,
+            self.limits,
+            (self.jerk, self.share),
+            self.path,
+        )?;
         Ok(loads.map(|loads| Sampled { u, s, loads }))
     }
 
@@ -667,6 +684,7 @@ fn cusps_in<C: ParamCurveDeriv, const A: usize>(
     curve: &C,
     last: &mut Option<(f64, [f64; A])>,
     samples: [(f64, Option<&Local<A>>); 2],
+    path: usize,
 ) -> [Option<f64>; 2] {
     let mut out = [None; 2];
     for ((u, l), slot) in samples.into_iter().zip(out.iter_mut()) {
@@ -674,7 +692,7 @@ fn cusps_in<C: ParamCurveDeriv, const A: usize>(
         if let Some((u_a, t_a)) = *last
             && reverses(&t_a, &l.direction)
         {
-            *slot = Some(locate_reversal(curve, (u_a, t_a), u));
+            *slot = Some(locate_reversal(curve, (u_a, t_a), u, path));
         }
         *last = Some((u, l.direction));
     }
@@ -760,6 +778,7 @@ where
         limits,
         jerk,
         share,
+        path: options.path_axes(),
     };
     let sample = |k: usize| refiner.sample(grid.at(k));
     let simpson = arcs.lengths_by_samples();
@@ -807,6 +826,7 @@ where
                 (grid.at(2 * k + 1), mid.as_ref().map(|l| &l.loads)),
                 (u_next, next.as_ref().map(|l| &l.loads)),
             ],
+            refiner.path,
         );
         let u_end = (k + 1 < grid.m).then_some(u_next);
         mark_points(&mut zones, curve, arcs, &mut joins, cusps, u_end, worst);
@@ -857,6 +877,7 @@ mod tests {
             limits: &limits,
             jerk: 1e4,
             share: 0.5,
+            path: usize::MAX,
         };
         let grid = Grid {
             u0: 0.0,
@@ -886,7 +907,7 @@ mod tests {
         let c = Nurbs::<[f64; 2], 9, 12>::circle([0.0, 0.0], 10.0).unwrap();
         let limits = Limits::<2>::new(500.0, 1000.0, 1e4).unwrap();
         for k in 0..=40 {
-            let l = local(&c, 0.1 * f64::from(k), &limits, 1e4, 0.5)
+            let l = local(&c, 0.1 * f64::from(k), &limits, (1e4, 0.5), usize::MAX)
                 .unwrap()
                 .unwrap();
             assert!((l.kappa - 0.1).abs() < 1e-12, "κ = {}", l.kappa);
@@ -894,17 +915,21 @@ mod tests {
             assert!((l.v - 5000.0_f64.sqrt()).abs() < 1e-9);
         }
         // the jerk limit binds below j = q·... : ∛(0.5·100/0.01) = ∛5000
-        let l = local(&c, 0.5, &limits, 100.0, 0.5).unwrap().unwrap();
+        let l = local(&c, 0.5, &limits, (100.0, 0.5), usize::MAX)
+            .unwrap()
+            .unwrap();
         assert!((l.v - libm::cbrt(5000.0)).abs() < 1e-9);
         // at the start (10, 0): tangent (0, 1), κN = (−0.1, 0)
-        let l = local(&c, 0.0, &limits, 1e4, 0.5).unwrap().unwrap();
+        let l = local(&c, 0.0, &limits, (1e4, 0.5), usize::MAX)
+            .unwrap()
+            .unwrap();
         assert!(l.tangent[0].abs() < 1e-12 && (l.tangent[1] - 1.0).abs() < 1e-12);
         assert!((l.normal[0] - 0.1).abs() < 1e-12 && l.normal[1].abs() < 1e-12);
         // an axis acceleration limit of 100 on x with share 0.5: v ≤ √(50/0.1) ≈ 22.36
         let limits = limits
             .with_axis_acceleration([100.0, f64::INFINITY])
             .unwrap();
-        let l = local(&c, 0.0, &limits, f64::INFINITY, 0.5)
+        let l = local(&c, 0.0, &limits, (f64::INFINITY, 0.5), usize::MAX)
             .unwrap()
             .unwrap();
         assert!((l.v - 500.0_f64.sqrt()).abs() < 1e-9);
@@ -935,7 +960,9 @@ mod tests {
         let limits = Limits::<3>::new(1.0, 1.0, 1.0).unwrap();
         for k in 1..10 {
             let u = 0.1 * f64::from(k);
-            let l = local(&c, u, &limits, 1.0, 0.5).unwrap().unwrap();
+            let l = local(&c, u, &limits, (1.0, 0.5), usize::MAX)
+                .unwrap()
+                .unwrap();
             let h = 1e-5;
             let (p, m) = (kn(u + h), kn(u - h));
             let sigma = c.deriv(u, 1).iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -959,8 +986,16 @@ mod tests {
         // c'(0) = 0: the first two control points coincide
         let c = Bezier::new([[0.0, 0.0], [0.0, 0.0], [1.0, 1.0]]).unwrap();
         let limits = Limits::<2>::new(1.0, 1.0, 1.0).unwrap();
-        assert!(local(&c, 0.0, &limits, 1.0, 0.5).unwrap().is_none());
-        assert!(local(&c, 0.5, &limits, 1.0, 0.5).unwrap().is_some());
+        assert!(
+            local(&c, 0.0, &limits, (1.0, 0.5), usize::MAX)
+                .unwrap()
+                .is_none()
+        );
+        assert!(
+            local(&c, 0.5, &limits, (1.0, 0.5), usize::MAX)
+                .unwrap()
+                .is_some()
+        );
     }
 
     #[test]
@@ -1056,7 +1091,7 @@ mod tests {
             let samples: std::vec::Vec<(f64, Local<3>)> = (0..=fine)
                 .filter_map(|k| {
                     let u = f64::from(k) / f64::from(fine);
-                    loads::<_, 3>(&c, u, 200.0)
+                    loads::<_, 3>(&c, u, 200.0, usize::MAX)
                         .unwrap()
                         .map(|l| (table.length_at(u), l))
                 })

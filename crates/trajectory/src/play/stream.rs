@@ -104,9 +104,9 @@ impl<'q, N: Kernel, const A: usize> StreamSampler<'q, N, A> {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] when the position or the ramp's constants do not fit `N`.
-    pub fn new<const Q: usize, const Z: usize, C: StreamCurve<A>>(
+    pub fn new<const Q: usize, const Z: usize, C: StreamCurve<A>, const R: usize>(
         queue: Consumer<'q, Piece<N, A>>,
-        stream: &Stream<A, Q, Z, C>,
+        stream: &Stream<A, Q, Z, C, R>,
     ) -> Result<Self, Error> {
         let mut state = [AxisState::ZERO; A];
         for (s, x) in state.iter_mut().zip(stream.position()?) {

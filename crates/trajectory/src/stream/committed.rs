@@ -36,8 +36,8 @@ const JOIN_ROUNDING: f64 = 1e-12;
 
 /// The committed motion of a stream: its phases in time order and the segments they run
 /// along, on the grid of `period` seconds, within the limits `limits`, up to `end`.
-pub(super) struct Committed<'a, const D: usize, const Q: usize, C> {
-    pub(super) segments: &'a Deque<Segment<D, C>, Q>,
+pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usize> {
+    pub(super) segments: &'a Deque<Segment<D, C, R>, Q>,
     pub(super) phases: &'a Deque<Phase, PHASES>,
     pub(super) period: f64,
     pub(super) limits: MotionLimits,
@@ -49,7 +49,7 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize, C> {
     pub(super) recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
 }
 
-impl<const D: usize, const Q: usize, C: StreamCurve<D>> Committed<'_, D, Q, C> {
+impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committed<'_, D, Q, C, R> {
     /// The state at time `t`: in the last phase that starts at or before it. After a phase
     /// that ends at rest the motion holds still until the next phase, exactly where that
     /// one starts (or at the committed end `end`, the end of its last zone): the rounding
@@ -145,7 +145,9 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>> Committed<'_, D, Q, C> {
     }
 }
 
-impl<const D: usize, const Q: usize, C: StreamCurve<D>> TickMotion<D> for Committed<'_, D, Q, C> {
+impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> TickMotion<D>
+    for Committed<'_, D, Q, C, R>
+{
     fn period(&self) -> f64 {
         self.period
     }

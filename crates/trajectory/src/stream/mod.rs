@@ -7,6 +7,7 @@ mod blend;
 mod committed;
 mod moves;
 mod queue;
+mod ride;
 mod segment;
 mod toolpath;
 mod whole;

@@ -35,7 +35,7 @@ use strak_curves::ParamCurve;
 
 use super::blend::{Blend, Junction, chain, has_span, junction};
 use super::committed::{Committed, PHASES};
-use super::moves::{Move, MoveCurve, NoCurve, StreamCurve};
+use super::moves::{Move, MoveCurve, NoCurve, Shape, StreamCurve};
 use super::segment::Segment;
 use crate::compile::TickMotion;
 use crate::compile::{StreamedPlan, StretchFit};
@@ -285,8 +285,10 @@ pub struct StreamStats {
 /// blend's feed (held back until the next junction is known: where the two blends take all
 /// of the move between them, they are joined as a [`chain`]).
 #[derive(Clone, Copy, Debug)]
-struct Pending<const D: usize, C> {
+struct Pending<const D: usize, C, const R: usize> {
     curve: MoveCurve<D, C>,
+    /// Where each axis riding along starts and ends the move.
+    ride: [(f64, f64); R],
     from: f64,
     feed: f64,
     before: Option<(Blend<D>, f64)>,
@@ -294,8 +296,69 @@ struct Pending<const D: usize, C> {
     offset: f64,
 }
 
+impl<const D: usize, C: StreamCurve<D>, const R: usize> Pending<D, C, R> {
+    /// The value and rate `de/ds` of each axis riding along at the move's parameter `u`: in
+    /// proportion to the move's arc length from its start value to its end value (each end
+    /// exactly).
+    ///
+    /// # Errors
+    /// [`Error::Curve`] when the move's arc length does not converge.
+    fn riding_at(&self, u: f64) -> Result<[(f64, f64); R], Error> {
+        let length = self.curve.length();
+        let share = if R == 0 || u <= 0.0 || u >= 1.0 {
+            0.0
+        } else {
+            self.curve.length_to(u)? / length
+        };
+        Ok(self.ride.map(|(e0, e1)| {
+            let e = match u {
+                u if u >= 1.0 => e1,
+                u if u <= 0.0 => e0,
+                _ => e0 + (e1 - e0) * share,
+            };
+            (e, (e1 - e0) / length)
+        }))
+    }
+}
+
 /// A stream of moves in `D` axes: at most `Q` segments (each move's part between its blends,
-/// and each blend) and `Z` zones in the look-ahead window.
+/// and each blend) and `Z` zones in the look-ahead window; `C` is the type of its curve
+/// moves ([`Move::curve`]).
+///
+/// # Axes that ride along
+/// The last `R` axes (0 by default) do not shape the path: an extruder E after X, Y, Z
+/// (`Stream<4, Q, Z, NoCurve<4>, 1>`), a rotary axis. The path is that of the first `D − R`
+/// axes: its arc length, its curvature, the corner tolerance, and the path limits of
+/// [`Limits`] (velocity, acceleration, jerk, and each move's feed) are taken over them alone.
+/// Along a move each riding axis goes from its start to its end in proportion to the
+/// move's arc length; through a corner blend it goes from the value and rate it leaves one
+/// move with to those it enters the next with, on a quintic in the blend's parameter, so
+/// that its velocity and acceleration are continuous. Its limits enter the plan as the
+/// per-axis limits of [`Limits`] ([`with_axis_velocity`](Limits::with_axis_velocity),
+/// [`with_axis_acceleration`](Limits::with_axis_acceleration)): with `e' = de/ds` and
+/// `e'' = d²e/ds²` along the path, its velocity `e'·v` and acceleration `e'·a + e''·v²` are
+/// kept within them, so a move whose riding axis travels far for its path length (a long
+/// extrusion on a short line) moves the path slower. A move of the riding axes alone has no
+/// path ([`Error::DegenerateMove`]), and a curve move, which shapes all of its axes, is
+/// refused while axes ride along ([`Error::AxisMismatch`]).
+///
+/// ```
+/// use heapless::Deque;
+/// use strak_trajectory::{Limits, Move, NoCurve, Piece, Stream, StreamOptions};
+/// let limits = Limits::new(100.0, 2_000.0, 50_000.0)?
+///     .with_axis_velocity([f64::INFINITY, f64::INFINITY, 5.0])?; // E at most 5 mm/s
+/// let mut stream = Stream::<3, 8, 64, NoCurve<3>, 1>::new([0.0; 3], limits, StreamOptions::new(1_000.0))?;
+/// stream.push(&Move::line([10.0, 0.0, 1.0]))?; // X, Y and E: 10 mm of path, 1 mm of E
+/// stream.push(&Move::line([10.0, 2.0, 3.0]))?; // 2 mm of path, 2 mm of E: E binds
+/// stream.finish()?;
+/// let mut pieces = Deque::<Piece<f64, 3>, 64>::new();
+/// while !stream.is_idle() {
+///     stream.poll(&mut pieces)?;
+///     pieces.clear();
+/// }
+/// assert_eq!(stream.position()?, [10.0, 2.0, 3.0]);
+/// # Ok::<(), strak_trajectory::Error>(())
+/// ```
 ///
 /// ```
 /// use heapless::Deque;
@@ -318,7 +381,13 @@ struct Pending<const D: usize, C> {
 /// # Ok::<(), strak_trajectory::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Stream<const D: usize, const Q: usize, const Z: usize, C = NoCurve<D>> {
+pub struct Stream<
+    const D: usize,
+    const Q: usize,
+    const Z: usize,
+    C = NoCurve<D>,
+    const R: usize = 0,
+> {
     /// Whether limits and options are set ([`Stream::reset`]).
     ready: bool,
     /// The limits the window plans with (the feed reserve taken off).
@@ -327,10 +396,14 @@ pub struct Stream<const D: usize, const Q: usize, const Z: usize, C = NoCurve<D>
     promised: MotionLimits,
     options: StreamOptions,
     fit: StretchFit,
-    segments: Deque<Segment<D, C>, Q>,
-    pending: Option<Pending<D, C>>,
-    /// Where the next move starts.
+    segments: Deque<Segment<D, C, R>, Q>,
+    pending: Option<Pending<D, C, R>>,
+    /// Where the next move starts (the axes riding along at 0: see `ride_end`).
     end: [f64; D],
+    /// Where the axes riding along are at the end of the last move pushed.
+    ride_end: [f64; R],
+    /// The value and rate `de/ds` of each axis riding along where the appended path ends.
+    ride_tail: [(f64, f64); R],
     /// The arc length of the path up to the pending move's part.
     length: f64,
     window: LookAhead<Z>,
@@ -344,7 +417,9 @@ pub struct Stream<const D: usize, const Q: usize, const Z: usize, C = NoCurve<D>
     feed_override: f64,
 }
 
-impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D, Q, Z, C> {
+impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R: usize>
+    Stream<D, Q, Z, C, R>
+{
     /// A stream at rest at `start`, under the machine's `limits`.
     ///
     /// ```
@@ -390,10 +465,13 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
             fit: StretchFit {
                 tolerance: 0.0,
                 max_piece_ticks: 0,
+                path_axes: D,
             },
             segments: Deque::new(),
             pending: None,
             end: [0.0; D],
+            ride_end: [0.0; R],
+            ride_tail: [(0.0, 0.0); R],
             length: 0.0,
             window: LookAhead::new(),
             committed: Deque::new(),
@@ -414,7 +492,8 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// # Errors
     /// [`Error::InvalidLimit`] for invalid options (a negative or non-finite tolerance,
     /// stretches of no tick, invalid [`PlanOptions`]); [`Error::Curve`] for a non-finite
-    /// start. Nothing changes on an error.
+    /// start; [`Error::AxisMismatch`] when every axis rides along (`R ≥ D`: no path).
+    /// Nothing changes on an error.
     ///
     /// ```
     /// # use strak_trajectory::{Error, Limits, Stream, StreamOptions};
@@ -444,6 +523,10 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         if !start.iter().all(|x| x.is_finite()) {
             return Err(Error::Curve(strak_curves::Error::NonFinite));
         }
+        if R >= D {
+            return Err(Error::AxisMismatch { curve: D, path: 0 });
+        }
+        let options = options.with_plan(options.plan.with_path_axes(D - R));
         self.ramp = feed_ramp(&limits, &options);
         self.feed_override = 1.0;
         let keep = (1.0 - options.plan.feed_share()) * FIT_MARGIN;
@@ -455,6 +538,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         self.fit = StretchFit {
             tolerance: options.fit_tolerance,
             max_piece_ticks: options.max_piece_ticks,
+            path_axes: D - R,
         };
         self.next_tick = 0;
         self.stats = StreamStats::default();
@@ -469,10 +553,28 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         self.segments.clear();
         self.committed.clear();
         self.pending = None;
-        (self.end, self.length) = (at, 0.0);
+        (self.end, self.length) = (Self::shaping(at), 0.0);
+        self.ride_end = core::array::from_fn(|i| at[D - R + i]);
+        self.ride_tail = self.ride_end.map(|e| (e, 0.0));
         self.window.clear();
         self.window
             .hold_until(f64::from(self.next_tick) * self.period());
+    }
+
+    /// `x` with its axes riding along at 0: the point of the path its other axes shape.
+    fn shaping(mut x: [f64; D]) -> [f64; D] {
+        for c in x.iter_mut().skip(D - R) {
+            *c = 0.0;
+        }
+        x
+    }
+
+    /// `geometric` (a point of the path) with the axes riding along at `ride`.
+    fn riding(mut geometric: [f64; D], ride: [f64; R]) -> [f64; D] {
+        for (c, e) in geometric.iter_mut().skip(D - R).zip(ride) {
+            *c = e;
+        }
+        geometric
     }
 
     /// What the stream has done so far.
@@ -559,8 +661,8 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     pub fn position(&self) -> Result<[f64; D], Error> {
         if self.segments.is_empty() {
             return Ok(match &self.pending {
-                Some(p) if p.from == 0.0 => p.curve.eval(0.0),
-                _ => self.end,
+                Some(p) if p.from == 0.0 => Self::riding(p.curve.eval(0.0), p.ride.map(|r| r.0)),
+                _ => Self::riding(self.end, self.ride_end),
             });
         }
         if self.is_idle() {
@@ -658,20 +760,24 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
                 required: self.segments.len() + 2,
             });
         }
-        let curve = MoveCurve::new(self.end, mv, self.options.arc_tolerance)?;
+        let shaped = self.shaped(mv)?;
+        let curve = MoveCurve::new(self.end, &shaped, self.options.arc_tolerance)?;
         let feed = mv.feed.unwrap_or(f64::INFINITY);
+        let ride: [(f64, f64); R] = core::array::from_fn(|i| (self.ride_end[i], mv.to[D - R + i]));
         if !self.advance()? {
             return Err(self.behind());
         }
         let Some(prev) = self.pending else {
             self.pending = Some(Pending {
                 curve,
+                ride,
                 from: 0.0,
                 feed,
                 before: None,
                 offset: 0.0,
             });
             self.end = curve.eval(1.0);
+            self.ride_end = ride.map(|r| r.1);
             self.stats.moves += 1;
             return Ok(());
         };
@@ -696,12 +802,14 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
         };
         self.pending = Some(Pending {
             curve,
+            ride,
             from,
             feed,
             before,
             offset,
         });
         self.end = curve.eval(1.0);
+        self.ride_end = ride.map(|r| r.1);
         self.stats.moves += 1;
         match corner {
             Junction::Blend(_) => self.stats.blends += 1,
@@ -709,6 +817,35 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
             Junction::Straight => {}
         }
         Ok(())
+    }
+
+    /// `mv` as the path's axes shape it: its points with the axes riding along at 0.
+    ///
+    /// # Errors
+    /// [`Error::AxisMismatch`] for a curve move while axes ride along (a curve shapes all of
+    /// its axes).
+    fn shaped(&self, mv: &Move<D, C>) -> Result<Move<D, C>, Error> {
+        if R == 0 {
+            return Ok(*mv);
+        }
+        let shape = match mv.shape {
+            Shape::Bezier { c1, c2 } => Shape::Bezier {
+                c1: Self::shaping(c1),
+                c2: Self::shaping(c2),
+            },
+            Shape::Curve(_) => {
+                return Err(Error::AxisMismatch {
+                    curve: D,
+                    path: D - R,
+                });
+            }
+            other => other,
+        };
+        Ok(Move {
+            to: Self::shaping(mv.to),
+            shape,
+            feed: mv.feed,
+        })
     }
 
     /// Finishes the pending move with a stop at its end: the motion comes to rest at the end
@@ -810,25 +947,25 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     #[inline(always)]
     fn emit(
         &mut self,
-        prev: &Pending<D, C>,
+        prev: &Pending<D, C, R>,
         before: Option<(Blend<D>, f64)>,
         span: Option<(f64, bool)>,
     ) -> Result<(), Error> {
-        let mut added = Vec::<Segment<D, C>, 2>::new();
+        let mut added = Vec::<Segment<D, C, R>, 2>::new();
         let mut zones = SegmentZones::<{ 2 * SEGMENT_ZONES }>::new();
-        let mut s = self.length;
-        if let Some(blend) = self.blend_of(before, s, &mut zones)? {
-            s = blend.end();
+        let (mut s, mut tail) = (self.length, self.ride_tail);
+        if let Some(blend) = self.blend_of(before, prev, (s, tail), &mut zones)? {
+            (s, tail) = (blend.end(), blend.ride_end());
             let _ = added.push(blend);
         }
         if let Some((to, stop)) = span {
-            let part = self.span_of(prev, to, s, stop, &mut zones)?;
-            s = part.end();
+            let part = self.span_of(prev, (to, stop), (s, tail), &mut zones)?;
+            (s, tail) = (part.end(), part.ride_end());
             let _ = added.push(part);
         }
         self.room_for(added.len(), zones.zones().len())?;
         self.append(&added, &zones)?;
-        self.length = s;
+        (self.length, self.ride_tail) = (s, tail);
         self.note_deviation(before);
         Ok(())
     }
@@ -848,7 +985,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     fn blend_or_stop(
         &self,
         corner: Junction<D>,
-        prev: &Pending<D, C>,
+        prev: &Pending<D, C, R>,
         next: &MoveCurve<D, C>,
         feed: f64,
     ) -> Result<Junction<D>, Error> {
@@ -882,13 +1019,16 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     fn blend_of<const K: usize>(
         &self,
         before: Option<(Blend<D>, f64)>,
-        start: f64,
+        next: &Pending<D, C, R>,
+        (start, tail): (f64, [(f64, f64); R]),
         zones: &mut SegmentZones<K>,
-    ) -> Result<Option<Segment<D, C>>, Error> {
+    ) -> Result<Option<Segment<D, C, R>>, Error> {
         let Some((blend, feed)) = before else {
             return Ok(None);
         };
-        let segment = Segment::blend(&blend, start, feed)?;
+        let ends = next.riding_at(next.from)?;
+        let ride = core::array::from_fn(|i| (tail[i], ends[i]));
+        let segment = Segment::blend(&blend, start, feed)?.with_ride(ride);
         self.zones_of(&segment, zones)?;
         Ok(Some(segment))
     }
@@ -905,13 +1045,15 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// `stop`).
     fn span_of<const K: usize>(
         &self,
-        prev: &Pending<D, C>,
-        to: f64,
-        start: f64,
-        stop: bool,
+        prev: &Pending<D, C, R>,
+        (to, stop): (f64, bool),
+        (start, tail): (f64, [(f64, f64); R]),
         zones: &mut SegmentZones<K>,
-    ) -> Result<Segment<D, C>, Error> {
-        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed, prev.offset)?;
+    ) -> Result<Segment<D, C, R>, Error> {
+        let ends = prev.riding_at(to)?;
+        let ride = core::array::from_fn(|i| (tail[i], ends[i]));
+        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed, prev.offset)?
+            .with_ride(ride);
         self.zones_of(&span, zones)?;
         if stop {
             zones.stop_at_end();
@@ -922,7 +1064,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// The zones of `segment` appended to `out`.
     fn zones_of<const K: usize>(
         &self,
-        segment: &Segment<D, C>,
+        segment: &Segment<D, C, R>,
         out: &mut SegmentZones<K>,
     ) -> Result<(), Error> {
         let feed = (segment.feed, self.feed_scale());
@@ -956,7 +1098,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     /// Appends segments and their zones (room checked).
     fn append(
         &mut self,
-        segments: &[Segment<D, C>],
+        segments: &[Segment<D, C, R>],
         zones: &SegmentZones<{ 2 * SEGMENT_ZONES }>,
     ) -> Result<(), Error> {
         for g in segments {
@@ -1046,7 +1188,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>> Stream<D
     }
 
     /// The committed motion.
-    fn motion(&self) -> Committed<'_, D, Q, C> {
+    fn motion(&self) -> Committed<'_, D, Q, C, R> {
         Committed {
             segments: &self.segments,
             phases: &self.committed,

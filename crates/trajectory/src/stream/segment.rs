@@ -9,6 +9,7 @@ use strak_curves::{
 use super::arc_map::ArcMap;
 use super::blend::Blend;
 use super::moves::{MoveCurve, NoCurve, StreamCurve};
+use super::ride::Ride;
 use crate::error::Error;
 use crate::plan::ArcLengths;
 
@@ -39,10 +40,13 @@ enum Trace<const D: usize, C> {
     Blend(MonomialCurve<[f64; D], 6>, Option<ArcMap>),
 }
 
-/// A segment of the blended path, placed at the arc length `start` of the whole stream.
+/// A segment of the blended path, placed at the arc length `start` of the whole stream; its
+/// last `R` axes ride along ([`Ride`]): the trace holds them at 0, and the segment's frame
+/// and derivatives take them from `ride`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Segment<const D: usize, C = NoCurve<D>> {
+pub(crate) struct Segment<const D: usize, C = NoCurve<D>, const R: usize = 0> {
     trace: Trace<D, C>,
+    ride: [Ride; R],
     /// The arc length of the stream where the segment starts.
     pub(crate) start: f64,
     /// Its arc length.
@@ -60,10 +64,11 @@ pub(crate) struct Frame<const D: usize> {
     pub(crate) normal: [f64; D],
 }
 
-impl<const D: usize, C: StreamCurve<D>> Segment<D, C> {
+impl<const D: usize, C: StreamCurve<D>, const R: usize> Segment<D, C, R> {
     /// The part `from ..= to` of the move `curve`, starting at the stream's arc length
     /// `start`, with the speed limit `feed`; a curve move's arc length up to `from` is
-    /// `offset` (the other moves' is computed).
+    /// `offset` (the other moves' is computed). Its axes riding along have no values yet
+    /// ([`with_ride`](Self::with_ride)).
     ///
     /// # Errors
     /// [`Error::Curve`] when the arc length of a curved move does not converge.
@@ -95,6 +100,7 @@ impl<const D: usize, C: StreamCurve<D>> Segment<D, C> {
         };
         Ok(Segment {
             trace,
+            ride: [Ride::default(); R],
             start,
             length,
             feed,
@@ -115,10 +121,57 @@ impl<const D: usize, C: StreamCurve<D>> Segment<D, C> {
         };
         Ok(Segment {
             trace: Trace::Blend(curve, map),
+            ride: [Ride::default(); R],
             start,
             length,
             feed,
         })
+    }
+
+    /// Gives the axes riding along the values `(e, de/ds)` at the segment's start and end,
+    /// each axis's pair in turn: on a span the values alone count (the axis goes in
+    /// proportion to the arc length from the start value to the end value); on a blend the
+    /// rates count too (see [`Ride`]).
+    pub(crate) fn with_ride(mut self, ends: [((f64, f64), (f64, f64)); R]) -> Self {
+        for (ride, ((e0, m0), (e1, m1))) in self.ride.iter_mut().zip(ends) {
+            *ride = match &self.trace {
+                Trace::Span { .. } => Ride::Linear { e0, e1 },
+                Trace::Blend(b, _) => {
+                    let sigma = |u: f64| {
+                        let (d1, d2) = (b.deriv(u, 1), b.deriv(u, 2));
+                        let s = d1.norm();
+                        (s, if s > 0.0 { d1.dot(d2) / s } else { 0.0 })
+                    };
+                    let ((s0, s0d), (s1, s1d)) = (sigma(0.0), sigma(1.0));
+                    Ride::hermite((e0, m0 * s0, m0 * s0d), (e1, m1 * s1, m1 * s1d))
+                }
+            };
+        }
+        self
+    }
+
+    /// The value and rate `de/ds` of each axis riding along at the segment's end.
+    pub(crate) fn ride_end(&self) -> [(f64, f64); R] {
+        let sigma = self.trace_deriv(1.0, 1).norm();
+        self.ride.map(|r| match r {
+            Ride::Linear { .. } => r.along(self.length, self.length),
+            Ride::Quintic(_) => (
+                r.poly(1.0, 0),
+                if sigma > 0.0 {
+                    r.poly(1.0, 1) / sigma
+                } else {
+                    0.0
+                },
+            ),
+        })
+    }
+
+    /// The `k`-th derivative of what the segment traces (its axes riding along at 0).
+    fn trace_deriv(&self, u: f64, k: usize) -> [f64; D] {
+        match &self.trace {
+            Trace::Span { curve, .. } => curve.deriv(u, k),
+            Trace::Blend(b, _) => b.deriv(u, k),
+        }
     }
 
     /// The arc length of the stream where the segment ends.
@@ -176,10 +229,10 @@ impl<const D: usize, C: StreamCurve<D>> Segment<D, C> {
             s - self.start
         };
         let u = self.param(local)?;
-        let (d1, d2) = (self.deriv(u, 1), self.deriv(u, 2));
+        let (d1, d2) = (self.trace_deriv(u, 1), self.trace_deriv(u, 2));
         let speed2 = d1.dot(d1);
         let mut frame = Frame {
-            point: self.eval(u),
+            point: self.trace_deriv(u, 0),
             tangent: [0.0; D],
             normal: [0.0; D],
         };
@@ -189,14 +242,48 @@ impl<const D: usize, C: StreamCurve<D>> Segment<D, C> {
             frame.tangent = d1.times(1.0 / sigma);
             frame.normal = d2.minus(d1.times(along)).times(1.0 / speed2);
         }
+        self.ride_frame(&mut frame, (u, local), (d1, d2));
         Ok(frame)
+    }
+
+    /// The axes riding along in `frame`, at the parameter `u` and the arc length `local`
+    /// from the start, where the trace has the derivatives `d1`, `d2`: `e`, `de/ds` and
+    /// `d²e/ds² = (e_uu − e_s·σ')/σ²`.
+    fn ride_frame(
+        &self,
+        frame: &mut Frame<D>,
+        (u, local): (f64, f64),
+        (d1, d2): ([f64; D], [f64; D]),
+    ) {
+        let first = D - R;
+        for (i, r) in self.ride.iter().enumerate() {
+            let (x, t, n) = match r {
+                Ride::Linear { .. } => {
+                    let (e, m) = r.along(local, self.length);
+                    (e, m, 0.0)
+                }
+                Ride::Quintic(_) => {
+                    let sigma = d1.norm();
+                    if sigma > 0.0 {
+                        let s1 = d1.dot(d2) / sigma;
+                        let es = r.poly(u, 1) / sigma;
+                        (r.poly(u, 0), es, (r.poly(u, 2) - es * s1) / (sigma * sigma))
+                    } else {
+                        (r.poly(u, 0), 0.0, 0.0)
+                    }
+                }
+            };
+            frame.point[first + i] = x;
+            frame.tangent[first + i] = t;
+            frame.normal[first + i] = n;
+        }
     }
 }
 
 /// The segment's own arc lengths, by which the speed-limit sampling places its zones (where
 /// an adaptive length does not converge, the parameter's share of the length stands in: it
 /// only moves a zone boundary).
-impl<const D: usize, C: StreamCurve<D>> ArcLengths for Segment<D, C> {
+impl<const D: usize, C: StreamCurve<D>, const R: usize> ArcLengths for Segment<D, C, R> {
     fn domain(&self) -> (f64, f64) {
         ParamCurve::domain(self)
     }
@@ -238,7 +325,7 @@ impl<const D: usize, C: StreamCurve<D>> ArcLengths for Segment<D, C> {
     }
 }
 
-impl<const D: usize, C: StreamCurve<D>> ParamCurve for Segment<D, C> {
+impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurve for Segment<D, C, R> {
     type Point = [f64; D];
 
     fn domain(&self) -> (f64, f64) {
@@ -273,19 +360,51 @@ impl<const D: usize, C: StreamCurve<D>> ParamCurve for Segment<D, C> {
     }
 
     fn eval(&self, u: f64) -> [f64; D] {
-        match &self.trace {
-            Trace::Span { curve, .. } => curve.eval(u),
-            Trace::Blend(b, _) => b.eval(u),
+        let mut x = self.trace_deriv(u, 0);
+        for (i, r) in self.ride.iter().enumerate() {
+            x[D - R + i] = match r {
+                Ride::Linear { .. } => r.along(self.length_at(u), self.length).0,
+                Ride::Quintic(_) => r.poly(u, 0),
+            };
         }
+        x
     }
 }
 
-impl<const D: usize, C: StreamCurve<D>> ParamCurveDeriv for Segment<D, C> {
+/// The derivatives by the parameter, the axes riding along included (what the speed-limit
+/// sampling takes their loads from): on a span `e = e₀ + m·s(u)`, so `e_u = m·σ`,
+/// `e_uu = m·σ'`, `e_uuu = m·σ''` with `σ = |c'|`, `σ' = c'·c''/σ` and
+/// `σ'' = (c''·c'' + c'·c''' − σ'²)/σ`; on a blend the quintic's own.
+impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segment<D, C, R> {
     fn deriv(&self, u: f64, k: usize) -> [f64; D] {
-        match &self.trace {
-            Trace::Span { curve, .. } => curve.deriv(u, k),
-            Trace::Blend(b, _) => b.deriv(u, k),
+        if k == 0 {
+            return self.eval(u);
         }
+        let mut d = self.trace_deriv(u, k);
+        if R == 0 {
+            return d;
+        }
+        let rate = || {
+            let (d1, d2) = (self.trace_deriv(u, 1), self.trace_deriv(u, 2));
+            let sigma = d1.norm();
+            if sigma == 0.0 {
+                return 0.0;
+            }
+            let s1 = d1.dot(d2) / sigma;
+            match k {
+                1 => sigma,
+                2 => s1,
+                3 => (d2.dot(d2) + d1.dot(self.trace_deriv(u, 3)) - s1 * s1) / sigma,
+                _ => 0.0,
+            }
+        };
+        for (i, r) in self.ride.iter().enumerate() {
+            d[D - R + i] = match r {
+                Ride::Linear { .. } => r.slope(self.length) * rate(),
+                Ride::Quintic(_) => r.poly(u, k),
+            };
+        }
+        d
     }
 }
 
@@ -311,7 +430,7 @@ mod tests {
             },
         );
         let curve = MoveCurve::new([2.0, 0.0], &arc, 1e-12).unwrap();
-        let seg = Segment::span(&curve, (0.25, 0.75), 10.0, 100.0, 0.0).unwrap();
+        let seg: Segment<2> = Segment::span(&curve, (0.25, 0.75), 10.0, 100.0, 0.0).unwrap();
         let quarter = core::f64::consts::PI; // of the circle of radius 2
         assert!((seg.length - quarter / 2.0).abs() < 1e-12);
         let f = seg.frame(10.0 + quarter / 4.0).unwrap();
