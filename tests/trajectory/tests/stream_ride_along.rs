@@ -278,3 +278,55 @@ fn random_extruding_polylines_keep_the_limits() {
         })
         .unwrap();
 }
+
+/// The outline played by a [`StreamSampler`] with a feed override, a hold and a resume: the
+/// feed ramps keep the path's machine limits over X, Y, Z and E's own limits (they use the
+/// share of each the plan leaves free), and the motion ends on the last move's end.
+#[test]
+fn feed_changes_keep_the_riding_axis_within_its_limits() {
+    use strak_curves::heapless::spsc::Queue;
+    use strak_trajectory::StreamSampler;
+    let moves = outline();
+    let options = StreamOptions::new(1000.0)
+        .with_tolerance(TOLERANCE)
+        .with_faster_stops(false);
+    let mut stream = Printer::new([0.0; 4], limits(), options).unwrap();
+    for mv in &moves {
+        stream.push(mv).unwrap();
+    }
+    stream.finish().unwrap();
+    let mut queue = Queue::<Piece<f64, 4>, 64>::new();
+    let (mut producer, consumer) = queue.split();
+    let mut sampler = StreamSampler::new(consumer, &stream).unwrap();
+    let mut samples = Vec::new();
+    for tick in 0..20_000 {
+        match tick {
+            300 => sampler.set_feed(0.5),
+            700 => sampler.hold(),
+            1_000 => sampler.resume(),
+            1_300 => sampler.set_feed(1.0),
+            _ => {}
+        }
+        stream.poll(&mut producer).unwrap();
+        samples.push(sampler.next());
+        if tick > 1_300 && stream.is_idle() && sampler.is_holding() {
+            break;
+        }
+    }
+    let (mut v, mut a, mut j, mut ve, mut ae) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+    for w in samples.windows(2) {
+        v = v.max(xyz(w[1].velocity).norm());
+        a = a.max(xyz(w[1].acceleration).norm());
+        j = j.max(xyz(w[1].acceleration.minus(w[0].acceleration)).norm() * 1000.0);
+        ve = ve.max(w[1].velocity[3].abs());
+        ae = ae.max(w[1].acceleration[3].abs());
+    }
+    println!(
+        "{} ticks: v {v:.3} a {a:.1} j {j:.0}, E v {ve:.3} a {ae:.2}",
+        samples.len()
+    );
+    assert!(v <= V * (1.0 + 1e-9) && a <= A * (1.0 + 1e-9) && j <= J * (1.0 + 1e-6));
+    assert!(ve <= E_VELOCITY * (1.0 + 1e-9) && ae <= E_ACCELERATION * (1.0 + 1e-9));
+    assert!(samples.len() > 2_000, "{}", samples.len());
+    assert_eq!(samples.last().unwrap().position, moves[4].to);
+}
