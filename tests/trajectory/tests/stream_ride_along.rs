@@ -207,14 +207,60 @@ fn the_extruder_limit_slows_the_path() {
     assert_eq!(*played.x.last().unwrap(), [10.0, 0.0, 0.0, 50.0]);
 }
 
-/// A move of E alone has no path to move along, a curve move shapes every axis, and a
-/// stream whose axes all ride along has no path: each is refused.
+/// A retraction and a prime, moves of E alone between extruding moves: the path stands
+/// still while E moves at its feed (here 25 mm/s of E) within its limits, the motion comes
+/// to rest before and after each, and it ends exactly where the program does.
+#[test]
+fn moves_of_the_riding_axis_alone_stand_the_path_still() {
+    let moves = [
+        Move::line([10.0, 0.0, 0.0, 0.5]).with_feed(100.0),
+        Move::line([10.0, 0.0, 0.0, -1.5]).with_feed(25.0), // retract 2 mm
+        Move::line([10.0, 10.0, 0.0, -1.5]),                // travel
+        Move::line([10.0, 10.0, 0.0, 0.5]).with_feed(25.0), // prime
+        Move::line([20.0, 10.0, 0.0, 1.0]).with_feed(100.0),
+    ];
+    for format in 0..3 {
+        let (played, stream) = match format {
+            0 => play::<f64>(&moves, limits()),
+            1 => play::<f32>(&moves, limits()),
+            _ => play::<Q40>(&moves, limits()),
+        };
+        let slack = if format == 1 { 1e-3 } else { 1e-9 };
+        let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+        let [v, a, j, ve, ae] = peaks(&played);
+        println!(
+            "{} ticks: v {v:.3} a {a:.1} j {j:.0}, E v {ve:.3} a {ae:.2}",
+            played.x.len()
+        );
+        assert!(v <= V * (1.0 + slack) && a <= keep * A * (1.0 + slack));
+        assert!(j <= keep * J * (1.0 + 100.0 * slack));
+        assert!(ve <= 25.0 * (1.0 + slack) && ve > 24.0, "E v {ve}");
+        assert!(ae <= keep * E_ACCELERATION * (1.0 + slack), "E a {ae}");
+        assert_eq!(stream.stats().stops, 4);
+        // while E retracts and primes (below 0) the path stands at (10, 0, 0) or (10, 10, 0)
+        let moving_e = played
+            .x
+            .iter()
+            .filter(|x| x[3] < -1e-6 && x[3] > -1.5 + 1e-6);
+        let standing = |x: &[f64; 4]| {
+            let on = |y: f64| (x[1] - y).abs() < 1e-5;
+            (x[0] - 10.0).abs() < 1e-5 && x[2].abs() < 1e-5 && (on(0.0) || on(10.0))
+        };
+        assert!(moving_e.clone().count() > 50);
+        assert!(moving_e.clone().all(standing));
+        let end = *played.x.last().unwrap();
+        assert!(end.minus([20.0, 10.0, 0.0, 1.0]).norm() < 1e-6, "{end:?}");
+    }
+}
+
+/// A move that goes nowhere, a curve move (which shapes every axis) while E rides along,
+/// and a stream whose axes all ride along (no path) are refused.
 #[test]
 fn moves_without_a_path_are_refused() {
     let options = StreamOptions::new(1000.0);
     let mut stream = Printer::new([0.0; 4], limits(), options).unwrap();
     assert_eq!(
-        stream.push(&Move::line([0.0, 0.0, 0.0, -2.0])),
+        stream.push(&Move::line([0.0, 0.0, 0.0, 0.0])),
         Err(Error::DegenerateMove)
     );
     let all = Stream::<1, 8, 32, NoCurve<1>, 1>::new([0.0], Limits::new(V, A, J).unwrap(), options);

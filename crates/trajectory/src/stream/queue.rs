@@ -289,6 +289,9 @@ struct Pending<const D: usize, C, const R: usize> {
     curve: MoveCurve<D, C>,
     /// Where each axis riding along starts and ends the move.
     ride: [(f64, f64); R],
+    /// Whether it is a move of the riding axes alone (`curve` traces them; the other axes
+    /// stand still).
+    alone: bool,
     from: f64,
     feed: f64,
     before: Option<(Blend<D>, f64)>,
@@ -338,9 +341,11 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> Pending<D, C, R> {
 /// [`with_axis_acceleration`](Limits::with_axis_acceleration)): with `e' = de/ds` and
 /// `e'' = d²e/ds²` along the path, its velocity `e'·v` and acceleration `e'·a + e''·v²` are
 /// kept within them, so a move whose riding axis travels far for its path length (a long
-/// extrusion on a short line) moves the path slower. A move of the riding axes alone has no
-/// path ([`Error::DegenerateMove`]), and a curve move, which shapes all of its axes, is
-/// refused while axes ride along ([`Error::AxisMismatch`]).
+/// extrusion on a short line) moves the path slower. A line that leaves the path where it
+/// is and moves riding axes (a retraction, a prime) moves them alone, along a straight line
+/// in them, from rest to rest: its feed is their speed, and the path's acceleration and
+/// jerk limits and their own per-axis limits hold. A curve move, which shapes all of its
+/// axes, is refused while axes ride along ([`Error::AxisMismatch`]).
 ///
 /// ```
 /// use heapless::Deque;
@@ -760,8 +765,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
                 required: self.segments.len() + 2,
             });
         }
-        let shaped = self.shaped(mv)?;
-        let curve = MoveCurve::new(self.end, &shaped, self.options.arc_tolerance)?;
+        let (curve, alone) = self.move_curve(mv)?;
         let feed = mv.feed.unwrap_or(f64::INFINITY);
         let ride: [(f64, f64); R] = core::array::from_fn(|i| (self.ride_end[i], mv.to[D - R + i]));
         if !self.advance()? {
@@ -771,18 +775,22 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             self.pending = Some(Pending {
                 curve,
                 ride,
+                alone,
                 from: 0.0,
                 feed,
                 before: None,
                 offset: 0.0,
             });
-            self.end = curve.eval(1.0);
-            self.ride_end = ride.map(|r| r.1);
+            self.end_move(&curve, alone, ride);
             self.stats.moves += 1;
             return Ok(());
         };
-        let corner = junction(&prev.curve, &curve, self.options.tolerance)?;
-        let corner = self.blend_or_stop(corner, &prev, &curve, feed)?;
+        let corner = if alone || prev.alone {
+            Junction::Stop // a move of the riding axes alone starts and ends at rest
+        } else {
+            let corner = junction(&prev.curve, &curve, self.options.tolerance)?;
+            self.blend_or_stop(corner, &prev, &curve, feed)?
+        };
         let (leave, from, mut after) = match corner {
             Junction::Blend(b) => (b.leave(), b.join(), Some(b)),
             _ => (1.0, 0.0, None),
@@ -803,13 +811,13 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         self.pending = Some(Pending {
             curve,
             ride,
+            alone,
             from,
             feed,
             before,
             offset,
         });
-        self.end = curve.eval(1.0);
-        self.ride_end = ride.map(|r| r.1);
+        self.end_move(&curve, alone, ride);
         self.stats.moves += 1;
         match corner {
             Junction::Blend(_) => self.stats.blends += 1,
@@ -817,6 +825,38 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             Junction::Straight => {}
         }
         Ok(())
+    }
+
+    /// The curve of `mv` from where the stream is, and whether it moves the riding axes
+    /// alone: a line whose end leaves the path where it is and changes a riding axis is
+    /// traced in the riding axes (the other axes stand still); any other move is traced as
+    /// the path's axes shape it ([`Self::shaped`]).
+    ///
+    /// # Errors
+    /// The errors of [`Self::shaped`] and [`MoveCurve::new`].
+    fn move_curve(&self, mv: &Move<D, C>) -> Result<(MoveCurve<D, C>, bool), Error> {
+        let shaped = self.shaped(mv)?;
+        let riding: [f64; R] = core::array::from_fn(|i| mv.to[D - R + i]);
+        let tolerance = self.options.arc_tolerance;
+        if R > 0 && matches!(mv.shape, Shape::Line) && shaped.to == self.end {
+            let from = Self::riding(self.end, self.ride_end);
+            let line = Move {
+                to: Self::riding(self.end, riding),
+                shape: Shape::Line,
+                feed: mv.feed,
+            };
+            return Ok((MoveCurve::new(from, &line, tolerance)?, true));
+        }
+        Ok((MoveCurve::new(self.end, &shaped, tolerance)?, false))
+    }
+
+    /// Takes the end of the move just pushed (its `curve`, whether it moves the riding axes
+    /// `alone`, and where they start and end it) as where the next move starts.
+    fn end_move(&mut self, curve: &MoveCurve<D, C>, alone: bool, ride: [(f64, f64); R]) {
+        if !alone {
+            self.end = curve.eval(1.0);
+        }
+        self.ride_end = ride.map(|r| r.1);
     }
 
     /// `mv` as the path's axes shape it: its points with the axes riding along at 0.
@@ -1050,10 +1090,13 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         (start, tail): (f64, [(f64, f64); R]),
         zones: &mut SegmentZones<K>,
     ) -> Result<Segment<D, C, R>, Error> {
-        let ends = prev.riding_at(to)?;
-        let ride = core::array::from_fn(|i| (tail[i], ends[i]));
-        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed, prev.offset)?
-            .with_ride(ride);
+        let span = Segment::span(&prev.curve, (prev.from, to), start, prev.feed, prev.offset)?;
+        let span = if prev.alone {
+            span.riding_alone()
+        } else {
+            let ends = prev.riding_at(to)?;
+            span.with_ride(core::array::from_fn(|i| (tail[i], ends[i])))
+        };
         self.zones_of(&span, zones)?;
         if stop {
             zones.stop_at_end();
@@ -1074,7 +1117,11 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         } else {
             LOAD_SAMPLES * ParamCurve::piece_count(segment)
         };
-        let options = self.options.plan.with_samples(samples);
+        let mut options = self.options.plan.with_samples(samples);
+        if segment.rides_alone() {
+            // the riding axes' own line is the path of this move
+            options = options.with_path_axes(D);
+        }
         zones_into(segment, segment, &self.planned, &options, out)
     }
 

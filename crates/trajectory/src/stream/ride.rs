@@ -17,6 +17,8 @@ pub(crate) enum Ride {
     Linear { e0: f64, e1: f64 },
     /// On a blend: the monomial coefficients of a quintic in the blend's parameter.
     Quintic([f64; 6]),
+    /// On a move of the riding axes alone: the segment traces them itself.
+    Alone,
 }
 
 impl Default for Ride {
@@ -47,7 +49,7 @@ impl Ride {
     pub(crate) fn slope(&self, length: f64) -> f64 {
         match *self {
             Ride::Linear { e0, e1 } => (e1 - e0) / length,
-            Ride::Quintic(_) => 0.0,
+            Ride::Quintic(_) | Ride::Alone => 0.0,
         }
     }
 
@@ -57,7 +59,7 @@ impl Ride {
         match *self {
             Ride::Linear { e0, e1 } if local >= length => (e1, (e1 - e0) / length),
             Ride::Linear { e0, e1 } => (e0 + (e1 - e0) * (local / length), (e1 - e0) / length),
-            Ride::Quintic(_) => (0.0, 0.0),
+            Ride::Quintic(_) | Ride::Alone => (0.0, 0.0),
         }
     }
 

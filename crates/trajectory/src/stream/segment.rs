@@ -150,20 +150,33 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> Segment<D, C, R> {
         self
     }
 
-    /// The value and rate `de/ds` of each axis riding along at the segment's end.
+    /// The segment of a move of the riding axes alone: it traces them itself (the other
+    /// axes stand still).
+    pub(crate) fn riding_alone(mut self) -> Self {
+        self.ride = [Ride::Alone; R];
+        self
+    }
+
+    /// Whether the segment is a move of the riding axes alone.
+    pub(crate) fn rides_alone(&self) -> bool {
+        self.ride.first() == Some(&Ride::Alone)
+    }
+
+    /// The value and rate `de/ds` of each axis riding along at the segment's end (a move
+    /// of the riding axes alone ends at rest: no rate).
     pub(crate) fn ride_end(&self) -> [(f64, f64); R] {
-        let sigma = self.trace_deriv(1.0, 1).norm();
-        self.ride.map(|r| match r {
-            Ride::Linear { .. } => r.along(self.length, self.length),
-            Ride::Quintic(_) => (
-                r.poly(1.0, 0),
-                if sigma > 0.0 {
-                    r.poly(1.0, 1) / sigma
-                } else {
-                    0.0
-                },
-            ),
-        })
+        let (_, hi) = ParamCurve::domain(self);
+        let (end, sigma) = (self.trace_deriv(hi, 0), self.trace_deriv(hi, 1).norm());
+        let mut out = [(0.0, 0.0); R];
+        for (i, (slot, r)) in out.iter_mut().zip(&self.ride).enumerate() {
+            *slot = match r {
+                Ride::Linear { .. } => r.along(self.length, self.length),
+                Ride::Quintic(_) if sigma > 0.0 => (r.poly(1.0, 0), r.poly(1.0, 1) / sigma),
+                Ride::Quintic(_) => (r.poly(1.0, 0), 0.0),
+                Ride::Alone => (end[D - R + i], 0.0),
+            };
+        }
+        out
     }
 
     /// The `k`-th derivative of what the segment traces (its axes riding along at 0).
@@ -258,6 +271,7 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> Segment<D, C, R> {
         let first = D - R;
         for (i, r) in self.ride.iter().enumerate() {
             let (x, t, n) = match r {
+                Ride::Alone => continue,
                 Ride::Linear { .. } => {
                     let (e, m) = r.along(local, self.length);
                     (e, m, 0.0)
@@ -365,6 +379,7 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurve for Segment<D
             x[D - R + i] = match r {
                 Ride::Linear { .. } => r.along(self.length_at(u), self.length).0,
                 Ride::Quintic(_) => r.poly(u, 0),
+                Ride::Alone => continue,
             };
         }
         x
@@ -402,6 +417,7 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segm
             d[D - R + i] = match r {
                 Ride::Linear { .. } => r.slope(self.length) * rate(),
                 Ride::Quintic(_) => r.poly(u, k),
+                Ride::Alone => continue,
             };
         }
         d
