@@ -144,6 +144,9 @@ pub struct WindowZone {
     feed: f32,
     /// The feed override the zone is planned with (1 to 2).
     scale: f32,
+    /// Seconds the motion rests before it enters the zone (a dwell; the zone before ends
+    /// at rest).
+    hold: f32,
     a_limit: f64,
     j_limit: f64,
     exit_cap: f64,
@@ -254,6 +257,7 @@ impl WindowZone {
             v_high: v,
             feed: f32::INFINITY,
             scale: 1.0,
+            hold: 0.0,
             a_limit: a,
             j_limit: j,
             exit_cap,
@@ -586,6 +590,9 @@ impl<const Z: usize> LookAhead<Z> {
     /// ```
     pub fn commit(&mut self) -> Option<ProfileZone> {
         let first = *self.zones.first()?;
+        if first.hold > 0.0 && self.entry.2 == 0.0 && self.carry.is_none() {
+            self.entry.0 += f64::from(first.hold);
+        }
         let (t, _, v) = self.entry;
         let zone = match self.carry.take() {
             None => first.profile(self.entry),
@@ -715,6 +722,14 @@ impl<const K: usize> SegmentZones<K> {
     /// The zones.
     pub(crate) fn zones(&self) -> &[WindowZone] {
         &self.zones
+    }
+
+    /// Makes the motion rest `seconds` before it enters the first zone (a dwell after a
+    /// stop).
+    pub(crate) fn hold_first(&mut self, seconds: f32) {
+        if let Some(z) = self.zones.first_mut() {
+            z.hold = seconds;
+        }
     }
 }
 

@@ -420,6 +420,8 @@ pub struct Stream<
     ramp: (f64, f64),
     /// The feed override (0 to 2): the feeds are planned with its part above 1.
     feed_override: f64,
+    /// Seconds the motion rests before the next move ([`Stream::dwell`]).
+    dwell: f32,
 }
 
 impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R: usize>
@@ -464,6 +466,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             ready: false,
             ramp: (0.0, 0.0),
             feed_override: 1.0,
+            dwell: 0.0,
             planned: Limits::NONE,
             promised: MotionLimits::new(0.0, 0.0, 0.0),
             options: StreamOptions::new(PlanOptions::DEFAULT_RATE),
@@ -922,6 +925,72 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         Ok(())
     }
 
+    /// A dwell (G-code's `G4`): the pending move ends at rest ([`finish`](Self::finish)),
+    /// and the motion rests there `seconds` before the next move pushed starts (a dwell
+    /// with no move after it moves nothing). Dwells in a row add up.
+    ///
+    /// # Errors
+    /// [`Error::InvalidLimit`] for a negative or non-finite duration; the errors of
+    /// [`finish`](Self::finish) (poll, then dwell again: nothing was added).
+    ///
+    /// ```
+    /// # use heapless::Deque;
+    /// # use strak_trajectory::{Limits, Move, Piece, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let mut with = Stream::<2, 8, 32>::new([0.0; 2], limits, StreamOptions::new(1_000.0))?;
+    /// let mut without = with.clone();
+    /// for (stream, dwell) in [(&mut with, 0.25), (&mut without, 0.0)] {
+    ///     stream.push(&Move::line([5.0, 0.0]))?;
+    ///     stream.dwell(dwell)?;
+    ///     stream.push(&Move::line([5.0, 5.0]))?;
+    ///     stream.finish()?;
+    ///     let mut pieces = Deque::<Piece<f64, 2>, 32>::new();
+    ///     while !stream.is_idle() {
+    ///         stream.poll(&mut pieces)?;
+    ///         pieces.clear();
+    ///     }
+    /// }
+    /// assert_eq!(with.ticks(), without.ticks() + 250);
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
+        if !(seconds.is_finite() && seconds >= 0.0) {
+            return Err(Error::InvalidLimit);
+        }
+        self.finish()?;
+        #[allow(clippy::cast_possible_truncation)]
+        let seconds = seconds as f32;
+        self.dwell += seconds;
+        Ok(())
+    }
+
+    /// The corner blend tolerance from the next corner on (G-code's `G64 P`; 0 for exact
+    /// stops, `G61`): the corner between the pending move and the next one pushed is the
+    /// first it applies to.
+    ///
+    /// # Errors
+    /// [`Error::InvalidLimit`] for a negative or non-finite tolerance (nothing changes).
+    ///
+    /// ```
+    /// # use strak_trajectory::{Limits, Move, Stream, StreamOptions};
+    /// # let limits = Limits::new(100.0, 1_000.0, 10_000.0)?;
+    /// let options = StreamOptions::new(1_000.0).with_faster_stops(false);
+    /// let mut stream = Stream::<2, 8, 32>::new([0.0; 2], limits, options)?;
+    /// stream.push(&Move::line([5.0, 0.0]))?;
+    /// stream.push(&Move::line([10.0, 1.0]))?; // an exact stop: tolerance 0
+    /// stream.set_tolerance(0.05)?;
+    /// stream.push(&Move::line([15.0, 0.0]))?; // this corner is blended
+    /// assert_eq!((stream.stats().stops, stream.stats().blends), (1, 1));
+    /// # Ok::<(), strak_trajectory::Error>(())
+    /// ```
+    pub fn set_tolerance(&mut self, units: f64) -> Result<(), Error> {
+        if !(units.is_finite() && units >= 0.0) {
+            return Err(Error::InvalidLimit);
+        }
+        self.options = self.options.with_tolerance(units);
+        Ok(())
+    }
+
     /// The error of a push or a finish while the pending curve move is not caught up
     /// ([`Self::advance`]): the segments it would need with those held, about one per piece
     /// left.
@@ -1004,8 +1073,12 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             let _ = added.push(part);
         }
         self.room_for(added.len(), zones.zones().len())?;
+        if self.dwell > 0.0 {
+            zones.hold_first(self.dwell);
+        }
         self.append(&added, &zones)?;
         (self.length, self.ride_tail) = (s, tail);
+        self.dwell = 0.0;
         self.note_deviation(before);
         Ok(())
     }
