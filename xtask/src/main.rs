@@ -36,7 +36,7 @@ use std::process::{Command, ExitCode};
 use std::time::Instant;
 
 /// The `no_std` crates, proven by cross builds (a host `cargo test` proves nothing about no_std).
-const NO_STD_CRATES: &[&str] = &["strak-curves", "strak-trajectory"];
+const NO_STD_CRATES: &[&str] = &["strak-curves", "strak-trajectory", "strak-gcode"];
 
 /// The bare-metal targets the `no_std` crates must build for: Cortex-M0+ (no FPU, no
 /// hardware divide) and Cortex-M4F.
@@ -149,8 +149,10 @@ fn test() -> Result<(), String> {
             "strak-curves",
             "-p",
             "strak-trajectory",
+            "-p",
+            "strak-gcode",
             "--features",
-            "strak-curves/defmt,strak-trajectory/defmt",
+            "strak-curves/defmt,strak-trajectory/defmt,strak-gcode/defmt",
             "--",
             "-D",
             "warnings",

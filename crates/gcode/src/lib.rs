@@ -1,0 +1,14 @@
+#![no_std]
+#![doc = include_str!("../README.md")]
+#![forbid(unsafe_code)]
+
+mod error;
+mod line;
+mod lines;
+mod reader;
+mod words;
+
+pub use error::{ErrorKind, GcodeError};
+pub use line::{Code, IGNORED_KINDS, Ignored};
+pub use lines::{LineBuffer, lines};
+pub use reader::{Action, Block, Motion, PathMode, Reader};
