@@ -3,12 +3,14 @@
 #![forbid(unsafe_code)]
 
 mod error;
+mod feed;
 mod line;
 mod lines;
 mod reader;
 mod words;
 
 pub use error::{ErrorKind, GcodeError};
+pub use feed::Feeder;
 pub use line::{Code, IGNORED_KINDS, Ignored};
 pub use lines::{LineBuffer, lines};
 pub use reader::{Action, Block, Motion, PathMode, Reader};

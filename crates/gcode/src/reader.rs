@@ -98,7 +98,9 @@ const G19: ArcPlane = ArcPlane {
 /// `I J` from the start to the first control point, `P Q` from the end to the second; `I J`
 /// may be left out after a `G5`, mirroring its `P Q`); `G4 P` (dwell, seconds); `G20`,
 /// `G21`; `G90`, `G91`; `G90.1`, `G91.1`; `G92`, `G92.1`; `G61`, `G61.1`, `G64 P`; `G80`;
-/// `F` (units per minute, modal); the axes the machine has of `X Y Z A B C E U V W`; `N`.
+/// `F` (units per minute, modal); the axes the machine has of `X Y Z A B C E U V W`; `N`;
+/// `M82`/`M83` (printers' absolute and relative `E`: with `M83` `E` is incremental whatever
+/// `G90`/`G91` say).
 /// `M`, `T`, `S`, other letters and other G codes are counted in [`ignored`](Self::ignored)
 /// and do nothing.
 ///
@@ -127,6 +129,8 @@ pub struct Reader<const D: usize> {
 struct Modal<const D: usize> {
     motion: Option<Motion>,
     incremental: bool,
+    /// `M83`: `E` incremental whatever `G90`/`G91` say (`M82`: as they say).
+    e_relative: bool,
     arc_absolute: bool,
     inch: bool,
     plane: ArcPlane,
@@ -253,6 +257,7 @@ impl<const D: usize> Reader<D> {
             modal: Modal {
                 motion: None,
                 incremental: false,
+                e_relative: false,
                 arc_absolute: false,
                 inch: false,
                 plane: G17,
@@ -326,9 +331,13 @@ impl<const D: usize> Reader<D> {
             }
         }
         let mut modal = self.modal;
+        let e_mode = |c: &Code| c.letter == b'M' && (c.tenths == 820 || c.tenths == 830);
+        if let Some(c) = line.ignored.iter().rev().find(|c| e_mode(c)) {
+            modal.e_relative = c.tenths == 830;
+        }
         let block = self.block(&mut modal, &codes, &line).map_err(fail)?;
         self.modal = modal;
-        for code in line.ignored.iter().chain(&unknown) {
+        for code in line.ignored.iter().filter(|c| !e_mode(c)).chain(&unknown) {
             self.ignored.count(*code);
         }
         Ok(block)
@@ -403,8 +412,9 @@ impl<const D: usize> Reader<D> {
         line: &Line<D>,
         (scale, at): (f64, u32),
     ) -> Result<Move<D>, (u32, ErrorKind)> {
+        let relative = |i: usize| m.incremental || (m.e_relative && self.axes[i] == b'E');
         let to: [f64; D] = core::array::from_fn(|i| match line.axes[i] {
-            Some((v, _)) if m.incremental => m.position[i] + v * scale,
+            Some((v, _)) if relative(i) => m.position[i] + v * scale,
             Some((v, _)) => v * scale + m.offset[i],
             None => m.position[i],
         });

@@ -43,6 +43,18 @@ fn lines_and_rapids_absolute_and_incremental() {
 }
 
 #[test]
+fn e_is_relative_after_m83() {
+    let mut r = reader();
+    mv(&mut r, "G1 X1 E1 F60");
+    r.read_line(b"M83").unwrap();
+    assert_eq!(mv(&mut r, "G1 X2 E0.5").to, [2.0, 0.0, 0.0, 1.5]);
+    assert_eq!(mv(&mut r, "G1 E-1").to, [2.0, 0.0, 0.0, 0.5]);
+    r.read_line(b"M82").unwrap();
+    assert_eq!(mv(&mut r, "G1 X3 E4").to, [3.0, 0.0, 0.0, 4.0]);
+    assert!(r.ignored().kinds().is_empty()); // M82 and M83 are acted on
+}
+
+#[test]
 fn inches_are_converted_to_millimetres() {
     let mut r = reader();
     let m = mv(&mut r, "G20 G1 X1 Y2 F60");
