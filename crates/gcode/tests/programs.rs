@@ -90,6 +90,15 @@ fn run<N: Number, const D: usize, const R: usize>(
     let options = StreamOptions::new(1000.0)
         .with_tolerance(TOLERANCE)
         .with_arc_tolerance(0.002);
+    run_with::<N, D, R>(program, axes, limits, options)
+}
+
+fn run_with<N: Number, const D: usize, const R: usize>(
+    program: &str,
+    axes: [u8; D],
+    limits: Limits<D>,
+    options: StreamOptions,
+) -> Run<D, R> {
     let mut stream = Box::new(Stream::new([0.0; D], limits, options).unwrap());
     let mut reader = Reader::new(axes).unwrap();
     let mut feeder = Feeder::new(TOLERANCE);
@@ -209,6 +218,53 @@ fn a_printed_part_streams_within_the_limits() {
     check::<f64>(1e-9);
     check::<f32>(1e-3);
     check::<Q40>(1e-9);
+}
+
+/// A printed layer with a dense zigzag infill (0.5 mm steps between 32 mm lines, E riding
+/// along) with every corner blended that can be: spans of a few ticks between the jerk's breaks near the jerk limit,
+/// where a clamped spline overshoots the jerk by parts in 10⁴, are compiled as pieces of
+/// one tick, and the ticks keep the limits.
+#[test]
+fn a_dense_blended_infill_keeps_the_jerk() {
+    let mut g = String::from("G21 G90 M83\nG0 X25 Y20 Z0.2\n");
+    for (x, y, arc) in [
+        (55.0, 20.0, "G3 X60 Y25 R5"),
+        (60.0, 55.0, "G3 X55 Y60 R5"),
+        (25.0, 60.0, "G3 X20 Y55 R5"),
+        (20.0, 25.0, "G3 X25 Y20 R5"),
+    ] {
+        writeln!(g, "G1 X{x} Y{y} E1.5 F2400\n{arc} E0.39270").unwrap();
+    }
+    g.push_str("G1 E-0.8 F2100\nG0 X24 Y24\nG1 E0.8 F2100\n");
+    let (mut y, mut right) = (24.0, true);
+    while y <= 56.0 {
+        let x = if right { 56.0 } else { 24.0 };
+        writeln!(g, "G1 X{x} Y{y:.1} E1.6 F3000").unwrap();
+        y += 0.5;
+        if y <= 56.0 {
+            writeln!(g, "G1 Y{y:.1} E0.025").unwrap();
+        }
+        right = !right;
+    }
+    let limits = Limits::new(V, A, J)
+        .and_then(|l| l.with_axis_velocity([f64::INFINITY, f64::INFINITY, 20.0, 40.0]))
+        .and_then(|l| l.with_axis_acceleration([f64::INFINITY, f64::INFINITY, 500.0, 1000.0]))
+        .unwrap();
+    let options = StreamOptions::new(1000.0)
+        .with_tolerance(TOLERANCE)
+        .with_faster_stops(false);
+    let r: Run<4, 1> = run_with::<f64, 4, 1>(&g, *b"XYZE", limits, options);
+    let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
+    let ([v, a, j], axes) = r.peaks();
+    let stats = r.stream.stats();
+    println!(
+        "{} ticks, v {v:.2} a {a:.1} j {j:.1}, E {:?}, {stats:?}",
+        r.x.len(),
+        axes[3]
+    );
+    assert!(v <= V * (1.0 + 1e-9) && a <= keep * A * (1.0 + 1e-9) && j <= keep * J * (1.0 + 1e-9));
+    assert!(stats.blends > 120, "{stats:?}");
+    assert_eq!(*r.x.last().unwrap(), r.reader.position());
 }
 
 /// The milled contour: the limits from the ticks, the dwell at the plunge, the corners

@@ -11,7 +11,7 @@ use super::online::chord_state;
 use super::options::{CompileOptions, Tolerance};
 use super::spline_fit::{Clamped, SplineFit};
 use super::{CHECK_FRACTION, fit_peaks, round_state, write_states};
-use crate::error::{Error, Quantity};
+use crate::error::Error;
 use crate::num::Number;
 use crate::online::Kinematics;
 use crate::path::{AxisState, Piece};
@@ -39,9 +39,12 @@ const EXTENT_SAMPLES: u32 = 256;
 /// in ticks clamped at both ends to the exact position, velocity and acceleration follows
 /// it, refined until every tick is within the tolerance (as [`compile`](crate::compile())
 /// fits). A stretch of the spline whose pieces exceed a limit the law promises
-/// ([`Timing::limits`]) is fitted again to a quarter of the tolerance, up to four times,
-/// and is otherwise refused ([`Error::LimitExceeded`]): a stretch cannot be slowed down
-/// alone once those before it have been played.
+/// ([`Timing::limits`]) is fitted again to a quarter of the tolerance, up to four times
+/// (a stretch cannot be slowed down alone once those before it have been played), and is
+/// otherwise written as pieces of one tick that end on the exact state, as around the
+/// breaks, which keep the limits by construction. That happens on short spans between
+/// breaks near a limit, where a spline clamped at both ends overshoots the motion's jerk by
+/// parts in 10⁴.
 ///
 /// The motion takes `⌈duration · rate⌉` ticks, the law stretched to end on the last. A
 /// relative tolerance is taken of the extent of the positions at 256 ticks spread over the
@@ -157,8 +160,7 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
     ///
     /// # Errors
     /// [`Error::CapacityExceeded`] when the stretch needs more than `P` pieces (compile
-    /// shorter stretches); [`Error::LimitExceeded`] when its pieces exceed a limit of the
-    /// law even at a sixteenth of a quarter of the tolerance; [`Error::OutOfRange`] for a
+    /// shorter stretches); [`Error::OutOfRange`] for a
     /// value that does not fit `N`; [`Error::Curve`] for a non-finite value of the law.
     /// On an error `pieces` is empty and the stretch is not consumed.
     pub fn next_into<N: Number, const P: usize>(
@@ -234,7 +236,7 @@ impl StretchFit {
 
     /// The spline of ticks `from ..= to`, clamped at both ends to the exact state, fitted
     /// tighter until its pieces keep the motion's limits, written after `pieces`; one-tick
-    /// pieces for a span too short for both clamps.
+    /// pieces for a span too short for both clamps, or where no fit keeps the limits.
     fn span<M, N, const A: usize, const P: usize>(
         &self,
         motion: &M,
@@ -252,7 +254,7 @@ impl StretchFit {
         let period = motion.period();
         let offset = pieces.len();
         let mut fit = SplineFit::<A, _, Clamped<A>>::empty(PieceKnots { pieces, offset });
-        let (mut tolerance, mut exceeded) = (self.tolerance, Quantity::Velocity);
+        let mut tolerance = self.tolerance;
         for _ in 0..=TIGHTER_FITS {
             self.fit_span(motion, from, to, tolerance, &mut fit)?;
             let peaks = fit_peaks(&fit, period, false, self.path_axes);
@@ -260,13 +262,13 @@ impl StretchFit {
                 Some(limits) => peaks.slowdown(&limits)?.1,
                 None => None,
             };
-            let Some(quantity) = quantity else {
+            if quantity.is_none() {
                 return write_states(fit, from, period);
-            };
-            exceeded = quantity;
+            }
             tolerance /= 4.0;
         }
-        Err(Error::LimitExceeded { quantity: exceeded })
+        pieces.truncate(offset); // the fit's knots, which lay there
+        chords(motion, from, to, pieces)
     }
 
     /// One fit of ticks `from ..= to` to `tolerance`, clamped at both ends (no break of the
