@@ -66,11 +66,19 @@ impl<const D: usize> Feeder<D> {
     /// # Errors
     /// The stream's error for a block it refuses for another reason (a bad move: the
     /// block's line is the reader's [`lines`](crate::Reader::lines)); the block is dropped.
+    /// [`Error::CapacityExceeded`] when the feeder already holds a block (it holds one:
+    /// offer only when it [`is_ready`](Self::is_ready)); `block` is not taken.
     pub fn offer<const Q: usize, const Z: usize, const R: usize>(
         &mut self,
         block: Block<D>,
         stream: &mut Stream<D, Q, Z, NoCurve<D>, R>,
     ) -> Result<(), Error> {
+        if self.held.is_some() {
+            return Err(Error::CapacityExceeded {
+                capacity: 1,
+                required: 2,
+            });
+        }
         self.held = Some(block);
         self.retry(stream).map(|_| ())
     }

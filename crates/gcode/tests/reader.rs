@@ -469,3 +469,42 @@ fn any_bytes_read_without_panicking() {
         })
         .unwrap();
 }
+
+/// A feeder holds one block: offering another while it holds one is refused and takes
+/// nothing, and the held block goes on once the stream has room.
+#[test]
+fn a_feeder_holds_one_block() {
+    use strak_gcode::Feeder;
+    use strak_trajectory::Error;
+    let limits = Limits::new(200.0, 3000.0, 100_000.0).unwrap();
+    let mut stream = Stream::<2, 4, 16>::new([0.0; 2], limits, StreamOptions::new(1000.0)).unwrap();
+    let mut r = Reader::new(*b"XY").unwrap();
+    let mut feeder = Feeder::new(0.0);
+    let mut offered = 0;
+    for line in ["G1 X1 F600", "X2 Y1", "X3", "X4 Y0", "X5", "X6 Y1", "X7"] {
+        let block = r.read_line(line.as_bytes()).unwrap();
+        match feeder.offer(block, &mut stream) {
+            Ok(()) => offered += 1,
+            Err(e) => {
+                assert_eq!(
+                    e,
+                    Error::CapacityExceeded {
+                        capacity: 1,
+                        required: 2
+                    }
+                );
+                break;
+            }
+        }
+    }
+    assert!(!feeder.is_ready() && offered >= 2, "{offered}");
+    let mut pieces = strak_curves::heapless::Deque::<strak_trajectory::Piece<f64, 2>, 64>::new();
+    for _ in 0..10_000 {
+        if feeder.retry(&mut stream).unwrap() {
+            break;
+        }
+        stream.poll(&mut pieces).unwrap();
+        pieces.clear();
+    }
+    assert!(feeder.is_ready());
+}

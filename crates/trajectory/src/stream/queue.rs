@@ -555,12 +555,13 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         Ok(())
     }
 
-    /// Drops the segments, the pending move, the window and the committed motion, in place:
-    /// at rest at `at`, from the first tick not yet compiled on.
+    /// Drops the segments, the pending move, a dwell not yet begun, the window and the
+    /// committed motion, in place: at rest at `at`, from the first tick not yet compiled on.
     fn restart_at(&mut self, at: [f64; D]) {
         self.segments.clear();
         self.committed.clear();
         self.pending = None;
+        self.dwell = 0.0;
         (self.end, self.length) = (Self::shaping(at), 0.0);
         self.ride_end = core::array::from_fn(|i| at[D - R + i]);
         self.ride_tail = self.ride_end.map(|e| (e, 0.0));
