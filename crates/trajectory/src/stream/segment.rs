@@ -413,9 +413,10 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segm
                 _ => 0.0,
             }
         };
+        let mut once = None; // the rate is the same for every riding axis
         for (i, r) in self.ride.iter().enumerate() {
             d[D - R + i] = match r {
-                Ride::Linear { .. } => r.slope(self.length) * rate(),
+                Ride::Linear { .. } => r.slope(self.length) * *once.get_or_insert_with(rate),
                 Ride::Quintic(_) => r.poly(u, k),
                 Ride::Alone => continue,
             };
