@@ -931,8 +931,9 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
     /// with no move after it moves nothing). Dwells in a row add up.
     ///
     /// # Errors
-    /// [`Error::InvalidLimit`] for a negative or non-finite duration; the errors of
-    /// [`finish`](Self::finish) (poll, then dwell again: nothing was added).
+    /// [`Error::InvalidLimit`] for a negative or non-finite duration; [`Error::TooLong`]
+    /// for one of more ticks than a `u32` counts; the errors of [`finish`](Self::finish)
+    /// (poll, then dwell again: nothing was added).
     ///
     /// ```
     /// # use heapless::Deque;
@@ -952,11 +953,16 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
     ///     }
     /// }
     /// assert_eq!(with.ticks(), without.ticks() + 250);
+    /// assert_eq!(with.dwell(f64::NAN), Err(strak_trajectory::Error::InvalidLimit));
+    /// assert_eq!(with.dwell(1e300), Err(strak_trajectory::Error::TooLong));
     /// # Ok::<(), strak_trajectory::Error>(())
     /// ```
     pub fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
         if !(seconds.is_finite() && seconds >= 0.0) {
             return Err(Error::InvalidLimit);
+        }
+        if seconds * self.options.plan.rate() > f64::from(u32::MAX) {
+            return Err(Error::TooLong);
         }
         self.finish()?;
         #[allow(clippy::cast_possible_truncation)]
