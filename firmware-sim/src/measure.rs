@@ -40,7 +40,7 @@ pub fn norm(v: &[f64]) -> f64 {
 }
 
 /// `|a − b|` over the axes.
-pub fn distance<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| (x - y) * (x - y))
@@ -87,8 +87,9 @@ impl<const D: usize> Default for Peak<D> {
 }
 
 impl<const D: usize> Peak<D> {
-    fn push(&mut self, t: f64, v: &[f64; D]) {
-        self.norm.push(t, norm(v));
+    /// Adds `v`; its norm is taken over the first `path_axes` axes.
+    fn push(&mut self, t: f64, v: &[f64; D], path_axes: usize) {
+        self.norm.push(t, norm(&v[..path_axes]));
         for (p, x) in self.axes.iter_mut().zip(v) {
             p.push(t, x.abs());
             self.magnitude = self.magnitude.max(x.abs());
@@ -115,10 +116,14 @@ pub struct Observed<const D: usize> {
     pub tangent: [f64; D],
 }
 
-/// Everything measured over a run.
+/// Everything measured over a run. Norms and distances are taken over the path axes: the
+/// first [`path_axes`](Measure::path_axes) (all of them unless
+/// [`with_path_axes`](Measure::with_path_axes) says fewer); the axes after them ride along
+/// and are measured one by one.
 #[derive(Clone, Debug, Default)]
 pub struct Measure<const D: usize> {
     rate: f64,
+    path_axes: usize,
     /// Position samples (for their magnitude).
     pub position: Peak<D>,
     /// Velocity samples.
@@ -151,17 +156,39 @@ impl<const D: usize> Measure<D> {
     pub fn new(rate: f64) -> Self {
         Measure {
             rate,
+            path_axes: D,
             ..Measure::default()
         }
     }
 
+    /// The same measurement with norms and distances over the first `path_axes` axes only
+    /// (1 to `D`; others are clamped into that range).
+    ///
+    /// ```
+    /// use strak_sim::measure::{Measure, Observed};
+    /// let mut m = Measure::<2>::new(1_000.0).with_path_axes(1);
+    /// let at = [3.0, 0.0];
+    /// m.push(&Observed { t: 0.0, position: at, velocity: [3.0, 4.0], acceleration: [0.0; 2],
+    ///     reference: at, curve: [3.0, 7.0], tangent: [1.0, 0.0] });
+    /// assert_eq!((m.velocity.norm.max, m.velocity.axes[1].max, m.curve.max), (3.0, 4.0, 0.0));
+    /// ```
+    pub fn with_path_axes(mut self, path_axes: usize) -> Self {
+        self.path_axes = path_axes.clamp(1, D.max(1));
+        self
+    }
+
+    /// The axes norms and distances are taken over.
+    pub fn path_axes(&self) -> usize {
+        self.path_axes
+    }
+
     /// Adds one sample; returns its jerk (`None` for the first sample).
     pub fn push(&mut self, s: &Observed<D>) -> Option<[f64; D]> {
-        let t = s.t;
-        self.position.push(t, &s.position);
-        self.velocity.push(t, &s.velocity);
-        self.acceleration.push(t, &s.acceleration);
-        let jerk = self.previous.map(|p| {
+        let (t, p) = (s.t, self.path_axes);
+        self.position.push(t, &s.position, p);
+        self.velocity.push(t, &s.velocity, p);
+        self.acceleration.push(t, &s.acceleration, p);
+        let jerk = self.previous.map(|prev| {
             let diff = |a: &[f64; D], b: &[f64; D]| {
                 let mut d = [0.0; D];
                 for ((d, x), y) in d.iter_mut().zip(a).zip(b) {
@@ -169,14 +196,16 @@ impl<const D: usize> Measure<D> {
                 }
                 d
             };
-            self.dx.push(t, &diff(&s.position, &p.position));
-            self.dv.push(t, &diff(&s.velocity, &p.velocity));
-            let j = diff(&s.acceleration, &p.acceleration);
-            self.jerk.push(t, &j);
+            self.dx.push(t, &diff(&s.position, &prev.position), p);
+            self.dv.push(t, &diff(&s.velocity, &prev.velocity), p);
+            let j = diff(&s.acceleration, &prev.acceleration);
+            self.jerk.push(t, &j, p);
             j
         });
-        self.reference.push(t, distance(&s.position, &s.reference));
-        self.curve.push(t, distance(&s.position, &s.curve));
+        self.reference
+            .push(t, distance(&s.position[..p], &s.reference[..p]));
+        self.curve
+            .push(t, distance(&s.position[..p], &s.curve[..p]));
         self.push_along(s);
         self.previous = Some(*s);
         jerk
@@ -185,14 +214,20 @@ impl<const D: usize> Measure<D> {
     /// The components along the path, with the unit tangent of the reference curve (the last
     /// one where it is defined).
     fn push_along(&mut self, s: &Observed<D>) {
-        let dn = norm(&s.tangent);
+        let p = self.path_axes;
+        let dn = norm(&s.tangent[..p]);
         if dn > 0.0 && dn.is_finite() {
-            self.unit_tangent = Some(s.tangent.map(|x| x / dn));
+            let mut unit = [0.0; D];
+            for (u, x) in unit.iter_mut().zip(&s.tangent[..p]) {
+                *u = x / dn;
+            }
+            self.unit_tangent = Some(unit);
         }
         let Some(tv) = &self.unit_tangent else { return };
-        let a = &s.acceleration;
+        let mut a = [0.0; D];
+        a[..p].copy_from_slice(&s.acceleration[..p]);
         let at: f64 = a.iter().zip(tv).map(|(x, y)| x * y).sum();
-        let mut normal = *a;
+        let mut normal = a;
         for (n, y) in normal.iter_mut().zip(tv) {
             *n -= at * y;
         }
@@ -208,7 +243,11 @@ impl<const D: usize> Measure<D> {
     /// The tolerance of a finite difference of samples of magnitude `magnitude`, for one axis
     /// (`norm`: for the norm over the axes); see the module docs.
     pub fn slack(&self, number: NumberFormat, magnitude: f64, norm: bool) -> f64 {
-        let axes = if norm { (D as f64).sqrt() } else { 1.0 };
+        let axes = if norm {
+            (self.path_axes as f64).sqrt()
+        } else {
+            1.0
+        };
         number.difference_allowance(magnitude, self.rate) * axes
     }
 }

@@ -37,8 +37,9 @@ use serde::Deserialize;
 use strak_curves::{Plane, Turn};
 use strak_trajectory::{Error as TrajError, Move, MoveCurve, Shape};
 
-use crate::job::{JobError, JobLimits, RATE_RANGE};
+use crate::job::{JobError, JobLimits};
 use crate::number::{self, NumberFormat};
+use crate::stream_run::StreamSetup;
 use crate::toml_error::locate;
 
 /// The look-ahead capacities `queue` may name (segments; the window holds four zones per
@@ -231,9 +232,26 @@ impl MovesJob {
         self.tolerance.max(MIN_ARC_TOLERANCE)
     }
 
-    /// The zones of the look-ahead window: four per segment.
-    pub fn zones(&self) -> usize {
-        4 * self.queue
+    /// What the job streams on: its rate, format, tolerances, limits and arrival rate, its
+    /// axes all path axes.
+    pub fn setup(&self) -> StreamSetup {
+        let axes = self.axes();
+        StreamSetup {
+            rate_hz: self.rate_hz,
+            number: self.number,
+            unit: self.unit().to_owned(),
+            tolerance: self.tolerance,
+            faster_stops: self.faster_stops,
+            queue: self.queue,
+            arc_tolerance: self.arc_tolerance(),
+            limits: self.limits.clone(),
+            moves_per_second: self.produce.as_ref().map(|p| p.moves_per_second),
+            axis_names: crate::axes::names(axes)
+                .iter()
+                .map(|n| (*n).to_owned())
+                .collect(),
+            path_axes: axes,
+        }
     }
 
     /// The start point in `D` axes.
@@ -251,32 +269,7 @@ impl MovesJob {
     /// # Errors
     /// A [`JobError`] naming the field.
     pub fn check(&self) -> Result<(), JobError> {
-        if !(self.rate_hz >= RATE_RANGE.0 && self.rate_hz <= RATE_RANGE.1) {
-            return Err(JobError::new(
-                "rate_hz",
-                format!(
-                    "the control rate must be between 100 Hz and 100 kHz, not {} Hz",
-                    self.rate_hz
-                ),
-            ));
-        }
-        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
-            return Err(JobError::new("tolerance", "must be finite and ≥ 0"));
-        }
-        if !QUEUE_SIZES.contains(&self.queue) {
-            return Err(JobError::new(
-                "queue",
-                format!("must be 8, 16, 32 or 64 segments, not {}", self.queue),
-            ));
-        }
-        if let Some(p) = &self.produce
-            && !(p.moves_per_second.is_finite() && p.moves_per_second > 0.0)
-        {
-            return Err(JobError::new(
-                "produce.moves_per_second",
-                "must be finite and > 0",
-            ));
-        }
+        self.setup().check()?;
         if self.moves.is_empty() {
             return Err(JobError::new("moves", "give at least one move"));
         }
@@ -539,7 +532,7 @@ bezier = { to = [30, 0, 0], c1 = [22, 15, 0], c2 = [28, 5, 0] }
     #[test]
     fn parses_a_program() {
         let job = MovesJob::parse(GOOD).unwrap();
-        assert_eq!((job.axes(), job.queue, job.zones()), (3, 32, 128));
+        assert_eq!((job.axes(), job.queue, job.setup().zones()), (3, 32, 128));
         let p = job.program::<3>().unwrap();
         assert_eq!(p[0], Move::line([10.0, 0.0, 0.0]).with_feed(150.0));
         assert!(matches!(

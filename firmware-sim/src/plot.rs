@@ -45,6 +45,8 @@ struct Bucket {
 #[derive(Clone, Debug)]
 pub struct Recorder {
     axes: usize,
+    names: Vec<String>,
+    path_axes: usize,
     width: u64,
     buckets: Vec<Bucket>,
     path: Vec<Vec<f64>>,
@@ -66,12 +68,31 @@ impl Recorder {
     pub fn new(axes: usize, expected: u64) -> Self {
         Recorder {
             axes,
+            names: (0..axes)
+                .map(|a| {
+                    AXIS_NAMES
+                        .get(a)
+                        .map_or(format!("x{}", a + 1), |n| (*n).to_owned())
+                })
+                .collect(),
+            path_axes: axes,
             width: expected.div_ceil(PLOT_BUCKETS).max(1),
             buckets: Vec::new(),
             path: Vec::new(),
             since_path_point: 0,
             last_position: Vec::new(),
         }
+    }
+
+    /// The same recorder with the axes named `names` (one per axis), of which the first
+    /// `path_axes` make the path (the path plot's projections; the norms of the motion
+    /// plot are recorded over them).
+    pub fn with_axes<S: AsRef<str>>(mut self, names: &[S], path_axes: usize) -> Self {
+        for (n, name) in self.names.iter_mut().zip(names) {
+            name.as_ref().clone_into(n);
+        }
+        self.path_axes = path_axes.clamp(1, self.axes.max(1));
+        self
     }
 
     fn channels(&self) -> usize {
@@ -235,15 +256,9 @@ pub fn write_motion(
 /// The lines of a quantity's panel: each axis and (for v, a, j) the norm.
 fn panel_lines(rec: &Recorder, q: Quantity) -> Vec<Line> {
     let (first, norm) = rec.channel(q);
-    let axes = rec.axes.min(AXIS_NAMES.len());
+    let axes = rec.axes.min(AXIS_COLORS.len());
     let mut lines: Vec<Line> = (0..axes)
-        .map(|a| {
-            (
-                AXIS_NAMES[a].to_owned(),
-                AXIS_COLORS[a],
-                rec.series(first + a),
-            )
-        })
+        .map(|a| (rec.names[a].clone(), AXIS_COLORS[a], rec.series(first + a)))
         .collect();
     if norm {
         lines.push((
@@ -368,11 +383,14 @@ fn bounds(points: &[Vec<f64>], axis: usize) -> (f64, f64) {
 }
 
 /// What the path plot marks besides the path: the blends that replaced corners (drawn in
-/// another colour over the path) and the corners where the motion stopped (squares).
+/// another colour over the path), blended corners (small circles, where the blends are not
+/// drawn) and the corners where the motion stopped (squares).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PathMarks {
     /// Each blend as points along it.
     pub blends: Vec<Vec<Vec<f64>>>,
+    /// Each corner a blend replaced.
+    pub corners: Vec<Vec<f64>>,
     /// Each corner where the motion came to rest.
     pub stops: Vec<Vec<f64>>,
 }
@@ -388,7 +406,7 @@ pub fn write_path(
     marks: &PathMarks,
 ) -> PlotResult {
     let points = rec.path_points();
-    let size = if rec.axes >= 3 {
+    let size = if rec.path_axes >= 3 {
         (1800, 680)
     } else {
         (900, 800)
@@ -396,7 +414,8 @@ pub fn write_path(
     let root = SVGBackend::new(file, size).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let root = root.titled(title, ("sans-serif", 24)).map_err(err)?;
-    match rec.axes {
+    let names = &rec.names;
+    match rec.path_axes {
         1 => {
             let pts: Vec<(f64, f64)> = rec.series(0);
             let (t0, t1) = rec.time_range();
@@ -415,19 +434,19 @@ pub fn write_path(
             chart
                 .configure_mesh()
                 .x_desc("t [s]")
-                .y_desc(format!("x [{unit}]"))
+                .y_desc(format!("{} [{unit}]", names[0]))
                 .draw()
                 .map_err(err)?;
             chart
                 .draw_series(LineSeries::new(pts, AXIS_COLORS[0].stroke_width(2)))
                 .map_err(err)?;
         }
-        2 => projection(&root, &points, marks, (0, 1), unit, size)?,
+        2 => projection(&root, &points, marks, (names, (0, 1)), unit, size)?,
         _ => {
             let panels = root.split_evenly((1, 3));
             let third = (size.0 / 3, size.1);
             for (panel, pair) in panels.iter().zip([(0, 1), (0, 2), (1, 2)]) {
-                projection(panel, &points, marks, pair, unit, third)?;
+                projection(panel, &points, marks, (names, pair), unit, third)?;
             }
         }
     }
@@ -438,7 +457,7 @@ fn projection(
     area: &DrawingArea<SVGBackend<'_>, Shift>,
     points: &[Vec<f64>],
     marks: &PathMarks,
-    (i, j): (usize, usize),
+    (names, (i, j)): (&[String], (usize, usize)),
     unit: &str,
     size: (u32, u32),
 ) -> PlotResult {
@@ -450,18 +469,15 @@ fn projection(
     );
     let mut chart = ChartBuilder::on(area)
         .margin(10)
-        .caption(
-            format!("{}–{}", AXIS_NAMES[i], AXIS_NAMES[j]),
-            ("sans-serif", 18),
-        )
+        .caption(format!("{}–{}", names[i], names[j]), ("sans-serif", 18))
         .x_label_area_size(35)
         .y_label_area_size(65)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(err)?;
     chart
         .configure_mesh()
-        .x_desc(format!("{} [{unit}]", AXIS_NAMES[i]))
-        .y_desc(format!("{} [{unit}]", AXIS_NAMES[j]))
+        .x_desc(format!("{} [{unit}]", names[i]))
+        .y_desc(format!("{} [{unit}]", names[j]))
         .draw()
         .map_err(err)?;
     let xy = |p: &Vec<f64>| {
@@ -515,6 +531,20 @@ fn draw_marks(
             });
         }
     }
+    for (k, corner) in marks.corners.iter().enumerate() {
+        let series = chart
+            .draw_series(std::iter::once(Circle::new(
+                xy(corner),
+                3,
+                BLEND_COLOR.stroke_width(1),
+            )))
+            .map_err(err)?;
+        if k == 0 {
+            series
+                .label("blended corners")
+                .legend(|(x, y)| Circle::new((x + 10, y), 3, BLEND_COLOR.stroke_width(1)));
+        }
+    }
     for (k, stop) in marks.stops.iter().enumerate() {
         let (x, y) = xy(stop);
         let series = chart
@@ -532,7 +562,7 @@ fn draw_marks(
             });
         }
     }
-    if !(marks.blends.is_empty() && marks.stops.is_empty()) {
+    if !(marks.blends.is_empty() && marks.corners.is_empty() && marks.stops.is_empty()) {
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperLeft)

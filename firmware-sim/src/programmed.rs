@@ -17,6 +17,9 @@ pub const CHORDS: usize = 256;
 /// The moves searched after the one of the last nearest point.
 const AHEAD: usize = 3;
 
+/// How much nearer (units) a later move's point must be to take over, besides the sag.
+const TIE: f64 = 1e-9;
+
 /// The programmed moves as polygons.
 #[derive(Clone, Debug)]
 pub struct Programmed<const D: usize> {
@@ -30,13 +33,18 @@ pub struct Programmed<const D: usize> {
     /// The largest coordinate of the polygons.
     pub far: f64,
     cursor: usize,
+    path_axes: usize,
+    /// Each polygon's length in the path axes.
+    lengths: Vec<f64>,
+    skip: f64,
 }
 
-/// The point of the segment `a b` nearest to `p`.
-fn nearest_on<const D: usize>(a: &[f64; D], b: &[f64; D], p: &[f64; D]) -> [f64; D] {
+/// The point of the segment `a b` nearest to `p` in the first `axes` axes (its end `b` for
+/// a segment of no length in those axes).
+fn nearest_on<const D: usize>(a: &[f64; D], b: &[f64; D], p: &[f64; D], axes: usize) -> [f64; D] {
     let mut ab = 0.0;
     let mut ap = 0.0;
-    for i in 0..D {
+    for i in 0..axes {
         let d = b[i] - a[i];
         ab += d * d;
         ap += d * (p[i] - a[i]);
@@ -44,13 +52,18 @@ fn nearest_on<const D: usize>(a: &[f64; D], b: &[f64; D], p: &[f64; D]) -> [f64;
     let u = if ab > 0.0 {
         (ap / ab).clamp(0.0, 1.0)
     } else {
-        0.0
+        1.0
     };
     core::array::from_fn(|i| a[i] + u * (b[i] - a[i]))
 }
 
-fn dist2<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+/// `|a − b|²` in the first `axes` axes.
+fn dist2<const D: usize>(a: &[f64; D], b: &[f64; D], axes: usize) -> f64 {
+    a[..axes]
+        .iter()
+        .zip(&b[..axes])
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum()
 }
 
 impl<const D: usize> Programmed<D> {
@@ -85,28 +98,79 @@ impl<const D: usize> Programmed<D> {
             end: from,
             far,
             cursor: 0,
+            path_axes: D,
+            lengths: Vec::new(),
+            skip: 0.0,
         }
+        .measured()
     }
 
-    /// The point of the moves nearest to `p`, among the move of the last nearest point and
-    /// the three after it.
+    /// Each polygon's length in the path axes.
+    fn measured(mut self) -> Self {
+        let axes = self.path_axes;
+        self.lengths = self
+            .polygons
+            .iter()
+            .map(|p| p.windows(2).map(|w| dist2(&w[0], &w[1], axes).sqrt()).sum())
+            .collect();
+        self
+    }
+
+    /// The same polygons, a sample passing in one step over moves no longer than `length`
+    /// (in the path axes): a chain of short moves a blend cuts across, or moves of the
+    /// riding axes alone. Longer moves are never passed over (default: none is).
+    pub fn with_skip(mut self, length: f64) -> Self {
+        self.skip = length;
+        self
+    }
+
+    /// The same polygons, measured in the first `path_axes` axes only (1 to `D`): the
+    /// nearest point is nearest in those axes, the axes after them riding along.
+    pub fn with_path_axes(mut self, path_axes: usize) -> Self {
+        self.path_axes = path_axes.clamp(1, D.max(1));
+        self.measured()
+    }
+
+    /// The point of the moves nearest to `p` (in the path axes), among the move of the
+    /// last nearest point, the next one, and up to two more after it where the moves
+    /// between are no longer than the skip length ([`with_skip`](Self::with_skip)): the
+    /// samples follow the moves in order, and where a later move passes near the one
+    /// being played (a full circle's start, a retraction up through the corner of a
+    /// blend), the move being played keeps them. A later move takes over only when its
+    /// point is nearer by more than twice the chords' sag (and rounding), which the
+    /// polygon of the move being played may lie farther than its move.
     pub fn nearest(&mut self, p: &[f64; D]) -> [f64; D] {
+        let margin = 2.0 * self.sag + TIE;
         let mut best = (f64::INFINITY, *p, self.cursor);
         let last = (self.cursor + AHEAD).min(self.polygons.len().saturating_sub(1));
         for m in self.cursor..=last {
             let Some(polygon) = self.polygons.get(m) else {
                 break;
             };
-            for w in polygon.windows(2) {
-                let q = nearest_on(&w[0], &w[1], p);
-                let d = dist2(&q, p);
-                if d < best.0 {
-                    best = (d, q, m);
-                }
+            let (d, q) = self.nearest_in(polygon, p);
+            let margin = if m > best.2 { margin } else { 0.0 };
+            if d + margin < best.0 {
+                best = (d, q, m);
+            }
+            if m > self.cursor && self.lengths.get(m).is_some_and(|&l| l > self.skip) {
+                break;
             }
         }
         self.cursor = best.2;
         best.1
+    }
+
+    /// The distance of `p` from `polygon` and its nearest point.
+    fn nearest_in(&self, polygon: &[[f64; D]], p: &[f64; D]) -> (f64, [f64; D]) {
+        let mut here = (f64::INFINITY, *p);
+        for w in polygon.windows(2) {
+            let q = nearest_on(&w[0], &w[1], p, self.path_axes);
+            let d = dist2(&q, p, self.path_axes);
+            if d < here.0 {
+                here = (d, q);
+            }
+        }
+        (here.0.sqrt(), here.1)
     }
 }
 
@@ -126,10 +190,46 @@ mod tests {
         let mut p = Programmed::new([0.0, 0.0], &program, 1e-9);
         assert_eq!(p.nearest(&[5.0, 1.0]), [5.0, 0.0]);
         let q = p.nearest(&[30.0, 10.0]);
-        assert!(dist2(&q, &[20.0, 10.0]) < 1e-20, "{q:?}");
+        assert!(dist2(&q, &[20.0, 10.0], 2) < 1e-20, "{q:?}");
         let length = 10.0 + 10.0 * core::f64::consts::FRAC_PI_2;
         assert!((p.length - length).abs() < 1e-12);
         assert!(p.sag > 0.0 && p.sag < 1e-3);
         assert_eq!((p.end, p.far), ([20.0, 10.0], 20.0));
+    }
+
+    /// A line, a full circle from its end and a line up through the same point: a sample
+    /// near the corner (as a blend passes it) lies nearer the last line, but the circle
+    /// (too long to pass over) keeps the samples that follow along it.
+    #[test]
+    fn a_later_move_through_the_corner_does_not_take_over() {
+        let circle = Shape::ArcCenter {
+            center: [0.0, 0.0],
+            plane: Plane::XY,
+            turn: Turn::CounterClockwise,
+        };
+        let program = [
+            Move::line([10.0, 0.0, 0.0]),
+            Move::new([10.0, 0.0, 0.0], circle),
+            Move::line([10.0, 0.0, 5.0]),
+        ];
+        let mut p = Programmed::new([0.0; 3], &program, 1e-9).with_skip(0.1);
+        let q = p.nearest(&[9.99, 0.0, 0.0]);
+        assert!(dist2(&q, &[9.99, 0.0, 0.0], 3) < 1e-20, "{q:?}");
+        let q = p.nearest(&[10.0, 0.0005, 0.003]);
+        assert!(dist2(&q, &[10.0, 0.0005, 0.003], 3).sqrt() > 0.002, "{q:?}");
+        let on_circle = p.nearest(&[0.0, 10.0, 0.0]);
+        assert!(
+            dist2(&on_circle, &[0.0, 10.0, 0.0], 3).sqrt() < 1e-3,
+            "{on_circle:?}"
+        );
+        // a short line may be passed over
+        let program = [
+            Move::line([10.0, 0.0, 0.0]),
+            Move::line([10.0, 0.05, 0.0]),
+            Move::line([0.0, 0.05, 0.0]),
+        ];
+        let mut p = Programmed::new([0.0; 3], &program, 1e-9).with_skip(0.1);
+        let q = p.nearest(&[5.0, 0.05, 0.0]);
+        assert!(dist2(&q, &[5.0, 0.05, 0.0], 3) < 1e-20, "{q:?}");
     }
 }

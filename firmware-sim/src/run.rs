@@ -105,6 +105,9 @@ pub enum RunError {
     Job(JobError),
     /// Writing the output failed.
     Io(String),
+    /// A line of a G-code program is bad, or the stream refused its move (the message names
+    /// the line).
+    Program(String),
 }
 
 impl std::fmt::Display for RunError {
@@ -112,6 +115,7 @@ impl std::fmt::Display for RunError {
         match self {
             RunError::Job(e) => write!(f, "{e}"),
             RunError::Io(e) => f.write_str(e),
+            RunError::Program(e) => f.write_str(e),
         }
     }
 }
@@ -158,7 +162,17 @@ impl CsvCell for I32F32 {
 
 /// The CSV header: `tick,t,x,y[,z…],vx,vy[,vz…],ax,ay[,az…]`.
 pub fn csv_header(axes: usize) -> String {
-    let names = crate::axes::names(axes);
+    csv_header_named(crate::axes::names(axes))
+}
+
+/// The header of `samples.csv` for axes of these names: `tick,t`, then the positions, the
+/// velocities (`v` before the name) and the accelerations (`a` before it).
+///
+/// ```
+/// assert_eq!(strak_sim::run::csv_header_named(&["x", "e"]), "tick,t,x,e,vx,ve,ax,ae");
+/// ```
+pub fn csv_header_named<S: AsRef<str>>(names: &[S]) -> String {
+    let names: Vec<&str> = names.iter().map(AsRef::as_ref).collect();
     let mut h = vec!["tick".to_owned(), "t".to_owned()];
     h.extend(names.iter().map(|n| (*n).to_owned()));
     h.extend(names.iter().map(|n| format!("v{n}")));
@@ -311,18 +325,19 @@ fn observe<N: Number, S: Scalar, const D: usize>(
 pub(crate) fn channels<const D: usize>(
     s: &Observed<D>,
     jerk: Option<[f64; D]>,
+    path_axes: usize,
     values: &mut Vec<f64>,
 ) {
     values.clear();
     values.extend_from_slice(&s.position);
     values.extend_from_slice(&s.velocity);
-    values.push(norm(&s.velocity));
+    values.push(norm(&s.velocity[..path_axes]));
     values.extend_from_slice(&s.acceleration);
-    values.push(norm(&s.acceleration));
+    values.push(norm(&s.acceleration[..path_axes]));
     match &jerk {
         Some(j) => {
             values.extend_from_slice(j);
-            values.push(norm(j));
+            values.push(norm(&j[..path_axes]));
         }
         None => values.extend(std::iter::repeat_n(f64::NAN, D + 1)),
     }
@@ -370,7 +385,7 @@ where
         if let Some(f) = options.velocity_factor {
             observed.velocity = observed.velocity.map(|v| v * f);
         }
-        channels(&observed, measure.push(&observed), &mut values);
+        channels(&observed, measure.push(&observed), D, &mut values);
         recorder.push(t, &values);
         last = Some((observed.position, s.position));
         if let Some(bar) = &bar
@@ -416,6 +431,11 @@ pub struct Allowance {
     pub sampled: f64,
     /// Relative to the jerk limit.
     pub jerk: f64,
+    /// The ticks of forward differencing whose rounding one finite difference may carry
+    /// besides its own: a piece's channels drift by up to half a unit per tick added, and
+    /// the next piece starts from the exact state, so the difference across the join of two
+    /// pieces of `n` ticks carries up to `n/2` units more (0: pieces end exactly).
+    pub drift_ticks: f64,
 }
 
 /// The limit checks of the sampled maxima, the finite differences and the components along
@@ -425,7 +445,15 @@ fn maxima<const D: usize>(
     m: &Measure<D>,
 ) -> (Maxima, Vec<Maxima>, FiniteDifferences, AlongPath) {
     let enforced = (is_planned(job), job.profile.kind() == ProfileKind::SCurve);
-    maxima_of(&job.limits, job.number, enforced, Allowance::default(), m)
+    let names = crate::axes::names(D);
+    maxima_of(
+        &job.limits,
+        job.number,
+        enforced,
+        Allowance::default(),
+        names,
+        m,
+    )
 }
 
 /// The limit checks of the sampled maxima, the finite differences and the components along
@@ -436,6 +464,7 @@ pub(crate) fn maxima_of<const D: usize>(
     number: NumberFormat,
     (planned, jerk_planned): (bool, bool),
     allowance: Allowance,
+    names: &[&str],
     m: &Measure<D>,
 ) -> (Maxima, Vec<Maxima>, FiniteDifferences, AlongPath) {
     let axis_v = axis_array::<D>(l.axis_velocity.as_deref());
@@ -450,7 +479,8 @@ pub(crate) fn maxima_of<const D: usize>(
             .allowing(slack.max(share))
             .enforce(enforced)
     };
-    let slack = |magnitude: f64, norm: bool| m.slack(number, magnitude, norm);
+    let drift = 1.0 + allowance.drift_ticks / 2.0;
+    let slack = |magnitude: f64, norm: bool| m.slack(number, magnitude, norm) * drift;
     let (sx, sv, sa) = (
         m.position.magnitude,
         m.velocity.magnitude,
@@ -467,7 +497,6 @@ pub(crate) fn maxima_of<const D: usize>(
             jerk_planned,
         ),
     };
-    let names = crate::axes::names(D);
     let per_axis = (0..D)
         .map(|i| Maxima {
             name: names[i].to_owned(),
@@ -651,6 +680,7 @@ fn summarize<N: Number, S: Scalar, const D: usize>(
             .map(|f| options.out_dir.join(f).display().to_string())
             .collect(),
         stream: None,
+        gcode: None,
     };
     summary.limits_respected = summary
         .all_checked()

@@ -28,18 +28,18 @@ use std::time::{Duration, Instant};
 use strak_curves::ParamCurve;
 use strak_curves::heapless::spsc::Queue;
 use strak_trajectory::{
-    Error as TrajError, Junction, Kernel, Limits, Move, MoveCurve, Number, Piece, PieceQueue,
-    PlanOptions, Q40, Sample, Stream, StreamOptions, StreamSampler, StreamStats, chain_junctions,
-    junction,
+    Error as TrajError, Junction, Kernel, Limits, Move, MoveCurve, NoCurve, Number, Piece,
+    PieceQueue, PlanOptions, Q40, Sample, Stream, StreamOptions, StreamSampler, StreamStats,
+    chain_junctions, junction,
 };
 
-use crate::job::JobError;
+use crate::job::{JobError, JobLimits, RATE_RANGE};
 use crate::measure::{Measure, Observed, distance, to_f64};
-use crate::moves::{MovesJob, push_error};
+use crate::moves::{MovesJob, QUEUE_SIZES, push_error};
 use crate::number::{self, NumberFormat};
 use crate::plot::{self, PathMarks, PlotLimits, Recorder};
 use crate::programmed::Programmed;
-use crate::run::{Allowance, CsvCell, RunError, RunOptions, channels, csv_header, write_row};
+use crate::run::{Allowance, CsvCell, RunError, RunOptions, channels, csv_header_named, write_row};
 use crate::summary::{
     Accuracy, CheckRule, Checked, EndPoint, PlannedLimits, ReferenceDistance, StreamReport,
     Summary, WallTime,
@@ -56,23 +56,103 @@ pub const FIT_TOLERANCE: f64 = 1e-5;
 pub const DISTANCE_METHOD: &str = "the nearest point of the programmed moves (each curved move \
      a polygon of 256 chords, its sag allowed)";
 
-/// The relative allowance of the sampled velocities and accelerations and of the jerk over
-/// the limits in each playback format, as the trajectory crate's stream tests state it:
-/// forward differencing over a piece of up to 256 ticks adds up to `256·ε·|a|` to the
-/// acceleration channel (`ε = 2⁻²⁴` in `f32`), a jerk from differences of that channel
-/// twice that over a tick; `Q40` rounds to `2⁻⁴⁰` units; `f64` leaves the check's own
-/// rounding.
+/// What a streamed run plays on: the control rate, the number format, the stream's
+/// capacities, tolerances and limits, and the axes (a moves job's, or a G-code machine's).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StreamSetup {
+    /// Control rate in Hz.
+    pub rate_hz: f64,
+    /// Playback number format.
+    pub number: NumberFormat,
+    /// The length unit, for display.
+    pub unit: String,
+    /// The corner blend tolerance ε the stream starts with (units).
+    pub tolerance: f64,
+    /// Whether a sharp corner stops where that is estimated faster than its blend.
+    pub faster_stops: bool,
+    /// Look-ahead segments (the window holds four zones per segment).
+    pub queue: usize,
+    /// How far an arc's end may lie off the circle through its start (units).
+    pub arc_tolerance: f64,
+    /// The limits: path limits over the path axes, per-axis limits over every axis.
+    pub limits: JobLimits,
+    /// The rate the moves arrive at (`None`: all at once).
+    pub moves_per_second: Option<f64>,
+    /// The axes' names, in order.
+    pub axis_names: Vec<String>,
+    /// The axes of the path, the first of [`axis_names`](Self::axis_names); the others ride
+    /// along.
+    pub path_axes: usize,
+}
+
+impl StreamSetup {
+    /// The zones of the look-ahead window: four per segment.
+    pub fn zones(&self) -> usize {
+        4 * self.queue
+    }
+
+    /// Checks the ranges of the control rate, the corner tolerance, the look-ahead and the
+    /// arrival rate.
+    ///
+    /// # Errors
+    /// A [`JobError`] naming the field.
+    pub fn check(&self) -> Result<(), JobError> {
+        if !(self.rate_hz >= RATE_RANGE.0 && self.rate_hz <= RATE_RANGE.1) {
+            return Err(JobError::new(
+                "rate_hz",
+                format!(
+                    "the control rate must be between 100 Hz and 100 kHz, not {} Hz",
+                    self.rate_hz
+                ),
+            ));
+        }
+        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
+            return Err(JobError::new("tolerance", "must be finite and ≥ 0"));
+        }
+        if !QUEUE_SIZES.contains(&self.queue) {
+            return Err(JobError::new(
+                "queue",
+                format!("must be 8, 16, 32 or 64 segments, not {}", self.queue),
+            ));
+        }
+        if self
+            .moves_per_second
+            .is_some_and(|mps| !(mps.is_finite() && mps > 0.0))
+        {
+            return Err(JobError::new(
+                "produce.moves_per_second",
+                "must be finite and > 0",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The allowance of the checks in each playback format, as the trajectory crate's stream
+/// tests state it: forward differencing over a piece of up to 256 ticks adds up to
+/// `256·ε·|a|` to the acceleration channel (`ε = 2⁻²⁴` in `f32`), a jerk from differences
+/// of that channel twice that over a tick, and the position and velocity channels drift by
+/// up to half a unit per tick until the next piece starts from the exact state
+/// ([`Allowance::drift_ticks`]: 256); `Q40` rounds to `2⁻⁴⁰` units and adds exactly;
+/// `f64` leaves the check's own rounding and the drift.
 pub fn allowance(number: NumberFormat) -> Allowance {
+    // the stream's longest piece (`StreamOptions`' default)
+    let drift_ticks = 256.0;
     match number {
         NumberFormat::F32 => Allowance {
             sampled: 1e-4,
             jerk: 4e-3,
+            drift_ticks,
         },
         NumberFormat::Q40 => Allowance {
             sampled: 1e-6,
             jerk: 1e-5,
+            drift_ticks: 0.0,
         },
-        _ => Allowance::default(),
+        NumberFormat::F64 => Allowance {
+            drift_ticks,
+            ..Allowance::default()
+        },
     }
 }
 
@@ -85,20 +165,23 @@ fn position_allowance(number: NumberFormat, far: f64) -> f64 {
 }
 
 /// The samples after which a run stops although the stream has not ended: the ticks the
-/// moves take to arrive, plus twenty times the program at the slowest feed, plus ten
-/// seconds.
-pub fn guard_ticks(job: &MovesJob, length: f64) -> u64 {
-    let slowest = job
-        .moves
+/// moves take to arrive, plus twenty times the program's length `length` at its slowest
+/// feed, plus its dwells `rest_s`, plus ten seconds.
+pub fn guard_ticks<const D: usize>(
+    setup: &StreamSetup,
+    program: &[Move<D>],
+    length: f64,
+    rest_s: f64,
+) -> u64 {
+    let slowest = program
         .iter()
         .filter_map(|m| m.feed)
-        .fold(job.limits.velocity, f64::min);
-    let arrive = job
-        .produce
-        .as_ref()
-        .map_or(0.0, |p| job.moves.len() as f64 / p.moves_per_second);
-    let seconds = arrive + 20.0 * length / slowest + 10.0;
-    (seconds * job.rate_hz).ceil() as u64
+        .fold(setup.limits.velocity, f64::min);
+    let arrive = setup
+        .moves_per_second
+        .map_or(0.0, |mps| program.len() as f64 / mps);
+    let seconds = arrive + 20.0 * length / slowest + rest_s + 10.0;
+    (seconds * setup.rate_hz).ceil() as u64
 }
 
 /// How a corner between two moves was passed.
@@ -116,19 +199,19 @@ pub enum CornerKind {
 
 /// What driving the stream produced.
 #[derive(Clone, Debug)]
-struct Driven {
-    stats: StreamStats,
-    underruns: u32,
-    ticks: u32,
-    pieces: usize,
-    planning: Duration,
+pub(crate) struct Driven {
+    pub(crate) stats: StreamStats,
+    pub(crate) underruns: u32,
+    pub(crate) ticks: u32,
+    pub(crate) pieces: usize,
+    pub(crate) planning: Duration,
     /// Each corner (the end of move `i`, `i + 1` pushed) and how it was passed.
-    corners: Vec<CornerKind>,
-    finished: bool,
+    pub(crate) corners: Vec<CornerKind>,
+    pub(crate) finished: bool,
 }
 
 /// The sink of the samples.
-type Sink<'a, T, const D: usize> = dyn FnMut(&Sample<T, D>) -> Result<(), RunError> + 'a;
+pub type Sink<'a, T, const D: usize> = dyn FnMut(&Sample<T, D>) -> Result<(), RunError> + 'a;
 
 /// A piece queue that counts the pieces it is given.
 struct Counted<'a, P> {
@@ -147,28 +230,28 @@ impl<N, const A: usize, P: PieceQueue<N, A>> PieceQueue<N, A> for Counted<'_, P>
 }
 
 /// The machine limits of the stream.
-fn stream_limits<const D: usize>(job: &MovesJob) -> Result<Limits<D>, JobError> {
-    crate::pipeline::limits_of::<D>(&job.limits, 1.0)
+fn stream_limits<const D: usize>(setup: &StreamSetup) -> Result<Limits<D>, JobError> {
+    crate::pipeline::limits_of::<D>(&setup.limits, 1.0)
 }
 
-/// The stream's options: the job's rate, tolerances and choice of stops.
-fn stream_options(job: &MovesJob) -> StreamOptions {
-    StreamOptions::new(job.rate_hz)
-        .with_tolerance(job.tolerance)
-        .with_faster_stops(job.faster_stops)
-        .with_arc_tolerance(job.arc_tolerance())
+/// The stream's options: the setup's rate, tolerances and choice of stops.
+pub fn stream_options(setup: &StreamSetup) -> StreamOptions {
+    StreamOptions::new(setup.rate_hz)
+        .with_tolerance(setup.tolerance)
+        .with_faster_stops(setup.faster_stops)
+        .with_arc_tolerance(setup.arc_tolerance)
         .with_fit_tolerance(FIT_TOLERANCE)
 }
 
-/// An error of [`Stream::poll`] or [`Stream::finish`] as an error on the job.
-fn stream_error(job: &MovesJob, e: TrajError) -> JobError {
+/// An error of [`Stream::poll`] or [`Stream::finish`] as an error on the run.
+pub(crate) fn stream_error(setup: &StreamSetup, e: TrajError) -> JobError {
     match e {
         TrajError::OutOfRange => JobError::new(
             "number",
             format!(
                 "a position, velocity or acceleration does not fit `{}` playback: move or \
                  scale the moves, or use number = \"f64\"",
-                number::name(job.number)
+                number::name(setup.number)
             ),
         ),
         other => JobError::new("moves", format!("the stream failed: {other}")),
@@ -183,34 +266,81 @@ fn is_full(e: &TrajError) -> bool {
     )
 }
 
-/// The main loop's side of the program: the moves pushed so far, how each corner was
-/// passed, and whether the program is finished.
-struct Feeder<'p, const D: usize> {
-    program: &'p [Move<D>],
-    next: usize,
-    corners: Vec<CornerKind>,
+/// How each corner was passed, from the stream's statistics around each push of a move.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Corners {
+    /// Each corner (the end of move `i`, `i + 1` pushed) and how it was passed.
+    pub(crate) kinds: Vec<CornerKind>,
+    /// Moves pushed.
+    moves: usize,
     /// The stream's starved rests at the last push.
     starved: usize,
+}
+
+impl Corners {
+    /// Notes a move pushed, with the stream's statistics `before` and `after` the push.
+    pub(crate) fn pushed(&mut self, before: &StreamStats, after: &StreamStats) {
+        if self.moves > 0 {
+            self.kinds.push(if after.blends > before.blends {
+                CornerKind::Blended
+            } else if after.stops > before.stops {
+                CornerKind::Stop
+            } else if before.starved > self.starved {
+                CornerKind::Starved
+            } else {
+                CornerKind::Straight
+            });
+        }
+        self.starved = after.starved;
+        self.moves += 1;
+    }
+}
+
+/// The main loop's side of a program: it hands the stream what has arrived.
+pub(crate) trait Feed<const D: usize> {
+    /// Hands the stream the moves before `arrived` (and what comes between them) while it
+    /// has room; after the last one, finishes the program.
+    ///
+    /// # Errors
+    /// A [`RunError`] naming the move the stream refuses.
+    fn push_arrived<const Q: usize, const Z: usize, const R: usize>(
+        &mut self,
+        stream: &mut Stream<D, Q, Z, NoCurve<D>, R>,
+        arrived: usize,
+    ) -> Result<(), RunError>;
+
+    /// Whether the whole program has been handed over and the stream finished.
+    fn is_finished(&self) -> bool;
+
+    /// How each corner was passed.
+    fn corners(&mut self) -> Vec<CornerKind>;
+}
+
+/// A moves job's program, pushed move by move.
+struct Feeder<'p, const D: usize> {
+    setup: &'p StreamSetup,
+    program: &'p [Move<D>],
+    next: usize,
+    corners: Corners,
     finished: bool,
 }
 
 impl<'p, const D: usize> Feeder<'p, D> {
-    fn new(program: &'p [Move<D>]) -> Self {
+    fn new(setup: &'p StreamSetup, program: &'p [Move<D>]) -> Self {
         Feeder {
+            setup,
             program,
             next: 0,
-            corners: Vec::new(),
-            starved: 0,
+            corners: Corners::default(),
             finished: false,
         }
     }
+}
 
-    /// Pushes the moves before `arrived` while the stream has room, then finishes the
-    /// program after the last one.
-    fn push_arrived<const Q: usize, const Z: usize>(
+impl<const D: usize> Feed<D> for Feeder<'_, D> {
+    fn push_arrived<const Q: usize, const Z: usize, const R: usize>(
         &mut self,
-        job: &MovesJob,
-        stream: &mut Stream<D, Q, Z>,
+        stream: &mut Stream<D, Q, Z, NoCurve<D>, R>,
         arrived: usize,
     ) -> Result<(), RunError> {
         while self.next < arrived {
@@ -220,43 +350,48 @@ impl<'p, const D: usize> Feeder<'p, D> {
                 Err(e) if is_full(&e) => break,
                 Err(e) => return Err(push_error(self.next, e).into()),
             }
-            let after = stream.stats();
-            if self.next > 0 {
-                self.corners.push(if after.blends > before.blends {
-                    CornerKind::Blended
-                } else if after.stops > before.stops {
-                    CornerKind::Stop
-                } else if before.starved > self.starved {
-                    CornerKind::Starved
-                } else {
-                    CornerKind::Straight
-                });
-            }
-            self.starved = after.starved;
+            self.corners.pushed(&before, &stream.stats());
             self.next += 1;
         }
         if self.next == self.program.len() && !self.finished {
             match stream.finish() {
                 Ok(()) => self.finished = true,
                 Err(e) if is_full(&e) => {}
-                Err(e) => return Err(stream_error(job, e).into()),
+                Err(e) => return Err(stream_error(self.setup, e).into()),
             }
         }
         Ok(())
     }
+
+    fn is_finished(&self) -> bool {
+        self.finished
+    }
+
+    fn corners(&mut self) -> Vec<CornerKind> {
+        core::mem::take(&mut self.corners.kinds)
+    }
 }
 
-/// Drives the stream `Stream<D, Q, Z>` through the job, handing each sample to `sink`.
-fn drive<N: Kernel, const D: usize, const Q: usize, const Z: usize>(
-    job: &MovesJob,
-    program: &[Move<D>],
+/// Drives the stream `Stream<D, Q, Z, _, R>` from `start` through the program `feed` hands
+/// it (`moves` moves in all, arriving at the setup's rate), handing each sample to `sink`.
+pub(crate) fn drive<N, F, const D: usize, const Q: usize, const Z: usize, const R: usize>(
+    setup: &StreamSetup,
+    (start, moves): ([f64; D], usize),
+    feed: &mut F,
     guard: u64,
     sink: &mut Sink<'_, N::Out, D>,
-) -> Result<Driven, RunError> {
-    let start = job.start::<D>();
+) -> Result<Driven, RunError>
+where
+    N: Kernel,
+    F: Feed<D>,
+{
     let mut stream = Box::new(
-        Stream::<D, Q, Z>::new(start, stream_limits::<D>(job)?, stream_options(job))
-            .map_err(|e| JobError::new("tolerance", e.to_string()))?,
+        Stream::<D, Q, Z, NoCurve<D>, R>::new(
+            start,
+            stream_limits::<D>(setup)?,
+            stream_options(setup),
+        )
+        .map_err(|e| JobError::new("tolerance", e.to_string()))?,
     );
     let mut queue = Queue::<Piece<N, D>, PIECE_QUEUE>::new();
     let (mut producer, consumer) = queue.split();
@@ -264,25 +399,18 @@ fn drive<N: Kernel, const D: usize, const Q: usize, const Z: usize>(
         queue: &mut producer,
         pieces: 0,
     };
-    let mut sampler = StreamSampler::new(consumer, &*stream).map_err(|e| stream_error(job, e))?;
-    // The ticks between two arrivals.
-    let every = job
-        .produce
-        .as_ref()
-        .map(|p| job.rate_hz / p.moves_per_second);
-    let mut feeder = Feeder::new(program);
+    let mut sampler = StreamSampler::new(consumer, &*stream).map_err(|e| stream_error(setup, e))?;
     let mut planning = Duration::ZERO;
     let mut done = false;
     for tick in 0..guard {
         let clock = Instant::now();
-        let arrived = every.map_or(program.len(), |e| {
-            ((tick as f64 / e).floor() as usize + 1).min(program.len())
-        });
-        feeder.push_arrived(job, &mut stream, arrived)?;
-        stream.poll(&mut pieces).map_err(|e| stream_error(job, e))?;
+        feed.push_arrived(&mut stream, arrived(setup, tick, moves))?;
+        stream
+            .poll(&mut pieces)
+            .map_err(|e| stream_error(setup, e))?;
         planning += clock.elapsed();
         sink(&sampler.next())?;
-        done = feeder.finished && stream.is_idle() && sampler.is_holding();
+        done = feed.is_finished() && stream.is_idle() && sampler.is_holding();
         if done {
             break;
         }
@@ -293,60 +421,109 @@ fn drive<N: Kernel, const D: usize, const Q: usize, const Z: usize>(
         ticks: stream.ticks(),
         pieces: pieces.pieces,
         planning,
-        corners: feeder.corners,
+        corners: feed.corners(),
         finished: done,
     })
 }
 
-/// The samples as they are played: written to `samples.csv`, measured and recorded for the
-/// plots.
-struct Recording<const D: usize> {
+/// The longest moves a sample may pass over between two ticks (as [`Programmed`] follows
+/// them): four ticks at the velocity limit plus twice the largest corner tolerance
+/// `tolerance`, the moves a blend may cut across.
+pub(crate) fn skip_length(setup: &StreamSetup, tolerance: f64) -> f64 {
+    4.0 * setup.limits.velocity / setup.rate_hz + 2.0 * tolerance
+}
+
+/// The moves arrived by `tick` of a program of `moves` moves: all of them, or at the
+/// setup's rate, the first at tick 0.
+///
+/// ```
+/// # use strak_sim::stream_run::{StreamSetup, arrived};
+/// # use strak_sim::{job::JobLimits, number::NumberFormat};
+/// let setup = StreamSetup {
+///     rate_hz: 1_000.0, number: NumberFormat::F64, unit: "mm".into(), tolerance: 0.0,
+///     faster_stops: true, queue: 8, arc_tolerance: 1e-6,
+///     limits: JobLimits { velocity: 1.0, acceleration: 1.0, jerk: 1.0, axis_velocity: None,
+///         axis_acceleration: None },
+///     moves_per_second: Some(400.0), axis_names: vec!["x".into()], path_axes: 1,
+/// };
+/// assert_eq!([0, 2, 3, 100].map(|t| arrived(&setup, t, 10)), [1, 1, 2, 10]);
+/// ```
+pub fn arrived(setup: &StreamSetup, tick: u64, moves: usize) -> usize {
+    setup.moves_per_second.map_or(moves, |mps| {
+        let every = setup.rate_hz / mps;
+        ((tick as f64 / every).floor() as usize + 1).min(moves)
+    })
+}
+
+/// The samples as they are played: written to `samples.csv` (every `every`-th), measured
+/// and recorded for the plots.
+pub(crate) struct Recording<const D: usize> {
     csv: BufWriter<File>,
     csv_path: PathBuf,
     measure: Measure<D>,
-    recorder: Recorder,
+    pub(crate) recorder: Recorder,
     programmed: Programmed<D>,
     rate: f64,
     row: String,
     values: Vec<f64>,
     samples: u64,
+    every: u64,
+    path_axes: usize,
     last: [f64; D],
 }
 
 impl<const D: usize> Recording<D> {
-    fn new(
-        job: &MovesJob,
+    /// Creates `samples.csv` in `options.out_dir`, for about `expected` samples, of which
+    /// every `every`-th is written.
+    pub(crate) fn new(
+        setup: &StreamSetup,
         programmed: Programmed<D>,
         options: &RunOptions,
+        (expected, every): (u64, u64),
     ) -> Result<Self, RunError> {
         let csv_path = options.out_dir.join("samples.csv");
         let io =
             |e: std::io::Error| RunError::Io(format!("cannot write {}: {e}", csv_path.display()));
         let mut csv = BufWriter::new(File::create(&csv_path).map_err(io)?);
-        writeln!(csv, "{}", csv_header(D)).map_err(io)?;
-        let expected = guard_ticks(job, programmed.length) / 20;
+        writeln!(csv, "{}", csv_header_named(&setup.axis_names)).map_err(io)?;
+        let p = setup.path_axes;
         Ok(Recording {
             csv,
             csv_path,
-            measure: Measure::new(job.rate_hz),
-            recorder: Recorder::new(D, expected),
-            programmed,
-            rate: job.rate_hz,
+            measure: Measure::new(setup.rate_hz).with_path_axes(p),
+            recorder: Recorder::new(D, expected).with_axes(&setup.axis_names, p),
+            programmed: programmed.with_path_axes(p),
+            rate: setup.rate_hz,
             row: String::new(),
             values: Vec::with_capacity(4 * D + 3),
             samples: 0,
+            every: every.max(1),
+            path_axes: p,
             last: [0.0; D],
         })
     }
 
+    /// Flushes `samples.csv`.
+    pub(crate) fn flush(&mut self) -> Result<(), RunError> {
+        self.csv
+            .flush()
+            .map_err(|e| RunError::Io(format!("cannot write {}: {e}", self.csv_path.display())))
+    }
+
     /// Writes, measures and records one sample.
-    fn push<T: CsvCell>(&mut self, s: &Sample<T, D>, factor: Option<f64>) -> Result<(), RunError> {
+    pub(crate) fn push<T: CsvCell>(
+        &mut self,
+        s: &Sample<T, D>,
+        factor: Option<f64>,
+    ) -> Result<(), RunError> {
         let k = self.samples;
         let t = k as f64 / self.rate;
-        write_row(&mut self.row, k, t, s);
-        self.csv
-            .write_all(self.row.as_bytes())
-            .map_err(|e| RunError::Io(format!("cannot write {}: {e}", self.csv_path.display())))?;
+        if k.is_multiple_of(self.every) {
+            write_row(&mut self.row, k, t, s);
+            self.csv.write_all(self.row.as_bytes()).map_err(|e| {
+                RunError::Io(format!("cannot write {}: {e}", self.csv_path.display()))
+            })?;
+        }
         let position = to_f64(&s.position);
         let nearest = self.programmed.nearest(&position);
         let mut observed = Observed {
@@ -362,7 +539,8 @@ impl<const D: usize> Recording<D> {
         if let Some(f) = factor {
             observed.velocity = observed.velocity.map(|v| v * f);
         }
-        channels(&observed, self.measure.push(&observed), &mut self.values);
+        let jerk = self.measure.push(&observed);
+        channels(&observed, jerk, self.path_axes, &mut self.values);
         self.recorder.push(t, &self.values);
         self.last = position;
         self.samples += 1;
@@ -370,15 +548,20 @@ impl<const D: usize> Recording<D> {
     }
 }
 
-/// Calls `$f::<N, D, Q, Z>` with the look-ahead capacities of the job's `queue`.
+/// Calls `$f::<N, F, D, Q, Z, R>` with the look-ahead capacities of the setup's `queue`.
+#[macro_export]
 macro_rules! by_queue {
-    ($job:expr, $f:ident::<$n:ty, $d:ident>($($arg:expr),*)) => {
-        match $job.queue {
-            8 => $f::<$n, $d, 8, 32>($($arg),*),
-            16 => $f::<$n, $d, 16, 64>($($arg),*),
-            32 => $f::<$n, $d, 32, 128>($($arg),*),
-            64 => $f::<$n, $d, 64, 256>($($arg),*),
-            q => Err(JobError::new("queue", format!("must be 8, 16, 32 or 64 segments, not {q}")).into()),
+    ($setup:expr, $f:ident::<$n:ty, $feed:ty, $d:ident, $r:ident>($($arg:expr),*)) => {
+        match $setup.queue {
+            8 => $f::<$n, $feed, $d, 8, 32, $r>($($arg),*),
+            16 => $f::<$n, $feed, $d, 16, 64, $r>($($arg),*),
+            32 => $f::<$n, $feed, $d, 32, 128, $r>($($arg),*),
+            64 => $f::<$n, $feed, $d, 64, 256, $r>($($arg),*),
+            q => Err($crate::job::JobError::new(
+                "queue",
+                format!("must be 8, 16, 32 or 64 segments, not {q}"),
+            )
+            .into()),
         }
     };
 }
@@ -411,41 +594,52 @@ where
     N: Kernel,
     N::Out: CsvCell,
 {
+    const R: usize = 0;
     let started = Instant::now();
+    let setup = job.setup();
     let program = job.program::<D>()?;
     let start = job.start::<D>();
-    let programmed = Programmed::new(start, &program, job.arc_tolerance());
-    let guard = guard_ticks(job, programmed.length);
-    let out = &options.out_dir;
-    fs::create_dir_all(out)
-        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", out.display())))?;
-    let mut rec = Recording::new(job, programmed, options)?;
+    let programmed = Programmed::new(start, &program, setup.arc_tolerance)
+        .with_skip(skip_length(&setup, setup.tolerance));
+    let guard = guard_ticks(&setup, &program, programmed.length, 0.0);
+    create_out_dir(options)?;
+    let mut rec = Recording::new(&setup, programmed, options, (guard / 20, 1))?;
     let factor = options.velocity_factor;
     let mut sink = |s: &Sample<N::Out, D>| rec.push(s, factor);
-    let driven = by_queue!(job, drive::<N, D>(job, &program, guard, &mut sink))?;
-    rec.csv
-        .flush()
-        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", rec.csv_path.display())))?;
+    let mut feeder = Feeder::new(&setup, &program);
+    let at = (start, program.len());
+    let driven = by_queue!(
+        setup,
+        drive::<N, Feeder<'_, D>, D, R>(&setup, at, &mut feeder, guard, &mut sink)
+    )?;
+    rec.flush()?;
     let play_s = started.elapsed().as_secs_f64();
-    let mut summary = summarize::<N, D>(job, options, &driven, &rec);
+    let mut summary = summarize::<N, D>(&setup, options, &driven, (&rec, setup.tolerance));
     summary.wall_time.plan_s = driven.planning.as_secs_f64();
     summary.wall_time.play_s = play_s - summary.wall_time.plan_s;
     let plots = Instant::now();
-    write_plots(
-        job,
-        options,
-        &summary,
-        &rec.recorder,
-        &marks(job, &program, &driven.corners),
-    )?;
+    let marks = marks(job, &program, &driven.corners);
+    write_plots(&setup, options, &summary, &rec.recorder, &marks)?;
     summary.wall_time.plots_s = plots.elapsed().as_secs_f64();
     summary.wall_time.total_s = started.elapsed().as_secs_f64();
-    let json_path = out.join("summary.json");
-    let json = serde_json::to_string_pretty(&summary)
+    write_summary(options, &summary)?;
+    Ok(summary)
+}
+
+/// Creates the output folder.
+pub(crate) fn create_out_dir(options: &RunOptions) -> Result<(), RunError> {
+    let out = &options.out_dir;
+    fs::create_dir_all(out)
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", out.display())))
+}
+
+/// Writes `summary.json`.
+pub(crate) fn write_summary(options: &RunOptions, summary: &Summary) -> Result<(), RunError> {
+    let json_path = options.out_dir.join("summary.json");
+    let json = serde_json::to_string_pretty(summary)
         .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))?;
     fs::write(&json_path, json + "\n")
-        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))?;
-    Ok(summary)
+        .map_err(|e| RunError::Io(format!("cannot write {}: {e}", json_path.display())))
 }
 
 /// The blends and the stops of the path plot: each blended corner's blend curve (the
@@ -501,8 +695,9 @@ fn marks<const D: usize>(job: &MovesJob, program: &[Move<D>], corners: &[CornerK
     marks
 }
 
-fn write_plots(
-    job: &MovesJob,
+/// Writes `path.svg` and `motion.svg`.
+pub(crate) fn write_plots(
+    setup: &StreamSetup,
     options: &RunOptions,
     summary: &Summary,
     recorder: &Recorder,
@@ -511,23 +706,23 @@ fn write_plots(
     let title = format!(
         "{} — {} moves streamed, ε {} {}, {} Hz, {}",
         options.name,
-        job.moves.len(),
-        crate::summary::num(job.tolerance),
-        job.unit(),
-        crate::summary::num(job.rate_hz),
+        summary.stream.as_ref().map_or(0, |s| s.moves),
+        crate::summary::num(setup.tolerance),
+        setup.unit,
+        crate::summary::num(setup.rate_hz),
         summary.playback
     );
-    let l = &job.limits;
+    let l = &setup.limits;
     let limits = PlotLimits {
         velocity: Some(l.velocity),
         acceleration: Some(l.acceleration),
         jerk: Some(l.jerk),
     };
     let path_svg = options.out_dir.join("path.svg");
-    plot::write_path(&path_svg, recorder, job.unit(), &title, marks)
+    plot::write_path(&path_svg, recorder, &setup.unit, &title, marks)
         .map_err(|e| RunError::Io(format!("cannot write {}: {e}", path_svg.display())))?;
     let motion_svg = options.out_dir.join("motion.svg");
-    plot::write_motion(&motion_svg, recorder, job.unit(), limits, &title)
+    plot::write_motion(&motion_svg, recorder, &setup.unit, limits, &title)
         .map_err(|e| RunError::Io(format!("cannot write {}: {e}", motion_svg.display())))
 }
 
@@ -552,36 +747,37 @@ fn playback_name<N: Number>() -> String {
     }
 }
 
-/// The stream's statistics for the summary.
-fn report(job: &MovesJob, driven: &Driven) -> StreamReport {
+/// The stream's statistics for the summary; `tolerance`: the largest corner tolerance the
+/// program asked for.
+fn report(setup: &StreamSetup, driven: &Driven, tolerance: f64) -> StreamReport {
     let s = &driven.stats;
-    let deviation =
-        Checked::new(s.max_deviation, 0.0, Some(job.tolerance)).enforce(job.tolerance > 0.0);
+    let deviation = Checked::new(s.max_deviation, 0.0, Some(tolerance)).enforce(tolerance > 0.0);
     StreamReport {
         moves: s.moves,
         blends: s.blends,
         stops: s.stops,
-        tolerance: job.tolerance,
+        tolerance,
         max_deviation: deviation,
         starved: s.starved,
         underruns: driven.underruns,
-        queue: job.queue,
-        zones: job.zones(),
+        queue: setup.queue,
+        zones: setup.zones(),
         piece_queue: PIECE_QUEUE - 1,
-        moves_per_second: job.produce.as_ref().map(|p| p.moves_per_second),
+        moves_per_second: setup.moves_per_second,
         planning_per_move_s: driven.planning.as_secs_f64() / s.moves.max(1) as f64,
     }
 }
 
 /// The limits the stream plans with: the acceleration and jerk less the planner's feed
 /// share.
-fn planned_with<const D: usize>(job: &MovesJob) -> PlannedLimits {
+fn planned_with<const D: usize>(setup: &StreamSetup) -> PlannedLimits {
     let keep = 1.0 - PlanOptions::DEFAULT_FEED_SHARE;
-    let axis_a = crate::pipeline::axis_array::<D>(job.limits.axis_acceleration.as_deref());
+    let l = &setup.limits;
+    let axis_a = crate::pipeline::axis_array::<D>(l.axis_acceleration.as_deref());
     PlannedLimits {
-        velocity: job.limits.velocity,
-        acceleration: job.limits.acceleration * keep,
-        jerk: job.limits.jerk * keep,
+        velocity: l.velocity,
+        acceleration: l.acceleration * keep,
+        jerk: l.jerk * keep,
         axis_acceleration: axis_a
             .iter()
             .map(|a| Some(a * keep).filter(|x| x.is_finite()))
@@ -589,51 +785,57 @@ fn planned_with<const D: usize>(job: &MovesJob) -> PlannedLimits {
     }
 }
 
-/// The distance of the samples from the moves, against the blend tolerance plus the fit
-/// tolerance (allowing the chords' sag and the playback's position error).
-fn accuracy<const D: usize>(job: &MovesJob, rec: &Recording<D>) -> Accuracy {
+/// The distance of the samples from the moves, against the largest corner tolerance plus
+/// the fit tolerance (allowing the chords' sag and the playback's position error).
+fn accuracy<const D: usize>(setup: &StreamSetup, rec: &Recording<D>, tolerance: f64) -> Accuracy {
     let m = &rec.measure;
     let p = &rec.programmed;
-    let slack = 2.0 * p.sag + position_allowance(job.number, p.far);
+    let slack = 2.0 * p.sag + position_allowance(setup.number, p.far);
     Accuracy {
         method: DISTANCE_METHOD.to_owned(),
-        distance: Checked::new(
-            m.curve.max,
-            m.curve.at_s,
-            Some(job.tolerance + FIT_TOLERANCE),
-        )
-        .allowing(slack)
-        .enforce(true),
+        distance: Checked::new(m.curve.max, m.curve.at_s, Some(tolerance + FIT_TOLERANCE))
+            .allowing(slack)
+            .enforce(true),
     }
 }
 
-fn summarize<N: Number, const D: usize>(
-    job: &MovesJob,
+/// The summary of a streamed run whose corners were blended within at most `tolerance`.
+pub(crate) fn summarize<N: Number, const D: usize>(
+    setup: &StreamSetup,
     options: &RunOptions,
     driven: &Driven,
-    rec: &Recording<D>,
+    (rec, tolerance): (&Recording<D>, f64),
 ) -> Summary {
     let m = &rec.measure;
     let enforced = (true, true);
-    let (path, per_axis, finite_differences, along_path) =
-        crate::run::maxima_of(&job.limits, job.number, enforced, allowance(job.number), m);
+    let names: Vec<&str> = setup.axis_names.iter().map(String::as_str).collect();
+    let number = setup.number;
+    let (path, per_axis, finite_differences, along_path) = crate::run::maxima_of(
+        &setup.limits,
+        number,
+        enforced,
+        allowance(number),
+        &names,
+        m,
+    );
     let end = rec.programmed.end;
     let ticks = driven.ticks;
+    let rate = setup.rate_hz;
     let mut summary = Summary {
         job: options.name.clone(),
-        number: number::name(job.number).to_owned(),
+        number: number::name(number).to_owned(),
         playback: playback_name::<N>(),
         axes: D,
-        unit: job.unit().to_owned(),
-        rate_hz: job.rate_hz,
+        unit: setup.unit.clone(),
+        rate_hz: rate,
         profile: "stream".to_owned(),
         feed_share: PlanOptions::DEFAULT_FEED_SHARE,
-        planned_with: planned_with::<D>(job),
-        duration_s: f64::from(ticks) / job.rate_hz,
-        plan_duration_s: f64::from(ticks) / job.rate_hz,
+        planned_with: planned_with::<D>(setup),
+        duration_s: f64::from(ticks) / rate,
+        plan_duration_s: f64::from(ticks) / rate,
         ticks,
         samples: rec.samples,
-        run_time_s: rec.samples.saturating_sub(1) as f64 / job.rate_hz,
+        run_time_s: rec.samples.saturating_sub(1) as f64 / rate,
         stop: if driven.finished {
             "end of the moves".to_owned()
         } else {
@@ -649,13 +851,13 @@ fn summarize<N: Number, const D: usize>(
         pieces: driven.pieces,
         piece_capacity: PIECE_QUEUE - 1,
         tolerance: FIT_TOLERANCE,
-        playback_bound: position_allowance(job.number, rec.programmed.far),
+        playback_bound: position_allowance(number, rec.programmed.far),
         path,
         along_path,
         per_axis,
         limits_respected: false,
         finite_differences,
-        accuracy: accuracy(job, rec),
+        accuracy: accuracy(setup, rec, tolerance),
         check: CheckRule {
             enforced: true,
             rule: CHECK_RULE.to_owned(),
@@ -679,7 +881,8 @@ fn summarize<N: Number, const D: usize>(
             .iter()
             .map(|f| options.out_dir.join(f).display().to_string())
             .collect(),
-        stream: Some(report(job, driven)),
+        stream: Some(report(setup, driven, tolerance)),
+        gcode: None,
     };
     summary.limits_respected = summary
         .all_checked()

@@ -211,6 +211,43 @@ pub struct Applied {
     pub ramp_shift: u8,
 }
 
+/// What a G-code program held and how fast it was read and planned
+/// ([`crate::gcode_run`]).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct GcodeReport {
+    /// The program's file.
+    pub file: String,
+    /// Its size in bytes.
+    pub bytes: usize,
+    /// Its lines.
+    pub lines: u32,
+    /// Its moves.
+    pub moves: usize,
+    /// Its dwells (`G4`) and their seconds in all.
+    pub dwells: usize,
+    /// The seconds of all dwells.
+    pub dwell_s: f64,
+    /// The axes that rode along the path.
+    pub riding_axes: Vec<String>,
+    /// The codes read but ignored (`M`, `T`, `S`, unknown `G` codes), each with its count.
+    pub ignored: Vec<IgnoredCode>,
+    /// Ignored codes beyond the kinds counted one by one.
+    pub ignored_others: u32,
+    /// Wall-clock seconds of reading the program once (a measurement of this host).
+    pub read_s: f64,
+    /// Moves read, planned and compiled per wall-clock second of the run's main loop.
+    pub planned_moves_per_s: f64,
+}
+
+/// An ignored code and how often it occurred.
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct IgnoredCode {
+    /// The code (`M104`, `T0`, `G28`, …).
+    pub code: String,
+    /// Its occurrences.
+    pub count: u32,
+}
+
 /// What the stream of a moves job did ([`crate::stream_run`]).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct StreamReport {
@@ -320,9 +357,12 @@ pub struct Summary {
     pub wall_time: WallTime,
     /// The files written.
     pub files: Vec<String>,
-    /// The stream's statistics (moves jobs only).
+    /// The stream's statistics (moves jobs and G-code only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stream: Option<StreamReport>,
+    /// The G-code program (G-code only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gcode: Option<GcodeReport>,
 }
 
 /// Six significant digits, without trailing zeros; scientific for very small or large values.
@@ -353,6 +393,43 @@ fn check_mark(c: &Checked) -> &'static str {
         (Some(false), false) => "exceeded (not enforced)",
         (None, _) => "",
     }
+}
+
+/// The G-code lines of the head.
+fn fmt_gcode(f: &mut fmt::Formatter<'_>, g: &GcodeReport) -> fmt::Result {
+    let riding = if g.riding_axes.is_empty() {
+        String::new()
+    } else {
+        format!("; {} riding along", g.riding_axes.join(", "))
+    };
+    writeln!(
+        f,
+        "  program    {}: {} bytes, {} lines, {} moves, {} dwell(s) of {} s{riding}",
+        g.file,
+        g.bytes,
+        g.lines,
+        g.moves,
+        g.dwells,
+        num(g.dwell_s)
+    )?;
+    let mut ignored: Vec<String> = g
+        .ignored
+        .iter()
+        .map(|c| format!("{} ×{}", c.code, c.count))
+        .collect();
+    if g.ignored_others > 0 {
+        ignored.push(format!("{} other(s)", g.ignored_others));
+    }
+    if ignored.is_empty() {
+        ignored.push("none".to_owned());
+    }
+    writeln!(f, "  ignored    {}", ignored.join(", "))?;
+    writeln!(
+        f,
+        "  rate       read in {} s; read, planned and compiled at {} moves/s (wall clock on this host)",
+        num(g.read_s),
+        num(g.planned_moves_per_s)
+    )
 }
 
 /// One row of the maxima table.
@@ -463,7 +540,8 @@ impl Summary {
         let u = &self.unit;
         writeln!(
             f,
-            "strak-sim run: {} — {} axes, {} Hz, {} profile, {} playback",
+            "strak-sim {}: {} — {} axes, {} Hz, {} profile, {} playback",
+            if self.gcode.is_some() { "gcode" } else { "run" },
             self.job,
             self.axes,
             num(self.rate_hz),
@@ -500,6 +578,9 @@ impl Summary {
             self.events_applied,
             self.stop
         )?;
+        if let Some(g) = &self.gcode {
+            fmt_gcode(f, g)?;
+        }
         if let Some(s) = &self.stream {
             return self.fmt_stream(f, s);
         }

@@ -12,5 +12,5 @@ mod words;
 pub use error::{ErrorKind, GcodeError};
 pub use feed::Feeder;
 pub use line::{Code, IGNORED_KINDS, Ignored};
-pub use lines::{LineBuffer, lines};
+pub use lines::{LineBuffer, Lines, lines};
 pub use reader::{Action, Block, Motion, PathMode, Reader};

@@ -8,15 +8,38 @@ use crate::error::ErrorKind;
 /// last one without a line end included when it is not empty.
 ///
 /// ```
-/// let text = b"G21\r\nG1 X1 F60\nG1 X2";
+/// let text = b"G21\r\nG1 X1 F60\n\nG1 X2";
 /// let lines: Vec<&[u8]> = strak_gcode::lines(text).collect();
-/// assert_eq!(lines, [&b"G21\r"[..], b"G1 X1 F60", b"G1 X2"]);
+/// assert_eq!(lines, [&b"G21\r"[..], b"G1 X1 F60", b"", b"G1 X2"]);
+/// assert_eq!(strak_gcode::lines(b"G1 X1\n").count(), 1);
 /// ```
-pub fn lines(text: &[u8]) -> impl Iterator<Item = &[u8]> {
-    let trailing = text.last() == Some(&b'\n');
-    let count = text.split(|&b| b == b'\n').count() - usize::from(trailing);
-    text.split(|&b| b == b'\n').take(count)
+pub fn lines(text: &[u8]) -> Lines<'_> {
+    Lines { rest: text }
 }
+
+/// The lines of a program in memory ([`lines`]).
+#[derive(Clone, Debug)]
+pub struct Lines<'a> {
+    rest: &'a [u8],
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = &'a [u8];
+
+    fn next(&mut self) -> Option<&'a [u8]> {
+        if self.rest.is_empty() {
+            return None;
+        }
+        let (line, rest) = match self.rest.iter().position(|&b| b == b'\n') {
+            Some(end) => (&self.rest[..end], &self.rest[end + 1..]),
+            None => (self.rest, &self.rest[self.rest.len()..]),
+        };
+        self.rest = rest;
+        Some(line)
+    }
+}
+
+impl core::iter::FusedIterator for Lines<'_> {}
 
 /// Collects bytes into lines of at most `N` bytes: [`push`](Self::push) each byte as it
 /// arrives; at a line end it returns the line (until the next push).

@@ -9,10 +9,6 @@ use crate::line::{At, Code, Ignored, Line};
 /// Millimetres per inch (`G20`).
 const MM_PER_INCH: f64 = 25.4;
 
-/// An arc's end may lie off the circle of its start by this share of the radius (besides the
-/// absolute [`Reader::with_arc_tolerance`]): grbl's relative test.
-const ARC_RELATIVE_TOLERANCE: f64 = 1e-3;
-
 /// The motion mode (modal group 1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -278,10 +274,11 @@ impl<const D: usize> Reader<D> {
     }
 
     /// The same reader taking an arc's end as on the circle of its start when their
-    /// distances from the centre differ by at most `units` (machine units) or by at most
-    /// 0.1 % of the radius (an `R` arc: when the chord exceeds the diameter by at most
-    /// `units`). A stream that plays the arcs needs at least this arc tolerance
-    /// ([`StreamOptions::with_arc_tolerance`](strak_trajectory::StreamOptions::with_arc_tolerance)).
+    /// distances from the centre differ by at most `units` (machine units; an `R` arc: when
+    /// the chord exceeds the diameter by at most `units`). This is the test the stream's
+    /// arcs pass: give the stream the same arc tolerance
+    /// ([`StreamOptions::with_arc_tolerance`](strak_trajectory::StreamOptions::with_arc_tolerance))
+    /// and every arc the reader takes, the stream takes.
     #[must_use]
     pub fn with_arc_tolerance(mut self, units: f64) -> Self {
         self.arc_tolerance = units;
@@ -496,8 +493,7 @@ impl<const D: usize> Reader<D> {
         let center = [center(oa, a), center(ob, b)];
         let r0 = libm::hypot(from[a] - center[0], from[b] - center[1]);
         let r1 = libm::hypot(to[a] - center[0], to[b] - center[1]);
-        let allowed = self.arc_tolerance.max(ARC_RELATIVE_TOLERANCE * r0);
-        if !(r0 > 0.0 && (r1 - r0).abs() <= allowed) {
+        if !(r0 > 0.0 && (r1 - r0).abs() <= self.arc_tolerance) {
             return Err(ErrorKind::ArcRadiusMismatch);
         }
         Ok(Shape::ArcCenter {

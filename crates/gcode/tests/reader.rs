@@ -171,13 +171,13 @@ fn bad_arcs_are_errors() {
     let mut r = reader().with_arc_tolerance(0.002);
     mv(&mut r, "G0 X10 Y0");
     r.read_line(b"F600").unwrap();
-    // the end is 0.1 off the circle of radius 10 (more than 0.1 % of it)
+    // the end is 0.003 off the circle of radius 10: more than the tolerance
     assert_eq!(
-        err(&mut r, "G3 X0 Y10.1 I-10"),
+        err(&mut r, "G3 X0 Y10.003 I-10"),
         (1, ErrorKind::ArcRadiusMismatch)
     );
-    // within 0.1 % of the radius it is taken
-    mv(&mut r, "G3 X0 Y10.005 I-10");
+    // within it the arc is taken
+    mv(&mut r, "G3 X0 Y10.0015 I-10");
     mv(&mut r, "G0 X10 Y0");
     assert_eq!(err(&mut r, "G2 X0 Y10"), (1, ErrorKind::ArcWithoutCenter));
     assert_eq!(
