@@ -268,12 +268,14 @@ pub trait Number:
     fn from_out(v: Self::Out) -> Self;
 }
 
+#[inline]
 fn write_bytes(src: &[u8], out: &mut [u8]) {
     for (o, s) in out.iter_mut().zip(src) {
         *o = *s;
     }
 }
 
+#[inline]
 fn read_bytes<const B: usize>(bytes: &[u8]) -> [u8; B] {
     let mut b = [0_u8; B];
     for (o, s) in b.iter_mut().zip(bytes) {
@@ -317,9 +319,11 @@ impl Number for f32 {
     fn addition_error(magnitude: f64) -> f64 {
         Self::rounding_error(magnitude)
     }
+    #[inline]
     fn write_le(self, out: &mut [u8]) {
         write_bytes(&self.to_bits().to_le_bytes(), out);
     }
+    #[inline]
     fn read_le(bytes: &[u8]) -> Self {
         f32::from_bits(u32::from_le_bytes(read_bytes(bytes)))
     }
@@ -375,9 +379,11 @@ impl Number for f64 {
     fn addition_error(magnitude: f64) -> f64 {
         Self::rounding_error(magnitude)
     }
+    #[inline]
     fn write_le(self, out: &mut [u8]) {
         write_bytes(&self.to_bits().to_le_bytes(), out);
     }
+    #[inline]
     fn read_le(bytes: &[u8]) -> Self {
         f64::from_bits(u64::from_le_bytes(read_bytes(bytes)))
     }
@@ -442,9 +448,11 @@ impl Number for Q40 {
     fn addition_error(_magnitude: f64) -> f64 {
         0.0
     }
+    #[inline]
     fn write_le(self, out: &mut [u8]) {
         write_bytes(&self.0.to_le_bytes(), out);
     }
+    #[inline]
     fn read_le(bytes: &[u8]) -> Self {
         Q40(i64::from_le_bytes(read_bytes(bytes)))
     }

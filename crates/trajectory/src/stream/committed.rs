@@ -55,19 +55,13 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
     /// one starts (or at the committed end `end`, the end of its last zone): the rounding
     /// of a zone's phases leaves their end within about `1e-9` of the zone's own.
     pub(super) fn state(&self, t: f64) -> MotionState {
-        let mut found = None;
-        let mut next = None;
-        for p in self.phases.iter() {
-            if p.t0 <= t || found.is_none() {
-                found = Some(p);
-            } else {
-                next = Some(p);
-                break;
-            }
-        }
-        let Some(p) = found else {
+        // The phases start in time order: the one at `t` is the last to start at or before
+        // it (the first when none does), found by bisection.
+        let at = prefix_len(self.phases, |p| p.t0 <= t).max(1);
+        let Some(p) = self.phases.get(at - 1) else {
             return MotionState::default();
         };
+        let next = self.phases.get(at);
         let st = p.state_at(t);
         if t < p.end() || st.v > 0.0 {
             return st;
@@ -135,13 +129,26 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
         } else {
             0.0
         };
-        let segment = self
-            .segments
-            .iter()
-            .rev()
-            .find(|g| g.start + slack < s || (!braking && g.start <= s))
-            .or_else(|| self.segments.front());
+        // The segments start in order along the path, so the test holds for a prefix of
+        // them: the last of it is found by bisection.
+        let on = prefix_len(self.segments, |g| {
+            g.start + slack < s || (!braking && g.start <= s)
+        });
+        let segment = self.segments.get(on.saturating_sub(1));
         segment.ok_or(Error::EmptyPath)?.frame(s)
+    }
+}
+
+/// The length of the prefix of `items` for which `holds` is true, where it holds for a
+/// prefix (items in an order that `holds` respects), by bisection of the deque's two
+/// slices.
+fn prefix_len<T, const N: usize>(items: &Deque<T, N>, holds: impl Fn(&T) -> bool) -> usize {
+    let (head, tail) = items.as_slices();
+    let n = head.partition_point(&holds);
+    if n < head.len() {
+        n
+    } else {
+        n + tail.partition_point(holds)
     }
 }
 
