@@ -47,6 +47,12 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usiz
     /// stretch asks for the position, slope and second derivative of a tick in turn, and
     /// for the ticks near it again as it refines its pieces.
     pub(super) recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
+    /// The ticks whose position alone was evaluated last, and their points, by tick modulo
+    /// [`RECENT`]: the spline fit checks its pieces against the positions of every tick,
+    /// which need neither the tangent nor the curvature of the frame.
+    pub(super) points: [Cell<Option<(u32, [f64; D])>>; RECENT],
+    /// The indices of the phase and of the segment found last.
+    pub(super) cursors: [Cell<usize>; 2],
 }
 
 impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committed<'_, D, Q, C, R> {
@@ -55,13 +61,11 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
     /// one starts (or at the committed end `end`, the end of its last zone): the rounding
     /// of a zone's phases leaves their end within about `1e-9` of the zone's own.
     pub(super) fn state(&self, t: f64) -> MotionState {
-        // The phases start in time order: the one at `t` is the last to start at or before
-        // it (the first when none does), found by bisection.
-        let at = prefix_len(self.phases, |p| p.t0 <= t).max(1);
-        let Some(p) = self.phases.get(at - 1) else {
+        let at = last_holding(self.phases, &self.cursors[0], |p| p.t0 <= t);
+        let Some(p) = self.phases.get(at) else {
             return MotionState::default();
         };
-        let next = self.phases.get(at);
+        let next = self.phases.get(at + 1);
         let st = p.state_at(t);
         if t < p.end() || st.v > 0.0 {
             return st;
@@ -86,9 +90,29 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
             return Ok((st, f));
         }
         let st = self.state(f64::from(k) * self.period);
-        let f = self.frame(st.s, st.a < 0.0)?;
+        let f = self.segment_at(st.s, st.a < 0.0)?.frame(st.s)?;
         slot.set(Some((k, st, f)));
         Ok((st, f))
+    }
+
+    /// The position at tick `k`: the point of its frame ([`Self::at_tick`]), evaluated
+    /// alone where the frame is not at hand.
+    fn point_at(&self, k: u32) -> Result<[f64; D], Error> {
+        let slot = &self.points[k as usize % RECENT];
+        if let Some((tick, x)) = slot.get()
+            && tick == k
+        {
+            return Ok(x);
+        }
+        if let Some((tick, _, f)) = self.recent[k as usize % RECENT].get()
+            && tick == k
+        {
+            return Ok(f.point);
+        }
+        let st = self.state(f64::from(k) * self.period);
+        let x = self.segment_at(st.s, st.a < 0.0)?.point(st.s)?;
+        slot.set(Some((k, x)));
+        Ok(x)
     }
 
     /// Calls `emit` with the times in the phase `p` at which the path passes from one
@@ -115,7 +139,7 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
         }
     }
 
-    /// The frame of the path at the arc length `s`: of the last segment that starts at or
+    /// The segment of the path at the arc length `s`: the last segment that starts at or
     /// before it (the first one before the start). At a join the motion is on the segment
     /// it enters, so that after an exact stop at a corner it leaves along the next segment
     /// from its first tick (the previous segment's end, `start + length`, can exceed the
@@ -123,20 +147,42 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
     /// up to [`JOIN_ROUNDING`] past the join, so that a tick a sliver before it comes to
     /// rest at a corner keeps the direction it arrives from (the corner turns its
     /// acceleration, which the jerk from tick to tick would otherwise take as a step).
-    pub(super) fn frame(&self, s: f64, braking: bool) -> Result<Frame<D>, Error> {
+    fn segment_at(&self, s: f64, braking: bool) -> Result<&Segment<D, C, R>, Error> {
         let slack = if braking {
             JOIN_ROUNDING * s.abs().max(1.0)
         } else {
             0.0
         };
-        // The segments start in order along the path, so the test holds for a prefix of
-        // them: the last of it is found by bisection.
-        let on = prefix_len(self.segments, |g| {
+        let on = last_holding(self.segments, &self.cursors[1], |g| {
             g.start + slack < s || (!braking && g.start <= s)
         });
-        let segment = self.segments.get(on.saturating_sub(1));
-        segment.ok_or(Error::EmptyPath)?.frame(s)
+        self.segments.get(on).ok_or(Error::EmptyPath)
     }
+}
+
+/// The index of the last of `items` for which `holds` is true (0 where it holds for none),
+/// where it holds for a prefix of them: the phases start in time order and the segments
+/// in order along the path, and the ticks asked for mostly follow each other. The index
+/// found last, in `cursor`, is tried first, then the one after it, then the bisection of
+/// the deque.
+fn last_holding<T, const N: usize>(
+    items: &Deque<T, N>,
+    cursor: &Cell<usize>,
+    holds: impl Fn(&T) -> bool,
+) -> usize {
+    let is_last = |i: usize| {
+        (i == 0 || items.get(i).is_some_and(&holds)) && items.get(i + 1).is_none_or(|x| !holds(x))
+    };
+    let hint = cursor.get();
+    let at = if is_last(hint) {
+        hint
+    } else if is_last(hint + 1) {
+        hint + 1
+    } else {
+        prefix_len(items, &holds).saturating_sub(1)
+    };
+    cursor.set(at);
+    at
 }
 
 /// The length of the prefix of `items` for which `holds` is true, where it holds for a
@@ -160,7 +206,7 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> TickMoti
     }
 
     fn position(&self, k: u32) -> Result<[f64; D], Error> {
-        Ok(self.at_tick(k)?.1.point)
+        self.point_at(k)
     }
 
     fn slope(&self, k: u32) -> Result<[f64; D], Error> {

@@ -1323,6 +1323,8 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             limits: self.promised,
             end: self.window.entry(),
             recent: core::array::from_fn(|_| Cell::new(None)),
+            points: core::array::from_fn(|_| Cell::new(None)),
+            cursors: [Cell::new(0), Cell::new(0)],
         }
     }
 

@@ -236,11 +236,7 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> Segment<D, C, R> {
     /// # Errors
     /// [`Error::Curve`] when the arc-length inversion does not converge.
     pub(crate) fn frame(&self, s: f64) -> Result<Frame<D>, Error> {
-        let local = if s >= self.end() {
-            self.length
-        } else {
-            s - self.start
-        };
+        let local = self.local(s);
         let u = self.param(local)?;
         let (d1, d2) = (self.trace_deriv(u, 1), self.trace_deriv(u, 2));
         let speed2 = d1.dot(d1);
@@ -257,6 +253,35 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> Segment<D, C, R> {
         }
         self.ride_frame(&mut frame, (u, local), (d1, d2));
         Ok(frame)
+    }
+
+    /// The point of [`Self::frame`] alone, to the bit: the trace's point with the axes
+    /// riding along at their values.
+    ///
+    /// # Errors
+    /// [`Error::Curve`] when the arc-length inversion does not converge.
+    pub(crate) fn point(&self, s: f64) -> Result<[f64; D], Error> {
+        let local = self.local(s);
+        let u = self.param(local)?;
+        let mut point = self.trace_deriv(u, 0);
+        for (x, r) in point[D - R..].iter_mut().zip(&self.ride) {
+            *x = match r {
+                Ride::Alone => continue,
+                Ride::Linear { .. } => r.along(local, self.length).0,
+                Ride::Quintic(_) => r.poly(u, 0),
+            };
+        }
+        Ok(point)
+    }
+
+    /// The arc length from the segment's start to the stream's arc length `s` (its length
+    /// from its end on).
+    fn local(&self, s: f64) -> f64 {
+        if s >= self.end() {
+            self.length
+        } else {
+            s - self.start
+        }
     }
 
     /// The axes riding along in `frame`, at the parameter `u` and the arc length `local`
@@ -395,24 +420,27 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segm
         if k == 0 {
             return self.eval(u);
         }
-        let mut d = self.trace_deriv(u, k);
+        let trace = self.trace_deriv(u, k);
         if R == 0 {
-            return d;
+            return trace;
         }
+        // σ, σ′ or σ″ for k = 1, 2, 3, from the trace's derivatives (the `k`-th at hand).
         let rate = || {
-            let (d1, d2) = (self.trace_deriv(u, 1), self.trace_deriv(u, 2));
+            let d1 = if k == 1 { trace } else { self.trace_deriv(u, 1) };
             let sigma = d1.norm();
             if sigma == 0.0 {
                 return 0.0;
             }
+            let d2 = if k == 2 { trace } else { self.trace_deriv(u, 2) };
             let s1 = d1.dot(d2) / sigma;
             match k {
                 1 => sigma,
                 2 => s1,
-                3 => (d2.dot(d2) + d1.dot(self.trace_deriv(u, 3)) - s1 * s1) / sigma,
+                3 => (d2.dot(d2) + d1.dot(trace) - s1 * s1) / sigma,
                 _ => 0.0,
             }
         };
+        let mut d = trace;
         let mut once = None; // the rate is the same for every riding axis
         for (i, r) in self.ride.iter().enumerate() {
             d[D - R + i] = match r {
