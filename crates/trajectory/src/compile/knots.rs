@@ -71,6 +71,7 @@ const fn words<N: Number>() -> usize {
 
 /// Value `i` of the flat sequence of a piece's state values (axis `i / 9`, field `i % 9`
 /// in the order of [`AxisState`]).
+#[inline(always)]
 fn slot<N, const A: usize>(axes: &mut [AxisState<N>; A], i: usize) -> Option<&mut N> {
     let s = axes.get_mut(i / 9)?;
     Some(match i % 9 {
@@ -87,6 +88,7 @@ fn slot<N, const A: usize>(axes: &mut [AxisState<N>; A], i: usize) -> Option<&mu
 }
 
 /// Value `i` of the flat sequence, read.
+#[inline(always)]
 fn slot_value<N: Copy, const A: usize>(axes: &[AxisState<N>; A], i: usize) -> Option<N> {
     let s = axes.get(i / 9)?;
     Some(match i % 9 {
@@ -103,6 +105,7 @@ fn slot_value<N: Copy, const A: usize>(axes: &[AxisState<N>; A], i: usize) -> Op
 }
 
 /// Stores `x` as the `k`-th `f64` of the state values.
+#[inline(always)]
 fn put<N: Number, const A: usize>(axes: &mut [AxisState<N>; A], k: usize, x: f64) {
     let bytes = x.to_le_bytes();
     for (h, chunk) in bytes.chunks_exact(N::BYTES).enumerate() {
@@ -113,6 +116,7 @@ fn put<N: Number, const A: usize>(axes: &mut [AxisState<N>; A], k: usize, x: f64
 }
 
 /// The `k`-th `f64` of the state values (as [`put`] stored it).
+#[inline(always)]
 fn get<N: Number, const A: usize>(axes: &[AxisState<N>; A], k: usize) -> f64 {
     let mut bytes = [0_u8; 8];
     for (h, chunk) in bytes.chunks_exact_mut(N::BYTES).enumerate() {
@@ -133,6 +137,7 @@ impl<N: Number, const A: usize, const P: usize> PieceKnots<'_, N, A, P> {
     }
 
     /// The `f64`s `first .. first + A` of slot `i`.
+    #[inline(always)]
     fn row(&self, i: usize, first: usize) -> [f64; A] {
         match self.axes(i) {
             Some(axes) => core::array::from_fn(|a| get(axes, first + a)),
@@ -140,6 +145,7 @@ impl<N: Number, const A: usize, const P: usize> PieceKnots<'_, N, A, P> {
         }
     }
 
+    #[inline(always)]
     fn set_row(&mut self, i: usize, first: usize, x: [f64; A]) {
         if let Some(axes) = self.axes_mut(i) {
             for (a, v) in x.into_iter().enumerate() {

@@ -51,8 +51,8 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usiz
     /// [`RECENT`]: the spline fit checks its pieces against the positions of every tick,
     /// which need neither the tangent nor the curvature of the frame.
     pub(super) points: [Cell<Option<(u32, [f64; D])>>; RECENT],
-    /// The indices of the phase and of the segment found last.
-    pub(super) cursors: [Cell<usize>; 2],
+    /// The index of the segment found last.
+    pub(super) cursor: Cell<usize>,
 }
 
 impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committed<'_, D, Q, C, R> {
@@ -61,11 +61,19 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
     /// one starts (or at the committed end `end`, the end of its last zone): the rounding
     /// of a zone's phases leaves their end within about `1e-9` of the zone's own.
     pub(super) fn state(&self, t: f64) -> MotionState {
-        let at = last_holding(self.phases, &self.cursors[0], |p| p.t0 <= t);
-        let Some(p) = self.phases.get(at) else {
+        let mut found = None;
+        let mut next = None;
+        for p in self.phases.iter() {
+            if p.t0 <= t || found.is_none() {
+                found = Some(p);
+            } else {
+                next = Some(p);
+                break;
+            }
+        }
+        let Some(p) = found else {
             return MotionState::default();
         };
-        let next = self.phases.get(at + 1);
         let st = p.state_at(t);
         if t < p.end() || st.v > 0.0 {
             return st;
@@ -153,7 +161,7 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
         } else {
             0.0
         };
-        let on = last_holding(self.segments, &self.cursors[1], |g| {
+        let on = last_holding(self.segments, &self.cursor, |g| {
             g.start + slack < s || (!braking && g.start <= s)
         });
         self.segments.get(on).ok_or(Error::EmptyPath)
@@ -161,10 +169,9 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
 }
 
 /// The index of the last of `items` for which `holds` is true (0 where it holds for none),
-/// where it holds for a prefix of them: the phases start in time order and the segments
-/// in order along the path, and the ticks asked for mostly follow each other. The index
-/// found last, in `cursor`, is tried first, then the one after it, then the bisection of
-/// the deque.
+/// where it holds for a prefix of them (the segments start in order along the path). The
+/// ticks asked for mostly follow each other: the index found last, in `cursor`, is tried
+/// first, then the one after it, then the bisection of the deque.
 fn last_holding<T, const N: usize>(
     items: &Deque<T, N>,
     cursor: &Cell<usize>,

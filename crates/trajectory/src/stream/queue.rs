@@ -1324,7 +1324,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             end: self.window.entry(),
             recent: core::array::from_fn(|_| Cell::new(None)),
             points: core::array::from_fn(|_| Cell::new(None)),
-            cursors: [Cell::new(0), Cell::new(0)],
+            cursor: Cell::new(0),
         }
     }
 
