@@ -385,9 +385,9 @@ fn fit_peaks<const A: usize, K: Knots<A>, E: EndClamps<A>>(
     tangential: bool,
     path: usize,
 ) -> Peaks {
-    let mut peaks = (0..fit.pieces()).fold(Peaks::default(), |m, j| {
-        let (coeffs, n) = fit.piece(j);
-        m.max(Peaks::of_shaped_piece(&coeffs, f64::from(n), period, path))
+    let mut peaks = Peaks::default();
+    fit.each_piece(|coeffs, n| {
+        peaks = peaks.max(Peaks::of_shaped_piece(&coeffs, f64::from(n), period, path));
     });
     if tangential {
         peaks.tangential = tangential_peak(fit, period);
