@@ -444,6 +444,8 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segm
         let mut once = None; // the rate is the same for every riding axis
         for (i, r) in self.ride.iter().enumerate() {
             d[D - R + i] = match r {
+                // an axis that stays put has no derivatives: no rate to scale
+                Ride::Linear { e0, e1 } if e0 == e1 => 0.0,
                 Ride::Linear { .. } => r.slope(self.length) * *once.get_or_insert_with(rate),
                 Ride::Quintic(_) => r.poly(u, k),
                 Ride::Alone => continue,
