@@ -34,6 +34,9 @@ const JOIN_BISECTION_STEPS: usize = 48;
 /// still taken to be on the segment it arrives on: the rounding of the arc lengths.
 const JOIN_ROUNDING: f64 = 1e-12;
 
+/// A tick and its position, once evaluated.
+pub(super) type TickPoint<const D: usize> = Cell<Option<(u32, [f64; D])>>;
+
 /// The committed motion of a stream: its phases in time order and the segments they run
 /// along, on the grid of `period` seconds, within the limits `limits`, up to `end`.
 pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usize> {
@@ -50,7 +53,7 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usiz
     /// The ticks whose position alone was evaluated last, and their points, by tick modulo
     /// [`RECENT`]: the spline fit checks its pieces against the positions of every tick,
     /// which need neither the tangent nor the curvature of the frame.
-    pub(super) points: [Cell<Option<(u32, [f64; D])>>; RECENT],
+    pub(super) points: [TickPoint<D>; RECENT],
     /// The index of the segment found last.
     pub(super) cursor: Cell<usize>,
 }

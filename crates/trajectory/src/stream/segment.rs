@@ -426,12 +426,20 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segm
         }
         // σ, σ′ or σ″ for k = 1, 2, 3, from the trace's derivatives (the `k`-th at hand).
         let rate = || {
-            let d1 = if k == 1 { trace } else { self.trace_deriv(u, 1) };
+            let d1 = if k == 1 {
+                trace
+            } else {
+                self.trace_deriv(u, 1)
+            };
             let sigma = d1.norm();
             if sigma == 0.0 {
                 return 0.0;
             }
-            let d2 = if k == 2 { trace } else { self.trace_deriv(u, 2) };
+            let d2 = if k == 2 {
+                trace
+            } else {
+                self.trace_deriv(u, 2)
+            };
             let s1 = d1.dot(d2) / sigma;
             match k {
                 1 => sigma,
