@@ -490,15 +490,9 @@ impl<const A: usize, K: Knots<A>, E: EndClamps<A>> SplineFit<A, K, E> {
         every_tick: bool,
     ) -> Result<usize, Error> {
         let mut count = 0;
-        // Each piece starts on the knot the piece before it ends on: read once.
-        let (mut y0, mut s0) = (self.value(0), self.slope(0));
         for j in 0..self.m {
-            let (k0, y1, s1) = (self.knot(j), self.value(j + 1), self.slope(j + 1));
-            let n = self.knot(j + 1) - k0;
-            let nf = f64::from(n);
-            let coeffs: [[f64; 4]; A] =
-                core::array::from_fn(|a| hermite_coefficients(y0[a], y1[a], s0[a], s1[a], nf));
-            (y0, s0) = (y1, s1);
+            let (coeffs, n) = self.piece(j);
+            let k0 = self.knot(j);
             let mut bad = false;
             let (mut quarters, mut ticks) = (check_points(n), 1..n);
             let points: &mut dyn Iterator<Item = u32> = if every_tick {

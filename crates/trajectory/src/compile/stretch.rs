@@ -300,7 +300,9 @@ fn state<M: TickMotion<A> + ?Sized, const A: usize>(
     motion: &M,
     k: u32,
 ) -> Result<[Kinematics<f64>; A], Error> {
-    let (x, slope, second) = (motion.position(k)?, motion.slope(k)?, motion.second(k)?);
+    // The slope first: a motion that caches its states whole has the others at hand then.
+    let slope = motion.slope(k)?;
+    let (x, second) = (motion.position(k)?, motion.second(k)?);
     let (p, pp) = (motion.period(), motion.period() * motion.period());
     Ok(core::array::from_fn(|a| {
         Kinematics::new(x[a], slope[a] / p, second[a] / pp)
