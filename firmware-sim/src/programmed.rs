@@ -33,6 +33,8 @@ pub struct Programmed<const D: usize> {
     /// The largest coordinate of the polygons.
     pub far: f64,
     cursor: usize,
+    /// The chord of the last nearest point in its polygon.
+    chord: usize,
     path_axes: usize,
     /// Each polygon's length in the path axes.
     lengths: Vec<f64>,
@@ -98,9 +100,10 @@ impl<const D: usize> Programmed<D> {
             end: from,
             far,
             cursor: 0,
+            chord: 0,
             path_axes: D,
             lengths: Vec::new(),
-            skip: 0.0,
+            skip: f64::INFINITY,
         }
         .measured()
     }
@@ -118,7 +121,9 @@ impl<const D: usize> Programmed<D> {
 
     /// The same polygons, a sample passing in one step over moves no longer than `length`
     /// (in the path axes): a chain of short moves a blend cuts across, or moves of the
-    /// riding axes alone. Longer moves are never passed over (default: none is).
+    /// riding axes alone; and moving at most `length` along a move between two samples, so
+    /// that a search looks that far along from the last nearest point. Longer moves are
+    /// never passed over (default: the search looks at whole moves and passes over any).
     pub fn with_skip(mut self, length: f64) -> Self {
         self.skip = length;
         self
@@ -141,36 +146,47 @@ impl<const D: usize> Programmed<D> {
     /// polygon of the move being played may lie farther than its move.
     pub fn nearest(&mut self, p: &[f64; D]) -> [f64; D] {
         let margin = 2.0 * self.sag + TIE;
-        let mut best = (f64::INFINITY, *p, self.cursor);
+        let (d, q, k) = self.nearest_in(self.cursor, self.chord, p);
+        let mut best = (d, q, self.cursor, k);
         let last = (self.cursor + AHEAD).min(self.polygons.len().saturating_sub(1));
-        for m in self.cursor..=last {
-            let Some(polygon) = self.polygons.get(m) else {
-                break;
-            };
-            let (d, q) = self.nearest_in(polygon, p);
-            let margin = if m > best.2 { margin } else { 0.0 };
+        for m in self.cursor + 1..=last {
+            let (d, q, k) = self.nearest_in(m, 0, p);
             if d + margin < best.0 {
-                best = (d, q, m);
+                best = (d, q, m, k);
             }
-            if m > self.cursor && self.lengths.get(m).is_some_and(|&l| l > self.skip) {
+            if self.lengths.get(m).is_some_and(|&l| l > self.skip) {
                 break;
             }
         }
-        self.cursor = best.2;
+        (self.cursor, self.chord) = (best.2, best.3);
         best.1
     }
 
-    /// The distance of `p` from `polygon` and its nearest point.
-    fn nearest_in(&self, polygon: &[[f64; D]], p: &[f64; D]) -> (f64, [f64; D]) {
-        let mut here = (f64::INFINITY, *p);
-        for w in polygon.windows(2) {
-            let q = nearest_on(&w[0], &w[1], p, self.path_axes);
-            let d = dist2(&q, p, self.path_axes);
+    /// The distance of `p` from the polygon of move `m`, its nearest point and that
+    /// point's chord, searched from the chord before `from` on as far as the skip length
+    /// (and the distance found) reaches along the polygon.
+    fn nearest_in(&self, m: usize, from: usize, p: &[f64; D]) -> (f64, [f64; D], usize) {
+        let mut here = (f64::INFINITY, *p, from);
+        let Some(polygon) = self.polygons.get(m) else {
+            return here;
+        };
+        let axes = self.path_axes;
+        let mut walked = 0.0;
+        for k in from.saturating_sub(1)..polygon.len().saturating_sub(1) {
+            let (a, b) = (&polygon[k], &polygon[k + 1]);
+            let q = nearest_on(a, b, p, axes);
+            let d = dist2(&q, p, axes);
             if d < here.0 {
-                here = (d, q);
+                here = (d, q, k);
+            }
+            if k >= from {
+                walked += dist2(a, b, axes).sqrt();
+                if walked > self.skip + here.0.sqrt() {
+                    break;
+                }
             }
         }
-        (here.0.sqrt(), here.1)
+        (here.0.sqrt(), here.1, here.2)
     }
 }
 
@@ -217,11 +233,9 @@ mod tests {
         assert!(dist2(&q, &[9.99, 0.0, 0.0], 3) < 1e-20, "{q:?}");
         let q = p.nearest(&[10.0, 0.0005, 0.003]);
         assert!(dist2(&q, &[10.0, 0.0005, 0.003], 3).sqrt() > 0.002, "{q:?}");
-        let on_circle = p.nearest(&[0.0, 10.0, 0.0]);
-        assert!(
-            dist2(&on_circle, &[0.0, 10.0, 0.0], 3).sqrt() < 1e-3,
-            "{on_circle:?}"
-        );
+        let along = [10.0 * 0.005_f64.cos(), 10.0 * 0.005_f64.sin(), 0.0];
+        let on_circle = p.nearest(&along);
+        assert!(dist2(&on_circle, &along, 3).sqrt() < 1e-3, "{on_circle:?}");
         // a short line may be passed over
         let program = [
             Move::line([10.0, 0.0, 0.0]),
