@@ -146,11 +146,11 @@ impl<const D: usize> Programmed<D> {
     /// polygon of the move being played may lie farther than its move.
     pub fn nearest(&mut self, p: &[f64; D]) -> [f64; D] {
         let margin = 2.0 * self.sag + TIE;
-        let (d, q, k) = self.nearest_in(self.cursor, self.chord, p);
+        let (d, q, k) = self.nearest_in(self.cursor, self.chord, p, None);
         let mut best = (d, q, self.cursor, k);
         let last = (self.cursor + AHEAD).min(self.polygons.len().saturating_sub(1));
         for m in self.cursor + 1..=last {
-            let (d, q, k) = self.nearest_in(m, 0, p);
+            let (d, q, k) = self.nearest_in(m, 0, p, Some(self.skip + best.0));
             if d + margin < best.0 {
                 best = (d, q, m, k);
             }
@@ -163,9 +163,15 @@ impl<const D: usize> Programmed<D> {
     }
 
     /// The distance of `p` from the polygon of move `m`, its nearest point and that
-    /// point's chord, searched from the chord before `from` on as far as the skip length
-    /// (and the distance found) reaches along the polygon.
-    fn nearest_in(&self, m: usize, from: usize, p: &[f64; D]) -> (f64, [f64; D], usize) {
+    /// point's chord, searched from the chord before `from` on as far as `reach` along the
+    /// polygon (`None`: the skip length plus the distance found).
+    fn nearest_in(
+        &self,
+        m: usize,
+        from: usize,
+        p: &[f64; D],
+        reach: Option<f64>,
+    ) -> (f64, [f64; D], usize) {
         let mut here = (f64::INFINITY, *p, from);
         let Some(polygon) = self.polygons.get(m) else {
             return here;
@@ -181,7 +187,7 @@ impl<const D: usize> Programmed<D> {
             }
             if k >= from {
                 walked += dist2(a, b, axes).sqrt();
-                if walked > self.skip + here.0.sqrt() {
+                if walked > reach.unwrap_or_else(|| self.skip + here.0.sqrt()) {
                     break;
                 }
             }
