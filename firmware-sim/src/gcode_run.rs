@@ -21,8 +21,8 @@ use std::io::IsTerminal;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use strak_gcode::{Action, Block, Feeder, GcodeError, Lines, PathMode, Reader};
-use strak_trajectory::{Error as TrajError, Kernel, Move, NoCurve, Q40, Sample, Stream};
+use strak_gcode::{Action, GcodeError, PathMode, Program, Reader, Step};
+use strak_trajectory::{Kernel, Move, NoCurve, Q40, Sample, Stream};
 
 use crate::machine::Machine;
 use crate::number::NumberFormat;
@@ -43,7 +43,7 @@ pub const MAX_MARKS: usize = 2_000;
 
 /// What the program holds, read ahead for the measurement and the report.
 #[derive(Clone, Debug)]
-struct Program<const D: usize> {
+struct Contents<const D: usize> {
     moves: Vec<Move<D>>,
     dwells: usize,
     dwell_s: f64,
@@ -68,10 +68,10 @@ fn reader<const D: usize>(machine: &Machine) -> Result<Reader<D>, RunError> {
 }
 
 /// Reads the whole program.
-fn read_program<const D: usize>(text: &[u8], machine: &Machine) -> Result<Program<D>, RunError> {
+fn read_program<const D: usize>(text: &[u8], machine: &Machine) -> Result<Contents<D>, RunError> {
     let started = Instant::now();
     let mut r = reader::<D>(machine)?;
-    let mut p = Program {
+    let mut p = Contents {
         moves: Vec::new(),
         dwells: 0,
         dwell_s: 0.0,
@@ -110,74 +110,37 @@ fn read_program<const D: usize>(text: &[u8], machine: &Machine) -> Result<Progra
     Ok(p)
 }
 
-/// The program's lines handed to the stream as they arrive: the main loop of a firmware
-/// that reads G-code.
+/// The program handed to the stream as its moves arrive ([`Program`], as a firmware's main
+/// loop hands it), with the corners noted and the progress shown.
 struct GcodeFeed<'t, const D: usize> {
-    lines: Lines<'t>,
-    reader: Reader<D>,
-    feeder: Feeder<D>,
-    /// Moves and dwells read so far, and in the whole program.
-    motions: (usize, usize),
-    /// Whether the block the feeder holds is a move.
-    holds_move: bool,
+    program: Program<'t, D>,
     corners: Corners,
-    finished: bool,
     progress: Option<(ProgressBar, usize)>,
 }
 
 impl<'t, const D: usize> GcodeFeed<'t, D> {
-    /// The lines of `text` for `machine`, whose program holds `motions` moves and dwells.
+    /// The lines of `text` for `machine`.
     fn new(
         text: &'t [u8],
         machine: &Machine,
-        motions: usize,
         progress: Option<(ProgressBar, usize)>,
     ) -> Result<Self, RunError> {
         Ok(GcodeFeed {
-            lines: strak_gcode::lines(text),
-            reader: reader::<D>(machine)?,
-            feeder: Feeder::new(machine.tolerance),
-            motions: (0, motions),
-            holds_move: false,
+            program: Program::new(text, reader::<D>(machine)?, machine.tolerance),
             corners: Corners::default(),
-            finished: false,
             progress,
         })
     }
 
-    /// The stream's refusal of the block of the last line read.
-    fn refused(&self, e: TrajError) -> RunError {
-        RunError::Program(format!(
-            "line {}: the stream refused the block: {e}",
-            self.reader.lines()
-        ))
-    }
-
-    /// Hands `block` to the stream (or holds it); notes the corner of a move handed.
-    fn offer<const Q: usize, const Z: usize, const R: usize>(
-        &mut self,
-        block: Block<D>,
-        stream: &mut Stream<D, Q, Z, NoCurve<D>, R>,
-    ) -> Result<(), RunError> {
-        self.holds_move = matches!(block.action, Action::Move(_));
-        if !matches!(block.action, Action::None) {
-            self.motions.0 += 1;
-        }
-        let before = stream.stats();
-        self.feeder
-            .offer(block, stream)
-            .map_err(|e| self.refused(e))?;
-        if self.feeder.is_ready() && self.holds_move {
-            self.corners.pushed(&before, &stream.stats());
-        }
-        Ok(())
-    }
-
-    fn show_progress(&mut self, line: &[u8]) {
-        if let Some((bar, read)) = &mut self.progress {
-            *read += line.len() + 1;
-            if self.reader.lines().is_multiple_of(256) {
-                bar.set_position(*read as u64);
+    fn show_progress(&mut self) {
+        if let Some((bar, lines)) = &mut self.progress {
+            let read = self.program.reader().lines() as usize;
+            if read >= *lines + 256 {
+                *lines = read;
+                bar.set_position(read as u64);
+            }
+            if self.program.is_finished() {
+                bar.finish_and_clear();
             }
         }
     }
@@ -190,36 +153,26 @@ impl<const D: usize> Feed<D> for GcodeFeed<'_, D> {
         arrived: usize,
     ) -> Result<(), RunError> {
         loop {
-            if !self.feeder.is_ready() {
-                let before = stream.stats();
-                if !self.feeder.retry(stream).map_err(|e| self.refused(e))? {
-                    return Ok(());
+            let before = stream.stats();
+            let step = self
+                .program
+                .step(stream, arrived)
+                .map_err(|e| RunError::Program(e.to_string()))?;
+            match step {
+                Step::Handed { moved } => {
+                    if moved {
+                        self.corners.pushed(&before, &stream.stats());
+                    }
                 }
-                if self.holds_move {
-                    self.corners.pushed(&before, &stream.stats());
-                }
+                _ => break,
             }
-            let (read, total) = self.motions;
-            if self.finished || (read >= arrived && read < total) {
-                return Ok(());
-            }
-            let Some(line) = self.lines.next() else {
-                self.finished = self.feeder.finish(stream).map_err(|e| self.refused(e))?;
-                if self.finished
-                    && let Some((bar, _)) = &self.progress
-                {
-                    bar.finish_and_clear();
-                }
-                return Ok(());
-            };
-            self.show_progress(line);
-            let block = self.reader.read_line(line).map_err(|e| line_error(&e))?;
-            self.offer(block, stream)?;
         }
+        self.show_progress();
+        Ok(())
     }
 
     fn is_finished(&self) -> bool {
-        self.finished
+        self.program.is_finished()
     }
 
     fn corners(&mut self) -> Vec<CornerKind> {
@@ -227,14 +180,14 @@ impl<const D: usize> Feed<D> for GcodeFeed<'_, D> {
     }
 }
 
-/// A progress bar over the program's bytes, for a long program on a terminal.
-fn progress_bar(show: bool, bytes: usize) -> Option<(ProgressBar, usize)> {
+/// A progress bar over the program's lines, for a long program on a terminal.
+fn progress_bar(show: bool, bytes: usize, lines: u32) -> Option<(ProgressBar, usize)> {
     if !(show && std::io::stderr().is_terminal() && bytes >= PROGRESS_MIN_BYTES) {
         return None;
     }
-    let bar = ProgressBar::with_draw_target(Some(bytes as u64), ProgressDrawTarget::stderr());
+    let bar = ProgressBar::with_draw_target(Some(u64::from(lines)), ProgressDrawTarget::stderr());
     if let Ok(style) = ProgressStyle::with_template(
-        "{spinner} reading, planning and playing {bar:40} {bytes}/{total_bytes}, {eta} left",
+        "{spinner} reading, planning and playing {bar:40} {pos}/{len} lines, {eta} left",
     ) {
         bar.set_style(style);
     }
@@ -304,13 +257,11 @@ where
     create_out_dir(options)?;
     let mut rec = Recording::new(&setup, programmed, options, (guard / 20, input.every))?;
     let mut sink = |s: &Sample<N::Out, D>| rec.push(s, None);
-    let motions = program.moves.len() + program.dwells;
-    let progress = progress_bar(options.progress, input.text.len());
-    let mut feed = GcodeFeed::<D>::new(input.text, machine, motions, progress)?;
-    let at = (start, motions);
+    let progress = progress_bar(options.progress, input.text.len(), program.lines);
+    let mut feed = GcodeFeed::<D>::new(input.text, machine, progress)?;
     let driven = crate::by_queue!(
         setup,
-        drive::<N, _, D, R>(&setup, at, &mut feed, guard, &mut sink)
+        drive::<N, _, D, R>(&setup, start, &mut feed, guard, &mut sink)
     )?;
     rec.flush()?;
     let play_s = started.elapsed().as_secs_f64();
@@ -336,7 +287,7 @@ where
 fn report<const D: usize>(
     input: &Input<'_>,
     setup: &StreamSetup,
-    program: &Program<D>,
+    program: &Contents<D>,
     planning_s: f64,
 ) -> GcodeReport {
     GcodeReport {
@@ -389,17 +340,15 @@ pub fn gcode_samples<N: Kernel, const D: usize, const R: usize>(
     let program = read_program::<D>(text, machine)?;
     let length = Programmed::new([0.0; D], &program.moves, setup.arc_tolerance).length;
     let guard = guard_ticks(&setup, &program.moves, length, program.dwell_s);
-    let motions = program.moves.len() + program.dwells;
-    let mut feed = GcodeFeed::<D>::new(text, machine, motions, None)?;
+    let mut feed = GcodeFeed::<D>::new(text, machine, None)?;
     let mut samples = 0u64;
     let mut counted = |s: &Sample<N::Out, D>| {
         samples += 1;
         sink(s)
     };
-    let at = ([0.0; D], motions);
     let driven = crate::by_queue!(
         setup,
-        drive::<N, _, D, R>(&setup, at, &mut feed, guard, &mut counted)
+        drive::<N, _, D, R>(&setup, [0.0; D], &mut feed, guard, &mut counted)
     )?;
     if !driven.finished {
         return Err(RunError::Program(format!(

@@ -343,7 +343,7 @@ impl<const D: usize> Feed<D> for Feeder<'_, D> {
         stream: &mut Stream<D, Q, Z, NoCurve<D>, R>,
         arrived: usize,
     ) -> Result<(), RunError> {
-        while self.next < arrived {
+        while self.next < arrived.min(self.program.len()) {
             let before = stream.stats();
             match stream.push(&self.program[self.next]) {
                 Ok(()) => {}
@@ -373,10 +373,10 @@ impl<const D: usize> Feed<D> for Feeder<'_, D> {
 }
 
 /// Drives the stream `Stream<D, Q, Z, _, R>` from `start` through the program `feed` hands
-/// it (`moves` moves in all, arriving at the setup's rate), handing each sample to `sink`.
+/// it (its moves arriving at the setup's rate), handing each sample to `sink`.
 pub(crate) fn drive<N, F, const D: usize, const Q: usize, const Z: usize, const R: usize>(
     setup: &StreamSetup,
-    (start, moves): ([f64; D], usize),
+    start: [f64; D],
     feed: &mut F,
     guard: u64,
     sink: &mut Sink<'_, N::Out, D>,
@@ -404,7 +404,7 @@ where
     let mut done = false;
     for tick in 0..guard {
         let clock = Instant::now();
-        feed.push_arrived(&mut stream, arrived(setup, tick, moves))?;
+        feed.push_arrived(&mut stream, arrived(setup, tick))?;
         stream
             .poll(&mut pieces)
             .map_err(|e| stream_error(setup, e))?;
@@ -433,8 +433,9 @@ pub(crate) fn skip_length(setup: &StreamSetup, tolerance: f64) -> f64 {
     4.0 * setup.limits.velocity / setup.rate_hz + 2.0 * tolerance
 }
 
-/// The moves arrived by `tick` of a program of `moves` moves: all of them, or at the
-/// setup's rate, the first at tick 0.
+/// The moves (and dwells) arrived by `tick`: all of them (`usize::MAX`), or with the setup's
+/// rate one every `rate_hz / moves_per_second` ticks, the first at tick 0
+/// ([`strak_gcode::arrived`], as a firmware counts them).
 ///
 /// ```
 /// # use strak_sim::stream_run::{StreamSetup, arrived};
@@ -446,12 +447,11 @@ pub(crate) fn skip_length(setup: &StreamSetup, tolerance: f64) -> f64 {
 ///         axis_acceleration: None },
 ///     moves_per_second: Some(400.0), axis_names: vec!["x".into()], path_axes: 1,
 /// };
-/// assert_eq!([0, 2, 3, 100].map(|t| arrived(&setup, t, 10)), [1, 1, 2, 10]);
+/// assert_eq!([0, 2, 3, 100].map(|t| arrived(&setup, t)), [1, 1, 2, 41]);
 /// ```
-pub fn arrived(setup: &StreamSetup, tick: u64, moves: usize) -> usize {
-    setup.moves_per_second.map_or(moves, |mps| {
-        let every = setup.rate_hz / mps;
-        ((tick as f64 / every).floor() as usize + 1).min(moves)
+pub fn arrived(setup: &StreamSetup, tick: u64) -> usize {
+    setup.moves_per_second.map_or(usize::MAX, |mps| {
+        strak_gcode::arrived(tick, setup.rate_hz / mps)
     })
 }
 
@@ -607,10 +607,9 @@ where
     let factor = options.velocity_factor;
     let mut sink = |s: &Sample<N::Out, D>| rec.push(s, factor);
     let mut feeder = Feeder::new(&setup, &program);
-    let at = (start, program.len());
     let driven = by_queue!(
         setup,
-        drive::<N, Feeder<'_, D>, D, R>(&setup, at, &mut feeder, guard, &mut sink)
+        drive::<N, Feeder<'_, D>, D, R>(&setup, start, &mut feeder, guard, &mut sink)
     )?;
     rec.flush()?;
     let play_s = started.elapsed().as_secs_f64();

@@ -6,6 +6,7 @@ mod error;
 mod feed;
 mod line;
 mod lines;
+mod program;
 mod reader;
 mod words;
 
@@ -13,4 +14,5 @@ pub use error::{ErrorKind, GcodeError};
 pub use feed::Feeder;
 pub use line::{Code, IGNORED_KINDS, Ignored};
 pub use lines::{LineBuffer, Lines, lines};
+pub use program::{FeedError, Program, Step, arrived};
 pub use reader::{Action, Block, Motion, PathMode, Reader};
