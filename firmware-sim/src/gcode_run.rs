@@ -5,13 +5,13 @@
 //!    (the path the samples are measured against), its dwells, its ignored codes and the
 //!    largest corner tolerance it asks for. A bad line ends the run with an error naming the
 //!    line and column.
-//! 2. **Stream** it as firmware's main loop does: each tick, read the next lines while the
-//!    moves they hold have arrived (all at once, or with `[produce]` one every
-//!    `rate_hz / moves_per_second` ticks, a dwell counting as a move) and a [`Feeder`] can
-//!    hand them to the [`Stream`] (`G61`/`G64 P` set its corner
-//!    tolerance, `G4` its dwells; the machine's axes after `x y z` ride along), finish the
-//!    stream after the last line, poll it into the piece queue and play one sample
-//!    ([`crate::stream_run`]'s loop, shared with the moves jobs).
+//! 2. **Stream** it as firmware's main loop does ([`Program`]): each tick, read the next
+//!    lines while the moves they hold have arrived (all at once, or with `[produce]` one
+//!    every `rate_hz / moves_per_second` ticks, a dwell counting as a move) and the
+//!    [`Stream`] takes their blocks (`G61`/`G64 P` set its corner tolerance, `G4` its
+//!    dwells; the machine's axes after `x y z` ride along), finish the stream after the
+//!    last line, poll it into the piece queue and play one sample ([`crate::stream_run`]'s
+//!    loop, shared with the moves jobs).
 //! 3. **Measure and report** as a moves job: limits from the samples (path norms over the
 //!    path axes, each axis against its own limits), the distance from the programmed moves
 //!    against the largest tolerance, the end point; `samples.csv` (every `every`-th tick),

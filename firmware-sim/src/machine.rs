@@ -70,7 +70,7 @@ pub struct Machine {
     /// Whether a sharp corner stops where that is estimated faster than its blend.
     #[serde(default = "default_true")]
     pub faster_stops: bool,
-    /// Look-ahead segments ([`QUEUE_SIZES`]).
+    /// Look-ahead segments ([`QUEUE_SIZES`](crate::moves::QUEUE_SIZES)).
     #[serde(default = "default_queue")]
     pub queue: usize,
     /// The axis letters played, in order.

@@ -9,7 +9,12 @@ type Pieces = Deque<Piece<f64, 2>, 64>;
 
 fn stream() -> Stream<2, 4, 16> {
     let limits = Limits::new(100.0, 1_000.0, 50_000.0).unwrap();
-    Stream::new([0.0; 2], limits, StreamOptions::new(1_000.0).with_tolerance(0.01)).unwrap()
+    Stream::new(
+        [0.0; 2],
+        limits,
+        StreamOptions::new(1_000.0).with_tolerance(0.01),
+    )
+    .unwrap()
 }
 
 fn reader() -> Reader<2> {
