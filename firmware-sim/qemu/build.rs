@@ -13,12 +13,13 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 /// The binaries linked with `memory/boards.x` (4 MiB of RAM).
-const LARGE_RAM: [&str; 5] = [
+const LARGE_RAM: [&str; 6] = [
     "strak-qemu",
     "size-sampler",
     "size-baseline",
     "icount",
     "stack",
+    "gcode",
 ];
 
 /// The flash-playback firmware, linked with `memory/flash-<target>.x`.

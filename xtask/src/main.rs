@@ -25,6 +25,7 @@
 mod budget;
 mod compare;
 mod fuzz;
+mod gcode;
 mod icount;
 mod online;
 mod qemu;

@@ -103,6 +103,39 @@ pub struct MoveJob<const D: usize> {
     pub events: &'static [(u64, MoveEvent<D>)],
 }
 
+/// A G-code program the device reads line by line from flash and streams on the firmware's
+/// machine (`firmware-sim/qemu/gcode-machine.toml`, read by `cargo xtask qemu` as
+/// `strak-sim gcode` reads it): its axes, rate, tolerances, limits and arrival rate.
+#[derive(Clone, Copy, Debug)]
+pub struct GcodeJob<const D: usize> {
+    /// The job's name.
+    pub name: &'static str,
+    /// The program's text.
+    pub text: &'static [u8],
+    /// The axis letters the reader takes, in order.
+    pub letters: [u8; D],
+    /// Control rate in Hz.
+    pub rate_hz: f64,
+    /// The corner blend tolerance the stream starts with and `G64` without `P` blends within.
+    pub tolerance: f64,
+    /// Whether a sharp corner stops where that is estimated faster than its blend.
+    pub faster_stops: bool,
+    /// How far an arc's end may lie off the circle through its start, for the reader and
+    /// the stream alike.
+    pub arc_tolerance: f64,
+    /// How far the stream's pieces may lie from the planned motion.
+    pub fit_tolerance: f64,
+    /// Path velocity, acceleration and jerk limits.
+    pub limits: [f64; 3],
+    /// Per-axis velocity limits (`inf`: none).
+    pub axis_velocity: [f64; D],
+    /// Per-axis acceleration limits (`inf`: none).
+    pub axis_acceleration: [f64; D],
+    /// One move (or dwell) arrives every this many ticks, the first at tick 0 (`None`: all
+    /// at once).
+    pub ticks_per_move: Option<f64>,
+}
+
 /// The pieces of [`FLASH_BLOB`]: the firmware's capacity ([`crate::PIECES`]).
 pub const FLASH_PIECES: usize = crate::PIECES;
 

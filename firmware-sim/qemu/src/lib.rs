@@ -5,8 +5,9 @@
 //! instruction counter ([`counter`]), the check of the tick kernels against the portable
 //! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
 //! confines a firmware to the memories of a real part ([`mpu`]), the planning job
-//! ([`planning`]), the online solves ([`online`]), the feed guard's cost ([`guard`]) and
-//! streaming moves ([`streaming`]).
+//! ([`planning`]), the online solves ([`online`]), the feed guard's cost ([`guard`]),
+//! streaming moves ([`streaming`]); for the G-code firmware (`src/bin/gcode.rs`) a program
+//! read line by line on the device and streamed as its moves arrive ([`gcode`]).
 //!
 //! `cargo xtask qemu` compiles every bundled job on the host (`strak_sim::export`, the same
 //! code as `strak-sim compile`), writes the blobs and a `jobs.rs` describing them into a
@@ -15,7 +16,7 @@
 //!
 //! # Output protocol (defmt, decoded by `defmt-print`)
 //! ```text
-//! J <job> <format> <source> <axes>      a stream starts (source: blob | device | online)
+//! J <job> <format> <source> <axes>      a stream starts (source: blob | device | online | gcode)
 //! C <job> <format> <bytes> <pieces>     the device compiled the job; its blob equals the host's
 //! S <tick> [<bits>, …]                  one sample: positions, velocities, accelerations
 //! E <job> <format> <source> <samples>   the stream ends
@@ -33,6 +34,7 @@
 
 pub mod counter;
 pub mod device;
+pub mod gcode;
 pub mod guard;
 pub mod jobs;
 pub mod kernel_check;
