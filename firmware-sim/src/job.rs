@@ -200,6 +200,41 @@ pub struct JobLimits {
     pub axis_acceleration: Option<Vec<f64>>,
 }
 
+impl JobLimits {
+    /// `Err` on the per-axis array that does not have one limit for each of `axes` axes;
+    /// `whose` names what has them (`the path has`).
+    ///
+    /// ```
+    /// use strak_sim::job::JobLimits;
+    /// let l = JobLimits { velocity: 1.0, acceleration: 1.0, jerk: 1.0,
+    ///     axis_velocity: Some(vec![1.0; 2]), axis_acceleration: None };
+    /// assert!(l.check_axes(2, "the path has").is_ok());
+    /// assert_eq!(l.check_axes(3, "the path has").unwrap_err().field, "limits.axis_velocity");
+    /// ```
+    ///
+    /// # Errors
+    /// A [`JobError`] naming the array.
+    pub fn check_axes(&self, axes: usize, whose: &str) -> Result<(), JobError> {
+        for (field, v) in [
+            ("limits.axis_velocity", &self.axis_velocity),
+            ("limits.axis_acceleration", &self.axis_acceleration),
+        ] {
+            if let Some(v) = v
+                && v.len() != axes
+            {
+                return Err(JobError::new(
+                    field,
+                    format!(
+                        "one limit per axis: {whose} {axes} axes, {} limits given",
+                        v.len()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The time laws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ProfileKind {
@@ -514,22 +549,7 @@ impl Job {
             .check()
             .map_err(|e| JobError::new(format!("path.{}", e.field), e.message))?;
         let dim = self.axes();
-        for (field, axes) in [
-            ("limits.axis_velocity", &self.limits.axis_velocity),
-            ("limits.axis_acceleration", &self.limits.axis_acceleration),
-        ] {
-            if let Some(axes) = axes
-                && axes.len() != dim
-            {
-                return Err(JobError::new(
-                    field,
-                    format!(
-                        "one limit per axis: the path has {dim} axes, {} limits given",
-                        axes.len()
-                    ),
-                ));
-            }
-        }
+        self.limits.check_axes(dim, "the path has")?;
         for (i, e) in self.events.iter().enumerate() {
             if e.action().is_none() {
                 let set = [e.feed.is_some(), e.hold.is_some(), e.resume.is_some()]

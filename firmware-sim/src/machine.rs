@@ -138,7 +138,7 @@ impl Machine {
             ));
         }
         self.check_axes()?;
-        self.check_limits()
+        self.limits.check_axes(self.axes.len(), "the machine has")
     }
 
     fn check_axes(&self) -> Result<(), JobError> {
@@ -178,27 +178,6 @@ impl Machine {
                 "axes",
                 format!("at most {MAX_RIDING} axes besides x, y, z"),
             ));
-        }
-        Ok(())
-    }
-
-    fn check_limits(&self) -> Result<(), JobError> {
-        let axes = self.axes.len();
-        for (field, v) in [
-            ("limits.axis_velocity", &self.limits.axis_velocity),
-            ("limits.axis_acceleration", &self.limits.axis_acceleration),
-        ] {
-            if let Some(v) = v
-                && v.len() != axes
-            {
-                return Err(JobError::new(
-                    field,
-                    format!(
-                        "one limit per entry of axes: {axes} axes, {} limits",
-                        v.len()
-                    ),
-                ));
-            }
         }
         Ok(())
     }

@@ -280,7 +280,7 @@ impl MovesJob {
                 "points need 1 to 6 coordinates",
             ));
         }
-        self.check_limits(axes)?;
+        self.limits.check_axes(axes, "the moves have")?;
         if let Some(s) = &self.start {
             point("start", s, axes)?;
         }
@@ -292,26 +292,6 @@ impl MovesJob {
             5 => check_moves::<5>(self),
             _ => check_moves::<6>(self),
         }
-    }
-
-    fn check_limits(&self, axes: usize) -> Result<(), JobError> {
-        for (field, v) in [
-            ("limits.axis_velocity", &self.limits.axis_velocity),
-            ("limits.axis_acceleration", &self.limits.axis_acceleration),
-        ] {
-            if let Some(v) = v
-                && v.len() != axes
-            {
-                return Err(JobError::new(
-                    field,
-                    format!(
-                        "one limit per axis: the moves have {axes} axes, {} limits given",
-                        v.len()
-                    ),
-                ));
-            }
-        }
-        Ok(())
     }
 
     /// The moves in `D` axes (checked by [`MovesJob::check`]).
