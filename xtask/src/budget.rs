@@ -122,12 +122,13 @@ pub(crate) fn bless<const N: usize>(measured: &[Measured<N>]) -> Vec<Budget<N>> 
         .collect()
 }
 
-/// The verdict: every measured item needs a budget line, and none of its values may exceed
-/// the budget's. `fields` names the values, `unit` their unit, `what` the file (for the
+/// The verdict: every measured item needs a budget line, none of its values may exceed the
+/// budget's, and every budget line needs a measured item (a line nothing measures gates
+/// nothing). `fields` names the values, `unit` their unit, `what` the file (for the
 /// message). Lists every violation.
 ///
 /// # Errors
-/// The list of items without a budget or over it.
+/// The list of items without a budget or over it, and of budgets without an item.
 pub(crate) fn check<const N: usize>(
     measured: &[Measured<N>],
     budgets: &[Budget<N>],
@@ -151,6 +152,15 @@ pub(crate) fn check<const N: usize>(
                     m.name, m.target
                 ));
             }
+        }
+    }
+    for b in budgets {
+        if find(measured, &b.name, &b.target).is_none() {
+            bad.push(format!(
+                "{} ({}): a budget, but not measured (remove the line, or run \
+                 `cargo xtask qemu --bless`)",
+                b.name, b.target
+            ));
         }
     }
     if bad.is_empty() {
@@ -240,5 +250,16 @@ mod tests {
         let mut other = b("a", [1, 1]);
         other.target = "thumbv7em-none-eabihf".to_owned();
         assert!(check(&[other], &budgets, FIELDS, "instr", "counts").is_err());
+    }
+
+    #[test]
+    fn a_budget_nothing_measured_fails() {
+        let budgets = vec![b("a", [100, 150]), b("gone", [1, 1])];
+        let e = check(&[b("a", [100, 150])], &budgets, FIELDS, "instr", "counts").unwrap_err();
+        assert_eq!(
+            e,
+            "counts over budget:\n  gone (thumbv7m-none-eabi): a budget, but not measured \
+             (remove the line, or run `cargo xtask qemu --bless`)"
+        );
     }
 }
