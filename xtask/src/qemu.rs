@@ -19,18 +19,19 @@
 //! 5. Reads the firmware sizes from the ELF headers and checks them against
 //!    `firmware-sim/qemu/sizes.txt` (`--bless` rewrites it).
 //! 6. Runs the `stack` firmware under QEMU `-icount` on both targets (the stack and RAM of
-//!    loading and playing a blob, of planning and of compiling on the device, the sizes of
-//!    their values, the instructions of planning and compiling) and the flash-playback
+//!    loading and playing a blob, of planning and of compiling on the device, of streaming
+//!    and of streaming the first G-code program, the sizes of their values, the
+//!    instructions of planning, compiling and streaming) and the flash-playback
 //!    firmware `flash-play` on a part with the RAM of a real microcontroller (64 KiB: the
 //!    LM3S6965 on `lm3s6965evb`, an STM32F401CB's on `mps2-an386`), which plays the path of
 //!    [`FLASH_JOB_FILE`] (3 axes, Q40, [`FLASH_PIECES`] pieces, compiled in step 2 and
-//!    checked for its piece count there and in the firmware); checks that the blobs they
-//!    played give the host's samples (a hash of every sample's bits), and the stack against
-//!    `firmware-sim/qemu/stack-budgets.txt` (`--bless` rewrites it), written to
-//!    `target/qemu/stack.json` (see [`crate::stack`]).
+//!    checked for its piece count there and in the firmware); checks that the blobs and the
+//!    G-code program they played give the host's samples (a hash of every sample's bits),
+//!    and the stack against `firmware-sim/qemu/stack-budgets.txt` (`--bless` rewrites
+//!    it), written to `target/qemu/stack.json` (see [`crate::stack`]).
 //! 7. Runs the `icount` firmware under QEMU `-icount` on both targets: instructions per
-//!    tick (instruction counts, not cycles); checks them and the instructions of planning
-//!    and compiling against `firmware-sim/qemu/icount-budgets.txt` (`--bless` rewrites it),
+//!    tick (instruction counts, not cycles); checks them and the instructions the `stack`
+//!    firmware counted against `firmware-sim/qemu/icount-budgets.txt` (`--bless` rewrites it),
 //!    written to `target/qemu/counts.json` (see [`crate::icount`]); and the online
 //!    solves of random moves, whose durations must equal the host's bit for bit (see
 //!    [`crate::online`]).
@@ -50,7 +51,7 @@ use strak_sim::online_move::{MoveEvent, MoveJob, MoveTarget, move_bits};
 use strak_trajectory::{Event, NumberFormat, Synchronization, TimedEvent};
 
 use crate::compare::{self, StreamKey};
-use crate::gcode::{self, GcodeJobs};
+use crate::gcode::{self, GcodeJobs, HostGcode};
 use crate::icount;
 use crate::online;
 use crate::size::{self, Expected};
@@ -199,7 +200,8 @@ pub(crate) fn qemu(bless: bool) -> Result<(), String> {
 
     check_sizes(&fw_dir, bless)?;
     let flash = [flash];
-    let planning = check_stack(&qemu, &defmt_print, &root, &fw_dir, [&jobs, &flash], bless)?;
+    let host = [host_played(&jobs, &gcode.played), host_played(&flash, &[])];
+    let planning = check_stack(&qemu, &defmt_print, &root, &fw_dir, &host, bless)?;
     check_icount(&qemu, &defmt_print, &root, &fw_dir, planning, bless)?;
     println!(
         "\nxtask qemu: {compared} firmware samples equal the host's bit for bit; done in {:.0} s",
@@ -1108,21 +1110,21 @@ struct StackRun {
     counts: Vec<icount::Measured>,
 }
 
-/// Runs the `stack` firmware (under `-icount`) and the flash-playback firmware (playing
-/// `flash`) on every target, checks the blobs they played against the host's samples and
+/// Runs the `stack` firmware (under `-icount`) and the flash-playback firmware on every
+/// target, checks what they played against the host's samples (`stack_host`, `flash`) and
 /// their stack against the budget file (or rewrites it when `bless`), writes
-/// `target/qemu/stack.json`, and returns the instruction counts of planning and compiling.
+/// `target/qemu/stack.json`, and returns the instruction counts the `stack` firmware made.
 fn check_stack(
     qemu: &Path,
     defmt_print: &Path,
     root: &Path,
     fw_dir: &Path,
-    [jobs, flash]: [&[HostJob]; 2],
+    [stack_host, flash]: &[Vec<stack::Played>; 2],
     bless: bool,
 ) -> Result<Vec<icount::Measured>, String> {
     let mut run = StackRun::default();
     for fw in &FIRMWARES {
-        stack_firmware(qemu, defmt_print, fw_dir, fw, jobs, &mut run)?;
+        stack_firmware(qemu, defmt_print, fw_dir, fw, stack_host, &mut run)?;
         let flash_stack = flash_firmware(qemu, defmt_print, fw_dir, fw, flash)?;
         run.measured.extend(flash_stack);
     }
@@ -1156,14 +1158,14 @@ fn check_stack(
     Ok(counts)
 }
 
-/// Runs the `stack` firmware of `fw` under `-icount`, checks the blobs it played against
-/// `jobs`, and adds what it measured to `run`.
+/// Runs the `stack` firmware of `fw` under `-icount`, checks the blobs and G-code programs
+/// it played against the host's (`host`), and adds what it measured to `run`.
 fn stack_firmware(
     qemu: &Path,
     defmt_print: &Path,
     fw_dir: &Path,
     fw: &Firmware,
-    jobs: &[HostJob],
+    host: &[stack::Played],
     run: &mut StackRun,
 ) -> Result<(), String> {
     let shift = format!("shift={}", icount::ICOUNT_SHIFT);
@@ -1174,7 +1176,7 @@ fn stack_firmware(
     );
     let text = run_firmware(qemu, defmt_print, fw, &elf, &["-icount", &shift])?;
     let report = stack::parse_output(&text, fw.target).map_err(|e| format!("{}: {e}", fw.label))?;
-    check_played(fw.label, jobs, &report)?;
+    check_played(fw.label, host, &report)?;
     let cases = icount::parse_output(&report.rest, fw.target)
         .map_err(|e| format!("{} (stack firmware): {e}", fw.label))?;
     print_stack(&report);
@@ -1200,7 +1202,7 @@ fn flash_firmware(
     defmt_print: &Path,
     fw_dir: &Path,
     fw: &Firmware,
-    flash: &[HostJob],
+    flash: &[stack::Played],
 ) -> Result<Vec<stack::Measured>, String> {
     let part = Firmware {
         machine: fw.flash_machine,
@@ -1235,32 +1237,50 @@ fn print_stack(report: &stack::Report) {
     }
 }
 
-/// Checks every blob the firmware played (an `H` line) against the host's samples of the
-/// same job and format: the number of samples and the hash of their bits.
-fn check_played(label: &str, jobs: &[HostJob], report: &stack::Report) -> Result<(), String> {
+/// What the host played of `jobs` and of the G-code programs `gcode`, in the shape of a
+/// firmware's `H` lines: each stream's job, format, samples and the hash of their bits.
+fn host_played(jobs: &[HostJob], gcode: &[HostGcode]) -> Vec<stack::Played> {
+    let blobs = jobs.iter().map(|j| stack::Played {
+        job: j.name.clone(),
+        format: j.export.playback,
+        samples: j.export.samples() as u64,
+        hash: stack::hash(&j.export.bits),
+    });
+    let programs = gcode.iter().map(|g| stack::Played {
+        job: g.name.clone(),
+        format: g.playback,
+        samples: (g.bits.len() / (3 * gcode::AXES)) as u64,
+        hash: stack::hash(&g.bits),
+    });
+    blobs.chain(programs).collect()
+}
+
+/// Checks every stream the firmware played (an `H` line: a blob, a G-code program) against
+/// the host's of the same job and format (`host`): the number of samples and the hash of
+/// their bits.
+fn check_played(label: &str, host: &[stack::Played], report: &stack::Report) -> Result<(), String> {
     if report.played.is_empty() {
         return Err(format!("{label}: the firmware played no blob"));
     }
     for p in &report.played {
-        let job = jobs
+        let h = host
             .iter()
-            .find(|j| j.name == p.job && j.export.playback == p.format)
+            .find(|h| h.job == p.job && h.format == p.format)
             .ok_or_else(|| {
                 format!(
                     "{label}: played {} {}, which the host has not",
                     p.job, p.format
                 )
             })?;
-        let (samples, hash) = (job.export.samples() as u64, stack::hash(&job.export.bits));
-        if (p.samples, p.hash) != (samples, hash) {
+        if (p.samples, p.hash) != (h.samples, h.hash) {
             return Err(format!(
-                "{label}: {} {}: {} samples of hash {:#018x}, the host has {samples} of hash {hash:#018x}",
-                p.job, p.format, p.samples, p.hash
+                "{label}: {} {}: {} samples of hash {:#018x}, the host has {} of hash {:#018x}",
+                p.job, p.format, p.samples, p.hash, h.samples, h.hash
             ));
         }
     }
     println!(
-        "    {} blob(s) played, every sample equal to the host's (hash of their bits)",
+        "    {} stream(s) played, every sample equal to the host's (hash of their bits)",
         report.played.len()
     );
     Ok(())

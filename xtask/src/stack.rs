@@ -3,8 +3,8 @@
 //! The `stack` firmware (`firmware-sim/qemu/src/bin/stack.rs`, 4 MiB of RAM) and the
 //! flash-playback firmware (`flash_play.rs`, the RAM of a real part) paint the unused stack,
 //! run an operation and report how deep it wrote (`STACK <operation> <stack> <ram>`), the
-//! sizes of the values of planning and playback (`SIZE`), and the hash of every blob they
-//! played (`H`), which must equal the hash of the host's samples.
+//! sizes of the values of planning and playback (`SIZE`), and the hash of every blob and
+//! G-code program they played (`H`), which must equal the hash of the host's samples.
 //!
 //! The budgets are checked in at `firmware-sim/qemu/stack-budgets.txt` (one line per
 //! operation and target: the stack in bytes); a measured stack above its budget fails

@@ -1,8 +1,10 @@
 //! strak's example firmware, shared by its binaries: the jobs embedded in flash, the
-//! tick handler that plays a path through [`Sampler`], on-device compiling, online moves
+//! tick handler that plays a path through
+//! [`Sampler`](strak_trajectory::Sampler), on-device compiling, online moves
 //! with new targets and quick stops ([`moves`]), the output
 //! protocol, the panic handler and the exit to QEMU; for the measuring firmware the
-//! instruction counter ([`counter`]), the check of the tick kernels against the portable
+//! instruction counter ([`counter`]) and the instructions of a streaming loop's calls
+//! counted with it ([`costs`]), the check of the tick kernels against the portable
 //! kernel ([`kernel_check`]), the stack measurement ([`stack`]), the MPU set-up that
 //! confines a firmware to the memories of a real part ([`mpu`]), the planning job
 //! ([`planning`]), the online solves ([`online`]), the feed guard's cost ([`guard`]),
@@ -32,6 +34,7 @@
 // set-up writes the MPU's registers (the two modules that allow it).
 #![deny(unsafe_code)]
 
+pub mod costs;
 pub mod counter;
 pub mod device;
 pub mod gcode;

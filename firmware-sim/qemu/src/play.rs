@@ -79,6 +79,14 @@ pub fn log_sample<T: OutBits, const A: usize>(count: u32, s: &Sample<T, A>) {
     defmt::println!("S {=u32} {=[?]}", count, bits.get(..n).unwrap_or(&[]));
 }
 
+/// `hash` with every position's, velocity's and acceleration's bits of `s` folded in
+/// ([`mix`]), in the order `cargo xtask qemu` folds the host's bits.
+#[inline]
+pub fn fold_sample<T: OutBits, const A: usize>(hash: u64, s: &Sample<T, A>) -> u64 {
+    let values = s.position.iter().chain(&s.velocity).chain(&s.acceleration);
+    values.fold(hash, |h, v| mix(h, v.out_bits()))
+}
+
 /// What [`play_blob`] played: the number of samples and a hash of every sample's bits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, defmt::Format)]
 pub struct Played {
@@ -86,8 +94,7 @@ pub struct Played {
     pub pieces: usize,
     /// Samples played (the final one included).
     pub samples: u32,
-    /// [`mix`] folded over every sample's positions, velocities and accelerations
-    /// ([`OutBits`]), in the order `cargo xtask qemu` folds the host's bits.
+    /// Every sample folded in with [`fold_sample`].
     pub hash: u64,
 }
 
@@ -120,9 +127,7 @@ where
         hash: 0,
     };
     while let Some(s) = player.step(&mut sampler) {
-        for v in s.position.iter().chain(&s.velocity).chain(&s.acceleration) {
-            played.hash = mix(played.hash, v.out_bits());
-        }
+        played.hash = fold_sample(played.hash, &s);
         played.samples = played.samples.wrapping_add(1);
     }
     Ok(played)

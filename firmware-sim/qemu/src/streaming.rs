@@ -5,7 +5,7 @@
 //! instructions per move that the `stack` firmware measures.
 //!
 //! A whole curve planned through the same stream ([`run_curve`]): the 16-point B-spline of
-//! [`planning`](crate::planning) pushed as one move ([`Move::curve`]) into a window of
+//! [`planning`] pushed as one move ([`Move::curve`]) into a window of
 //! [`CURVE_SEGMENTS`] segments, which its pieces pass through as they are played, so that
 //! the device plans it with the window's memory and not the whole path's.
 //!
@@ -13,14 +13,13 @@
 //! [`run_curve`]'s) frame, so that a stack measurement around it counts all of them with
 //! the stack they need.
 
-use heapless::Vec;
 use heapless::spsc::Queue;
 use strak_curves::ParamCurve;
 use strak_trajectory::{
     Error, Kernel, Limits, Move, Piece, Stream, StreamCurve, StreamOptions, StreamSampler,
 };
 
-use crate::counter::{Calibration, WideCounter};
+use crate::costs::{Costs, count};
 use crate::planning;
 
 /// Segments of the stream: a move's part between its blends and its blend each take one;
@@ -84,66 +83,44 @@ pub struct Streamed {
 /// The most polls that compile ticks in a run.
 pub const POLLS: usize = 256;
 
-/// The instructions of a run, when counted: of every push that took a move, of every poll
-/// that compiled ticks, and of the whole run's pushes, finish and polls.
-#[derive(Default)]
-pub struct Costs {
-    /// Each push that took a move.
-    pub pushes: Vec<u64, CHORDS>,
-    /// Each poll that compiled ticks.
-    pub polls: Vec<u64, POLLS>,
-    /// Every push (refused ones too), the finish and every poll.
-    pub total: u64,
-}
+/// What a counted run counts: each push that took a move (of [`CHORDS`]), each poll that
+/// compiled ticks (of up to [`POLLS`]), and every push (refused ones too), the finish and
+/// every poll.
+pub type StreamCosts<'a> = Costs<'a, CHORDS, POLLS>;
 
-/// The instructions of a call, when counting.
-fn count<R>(counter: Option<(&WideCounter, &Calibration)>, f: impl FnOnce() -> R) -> (u64, R) {
-    match counter {
-        Some((c, cal)) => {
-            let (n, r) = c.counts(f);
-            (cal.instructions_wide(n), r)
-        }
-        None => (0, f()),
-    }
-}
-
-/// Streams the job in `N` ([`drive`] over the chords); with a counter, `costs` gets the
-/// instructions.
+/// Streams the job in `N` (`drive` over the chords); with `costs`, counts its
+/// instructions into them.
 ///
 /// # Errors
-/// As [`drive`].
+/// As `drive`: the stream's errors; [`Error::CapacityExceeded`] when the run does not
+/// end.
 #[inline(never)]
-pub fn run<N: Kernel>(
-    counter: Option<(&WideCounter, &Calibration)>,
-    costs: &mut Costs,
-) -> Result<Streamed, Error> {
+pub fn run<N: Kernel>(costs: Option<&mut StreamCosts<'_>>) -> Result<Streamed, Error> {
     let mut stream = DeviceStream::unset();
     start(&mut stream)?;
-    drive::<N, SEGMENTS, ZONES, _>(&mut stream, (&chord, CHORDS), counter, costs)
+    drive::<N, SEGMENTS, ZONES, _>(&mut stream, (&chord, CHORDS), costs)
 }
 
 /// Plans and plays the whole B-spline of [`planning`] as one move through a
 /// [`CurveStream`] in `N`, at the limits of that job, blended nowhere (it is one move),
-/// compiled at its rate; with a counter, `costs` gets the instructions.
+/// compiled at its rate; with `costs`, counts its instructions into them.
 ///
 /// # Errors
-/// The curve's and [`drive`]'s errors.
+/// The curve's errors, and as `drive`: the stream's; [`Error::CapacityExceeded`] when the
+/// run does not end.
 #[inline(never)]
-pub fn run_curve<N: Kernel>(
-    counter: Option<(&WideCounter, &Calibration)>,
-    costs: &mut Costs,
-) -> Result<Streamed, Error> {
+pub fn run_curve<N: Kernel>(costs: Option<&mut StreamCosts<'_>>) -> Result<Streamed, Error> {
     let curve = planning::curve::<f64>()?;
     let mut stream = CurveStream::unset();
     let options = StreamOptions::new(planning::RATE_HZ);
     stream.reset(curve.eval(0.0), planning::limits()?, options)?;
     let one = |_| Move::curve(&curve);
-    drive::<N, CURVE_SEGMENTS, CURVE_ZONES, _>(&mut stream, (&one, 1), counter, costs)
+    drive::<N, CURVE_SEGMENTS, CURVE_ZONES, _>(&mut stream, (&one, 1), costs)
 }
 
 /// Streams `count` moves (`moves(i)` the `i`-th) through `stream` in `N`: each iteration
 /// pushes the next move if the stream takes it (it refuses while its segments or window are
-/// full), polls once and plays one tick; with a counter, `costs` gets the instructions.
+/// full), polls once and plays one tick; with `costs`, counts its instructions into them.
 ///
 /// # Errors
 /// The stream's errors; [`Error::CapacityExceeded`] when it does not end within
@@ -151,8 +128,7 @@ pub fn run_curve<N: Kernel>(
 fn drive<N: Kernel, const Q: usize, const Z: usize, C: StreamCurve<3>>(
     stream: &mut Stream<3, Q, Z, C>,
     (moves, count_of): (&dyn Fn(usize) -> Move<3, C>, usize),
-    counter: Option<(&WideCounter, &Calibration)>,
-    costs: &mut Costs,
+    mut costs: Option<&mut StreamCosts<'_>>,
 ) -> Result<Streamed, Error> {
     let mut queue = Queue::<Piece<N, 3>, PIECE_QUEUE>::new();
     let (mut producer, consumer) = queue.split();
@@ -161,21 +137,22 @@ fn drive<N: Kernel, const Q: usize, const Z: usize, C: StreamCurve<3>>(
     for tick in 0..MAX_TICKS {
         if next < count_of {
             let mv = moves(next);
-            let (c, pushed) = count(counter, || stream.push(&mv));
-            costs.total += c;
+            let (c, pushed) = count(costs.as_deref_mut(), || stream.push(&mv));
             if take(pushed)? {
-                let _ = costs.pushes.push(c);
+                if let Some(costs) = costs.as_deref_mut() {
+                    costs.list_move(c);
+                }
                 next += 1;
             }
         } else if !finished {
-            let (c, done) = count(counter, || stream.finish());
-            costs.total += c;
+            let (_, done) = count(costs.as_deref_mut(), || stream.finish());
             finished = take(done)?;
         }
-        let (c, polled) = count(counter, || stream.poll(&mut producer));
-        costs.total += c;
-        if polled? > 0 {
-            let _ = costs.polls.push(c);
+        let (c, polled) = count(costs.as_deref_mut(), || stream.poll(&mut producer));
+        if polled? > 0
+            && let Some(costs) = costs.as_deref_mut()
+        {
+            costs.list_poll(c);
         }
         let sample = sampler.next();
         if finished && stream.is_idle() && sampler.is_holding() {

@@ -47,7 +47,7 @@ where
     N::Out: OutBits,
 {
     defmt::println!("J {=str} {=str} gcode 3", job.name, format.name());
-    match strak_qemu::gcode::run::<N>(job, &mut |k, s| log_sample(k, s)) {
+    match strak_qemu::gcode::run::<N>(job, None, &mut |k, s| log_sample(k, s)) {
         Ok(run) => defmt::println!(
             "E {=str} {=str} gcode {=u32}",
             job.name,

@@ -23,6 +23,14 @@
 //!   ([`streaming::run_curve`]: one move of a `Stream<3, 8, 64, _>`, its pieces passing
 //!   through the window as they are played): the stack with the stream, queue and sampler,
 //!   and the instructions of the whole run.
+//! - streaming the first bundled G-code program ([`gcode::run`]: its text read line by
+//!   line from flash by a `Program` as its moves arrive, slowly enough that the stream
+//!   comes to rest for want of the next, into the stream of the G-code firmware, polled
+//!   into its piece queue and played by a `StreamSampler`, all in the measured frame):
+//!   `f32` pieces on the Cortex-M4F, `Q40` on the Cortex-M3, the stack with the stream,
+//!   queue, sampler and program, and the instructions per feed that read a move or dwell,
+//!   per poll that compiled ticks, and of all of them per move or dwell; every sample is
+//!   hashed and the hash checked against the host's.
 //!
 //! This firmware keeps the large RAM of `memory/boards.x` (4 MiB) and reports the RAM each
 //! operation needs.
@@ -32,9 +40,12 @@
 //! CAL <empty> <nops> <nop64>          the counter's calibration (as the icount firmware's)
 //! SIZE <value> <bytes>                size_of of a planning or playback value
 //! STACK <operation> <stack> <ram>     stack high-water mark and RAM needed, in bytes
-//! H <job> <format> <samples> <hash>   a blob played: its samples and their hash
+//! H <job> <format> <samples> <hash>   a blob or G-code program played: its samples and
+//!                                     their hash
 //! C <operation> <pieces> <ticks>      the path compiled on the device
-//! I <case> <min> <median> <max> 1 0   instructions of one call (min = median = max)
+//! I <case> <min> <median> <max> <calls> <worst>
+//!                                     instructions of calls: the least, median and most,
+//!                                     the calls, the first that took the most
 //! STACKS <n>                          the number of STACK lines
 //! DONE <cases>                        the number of I lines
 //! ```
@@ -45,17 +56,22 @@
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use strak_curves::{BSpline, I32F32, ParamCurve, Point, Scalar};
+use strak_gcode::Program;
+use strak_qemu::costs::Costs;
 use strak_qemu::counter::{Calibration, WideCounter};
-use strak_qemu::jobs::{NumberFormat, find_blob};
+use strak_qemu::gcode::{self, GcodeCosts, GcodeFailure, GcodeRun, GcodeStream};
+use strak_qemu::jobs::{
+    GCODE_JOBS, GCODE_SEGMENTS, GCODE_ZONES, GcodeJob, NumberFormat, find_blob,
+};
 use strak_qemu::online::cases::{BENCH_SEED, OnlineCase, online_cases};
 use strak_qemu::planning::{self, Curve, Plan};
-use strak_qemu::play::{OutBits, Played, play_blob};
+use strak_qemu::play::{OutBits, Played, fold_sample, play_blob};
 use strak_qemu::stack::{self, Usage};
-use strak_qemu::streaming;
+use strak_qemu::streaming::{self, StreamCosts};
 use strak_qemu::{PIECES, STACK_JOB, exit_failure, exit_success};
 use strak_trajectory::{
-    Kernel, MoveOptions, Number, OnlineMove, Path, PathBlob, PathTiming, Piece, Q40, Real, Sampler,
-    StreamSampler, compile_move_into,
+    Kernel, MoveOptions, Number, OnlineMove, Path, PathBlob, PathTiming, Piece, Q40, Real, Sample,
+    Sampler, StreamSampler, compile_move_into,
 };
 
 /// The online moves whose solve and compile the stack is measured over (each measurement
@@ -69,6 +85,21 @@ struct Lines {
     cases: u32,
 }
 
+/// The stack and instruction cases of planning, compiling, and of both.
+#[cfg(target_abi = "eabihf")]
+const PLAN_NAMES: [&str; 3] = [
+    "plan-bspline16-f32",
+    "compile-bspline16-f32",
+    "plan-compile-bspline16-f32",
+];
+/// The stack and instruction cases of planning, compiling, and of both.
+#[cfg(not(target_abi = "eabihf"))]
+const PLAN_NAMES: [&str; 3] = [
+    "plan-bspline16-i32f32",
+    "compile-bspline16-q40",
+    "plan-compile-bspline16-q40",
+];
+
 #[entry]
 fn main() -> ! {
     let Some(p) = cortex_m::Peripherals::take() else {
@@ -78,83 +109,85 @@ fn main() -> ! {
     // The stack first, with SysTick and its exception off: no exception frame lands in a
     // measurement.
     let mut lines = Lines::default();
-    blob::<Q40>("load-play-q40", NumberFormat::Q40, &mut lines);
-    #[cfg(target_abi = "eabihf")]
-    let names = [
-        "plan-bspline16-f32",
-        "compile-bspline16-f32",
-        "plan-compile-bspline16-f32",
-    ];
-    #[cfg(not(target_abi = "eabihf"))]
-    let names = [
-        "plan-bspline16-i32f32",
-        "compile-bspline16-q40",
-        "plan-compile-bspline16-q40",
-    ];
-    #[cfg(target_abi = "eabihf")]
-    {
-        blob::<f32>("load-play-f32", NumberFormat::F32, &mut lines);
-        plan_compile::<f32, f32>(names, &mut lines);
-    }
-    #[cfg(not(target_abi = "eabihf"))]
-    plan_compile::<Q40, I32F32>(names, &mut lines);
-    #[cfg(target_abi = "eabihf")]
-    online::<f32, f32>(
-        ["solve-online-f32-3axis", "compile-move-f32-3axis"],
-        OnlineCase::in_f32,
-        &mut lines,
-    );
-    #[cfg(not(target_abi = "eabihf"))]
-    online::<Q40, f64>(
-        ["solve-online-f64-3axis", "compile-move-q40-3axis"],
-        |c| Some(*c),
-        &mut lines,
-    );
-    #[cfg(target_abi = "eabihf")]
-    stream::<f32>("stream-f32", &mut lines);
-    #[cfg(not(target_abi = "eabihf"))]
-    stream::<Q40>("stream-q40", &mut lines);
-    #[cfg(target_abi = "eabihf")]
-    stream_curve::<f32>("stream-bspline16-f32", None, &mut lines);
-    #[cfg(not(target_abi = "eabihf"))]
-    stream_curve::<Q40>("stream-bspline16-q40", None, &mut lines);
+    let gcode_played = stacks(&mut lines);
     defmt::println!("STACKS {=u32}", lines.stacks);
 
     let counter = WideCounter::start(p.SYST);
     let cal = counter.calibrate();
     let check = counter.check_nop64(&cal);
     defmt::println!("CAL {=u32} {=u32} {=u64}", cal.empty, cal.nops, check);
-    #[cfg(target_abi = "eabihf")]
-    count_plan_compile::<f32, f32>(names, &counter, &cal, &mut lines);
-    #[cfg(not(target_abi = "eabihf"))]
-    count_plan_compile::<Q40, I32F32>(names, &counter, &cal, &mut lines);
-    #[cfg(target_abi = "eabihf")]
-    count_stream::<f32>(
-        ["stream-push-f32", "stream-poll-f32", "stream-move-f32"],
-        &counter,
-        &cal,
-        &mut lines,
-    );
-    #[cfg(not(target_abi = "eabihf"))]
-    count_stream::<Q40>(
-        ["stream-push-q40", "stream-poll-q40", "stream-move-q40"],
-        &counter,
-        &cal,
-        &mut lines,
-    );
-    #[cfg(target_abi = "eabihf")]
-    stream_curve::<f32>("stream-bspline16-f32", Some((&counter, &cal)), &mut lines);
-    #[cfg(not(target_abi = "eabihf"))]
-    stream_curve::<Q40>("stream-bspline16-q40", Some((&counter, &cal)), &mut lines);
+    counts(&counter, &cal, gcode_played, &mut lines);
     defmt::println!("DONE {=u32}", lines.cases);
     exit_success()
+}
+
+/// Measures the stack of every operation played on this core; returns what the G-code run
+/// played, which the counted run must play again.
+fn stacks(lines: &mut Lines) -> GcodePlayed {
+    blob::<Q40>("load-play-q40", NumberFormat::Q40, lines);
+    #[cfg(target_abi = "eabihf")]
+    {
+        blob::<f32>("load-play-f32", NumberFormat::F32, lines);
+        plan_compile::<f32, f32>(PLAN_NAMES, lines);
+        online::<f32, f32>(
+            ["solve-online-f32-3axis", "compile-move-f32-3axis"],
+            OnlineCase::in_f32,
+            lines,
+        );
+        stream::<f32>("stream-f32", lines);
+        stream_curve::<f32>("stream-bspline16-f32", None, lines);
+        gcode_stack::<f32>("gcode-f32", NumberFormat::F32, lines)
+    }
+    #[cfg(not(target_abi = "eabihf"))]
+    {
+        plan_compile::<Q40, I32F32>(PLAN_NAMES, lines);
+        online::<Q40, f64>(
+            ["solve-online-f64-3axis", "compile-move-q40-3axis"],
+            |c| Some(*c),
+            lines,
+        );
+        stream::<Q40>("stream-q40", lines);
+        stream_curve::<Q40>("stream-bspline16-q40", None, lines);
+        gcode_stack::<Q40>("gcode-q40", NumberFormat::Q40, lines)
+    }
+}
+
+/// Counts the instructions of every operation counted on this core; `gcode` is what the
+/// G-code run played when its stack was measured.
+fn counts(counter: &WideCounter, cal: &Calibration, gcode: GcodePlayed, lines: &mut Lines) {
+    #[cfg(target_abi = "eabihf")]
+    {
+        count_plan_compile::<f32, f32>(PLAN_NAMES, counter, cal, lines);
+        count_stream::<f32>(
+            ["stream-push-f32", "stream-poll-f32", "stream-move-f32"],
+            counter,
+            cal,
+            lines,
+        );
+        stream_curve::<f32>("stream-bspline16-f32", Some((counter, cal)), lines);
+        let names = ["gcode-feed-f32", "gcode-poll-f32", "gcode-move-f32"];
+        count_gcode::<f32>(names, gcode, counter, cal, lines);
+    }
+    #[cfg(not(target_abi = "eabihf"))]
+    {
+        count_plan_compile::<Q40, I32F32>(PLAN_NAMES, counter, cal, lines);
+        count_stream::<Q40>(
+            ["stream-push-q40", "stream-poll-q40", "stream-move-q40"],
+            counter,
+            cal,
+            lines,
+        );
+        stream_curve::<Q40>("stream-bspline16-q40", Some((counter, cal)), lines);
+        let names = ["gcode-feed-q40", "gcode-poll-q40", "gcode-move-q40"];
+        count_gcode::<Q40>(names, gcode, counter, cal, lines);
+    }
 }
 
 fn size<T>(name: &str) {
     defmt::println!("SIZE {=str} {=usize}", name, core::mem::size_of::<T>());
 }
 
-/// The sizes of the values of planning and playback.
+/// The sizes of the values of planning, playback and streaming.
 fn sizes() {
     type Plan<S> = PathTiming<'static, Curve<S>, { planning::TABLE }, { planning::ZONES }>;
     size::<Curve<f32>>("BSpline<[f32;3],16,20>");
@@ -176,6 +209,13 @@ fn sizes() {
     size::<StreamSampler<'static, Q40, 3>>("StreamSampler<Q40,3>");
     size::<Piece<f32, 3>>("Piece<f32,3>");
     size::<Piece<Q40, 3>>("Piece<Q40,3>");
+    defmt::println!(
+        "SIZE Stream<3,{=usize},{=usize},NoCurve<3>> {=usize}",
+        GCODE_SEGMENTS,
+        GCODE_ZONES,
+        core::mem::size_of::<GcodeStream>()
+    );
+    size::<Program<'static, 3>>("Program<3>");
 }
 
 /// Validates and plays the bundled blob of [`STACK_JOB`] in `N` from flash, logging its stack
@@ -306,8 +346,7 @@ fn count_plan_compile<N: Number, S: Scalar>(
 /// the whole run (the stream, the queue and the sampler are values of its frame).
 #[inline(never)]
 fn stream<N: Kernel>(name: &str, lines: &mut Lines) {
-    let mut costs = streaming::Costs::default();
-    let (streamed, used) = stack::usage(|| streaming::run::<N>(None, &mut costs));
+    let (streamed, used) = stack::usage(|| streaming::run::<N>(None));
     let streamed = ok_or_fail(name, streamed);
     check_streamed(name, &streamed);
     stack::log(name, used);
@@ -324,12 +363,12 @@ fn stream_curve<N: Kernel>(
     counter: Option<(&WideCounter, &Calibration)>,
     lines: &mut Lines,
 ) {
-    let mut costs = streaming::Costs::default();
-    let (streamed, used) = stack::usage(|| streaming::run_curve::<N>(counter, &mut costs));
+    let mut costs = counter.map(|(counter, cal)| StreamCosts::new(counter, cal));
+    let (streamed, used) = stack::usage(|| streaming::run_curve::<N>(costs.as_mut()));
     let streamed = ok_or_fail(name, streamed);
     let curve = ok_or_fail(name, planning::curve::<f64>());
     check_ends(name, &streamed, curve.eval(1.0));
-    if counter.is_some() {
+    if let Some(costs) = costs {
         instructions(name, costs.total);
         lines.cases += 1;
     } else {
@@ -366,22 +405,129 @@ fn count_stream<N: Kernel>(
     cal: &Calibration,
     lines: &mut Lines,
 ) {
-    let mut costs = streaming::Costs::default();
-    let streamed = ok_or_fail(
-        names[0],
-        streaming::run::<N>(Some((counter, cal)), &mut costs),
-    );
+    let mut costs = StreamCosts::new(counter, cal);
+    let streamed = ok_or_fail(names[0], streaming::run::<N>(Some(&mut costs)));
     check_streamed(names[0], &streamed);
-    spread(names[0], &mut costs.pushes);
+    log_costs(names, &mut costs, streaming::CHORDS, lines);
+}
+
+/// What a G-code run played: its report and every sample folded into a hash
+/// ([`fold_sample`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct GcodePlayed {
+    run: GcodeRun,
+    hash: u64,
+}
+
+/// The first bundled G-code job, or a failed run.
+fn gcode_job(name: &str) -> &'static GcodeJob<3> {
+    let Some(job) = GCODE_JOBS.first() else {
+        defmt::error!("{=str}: no G-code job bundled", name);
+        exit_failure()
+    };
+    job
+}
+
+/// What a G-code run played, `hash` its samples folded; fails the run unless it finished
+/// (the program read, the stream idle, the sampler at its end) and the sampler never held
+/// mid-motion: the job's moves arrive slowly enough that the stream comes to rest for want
+/// of the next, which is no underrun.
+fn checked_gcode(name: &str, run: Result<GcodeRun, GcodeFailure>, hash: u64) -> GcodePlayed {
+    let run = ok_or_fail(name, run);
+    if run.underruns > 0 {
+        defmt::error!("{=str}: {=u32} underruns", name, run.underruns);
+        exit_failure()
+    }
+    GcodePlayed { run, hash }
+}
+
+/// Streams the first G-code job with pieces in `N` ([`gcode::run`]), every sample folded
+/// into a hash, logging the stack of the whole run (the stream, the queue, the sampler and
+/// the program are values of its frame) and what it played (an `H` line, checked against
+/// the host's samples); returns that.
+#[inline(never)]
+fn gcode_stack<N: Kernel>(name: &str, format: NumberFormat, lines: &mut Lines) -> GcodePlayed
+where
+    N::Out: OutBits,
+{
+    let job = gcode_job(name);
+    let mut hash = 0;
+    let mut sink = |_: u32, s: &Sample<N::Out, 3>| hash = fold_sample(hash, s);
+    let (run, used) = stack::usage(|| gcode::run::<N>(job, None, &mut sink));
+    let played = checked_gcode(name, run, hash);
+    stack::log(name, used);
+    lines.stacks += 1;
+    defmt::println!(
+        "H {=str} {=str} {=u32} {=u64}",
+        job.name,
+        format.name(),
+        played.run.samples,
+        played.hash
+    );
+    played
+}
+
+/// Counts the instructions of streaming the first G-code job with pieces in `N` (`names`:
+/// per feed that read a move or dwell, per poll that compiled ticks, and the whole run's
+/// feeds and polls per move or dwell); fails the run unless it plays what the run of
+/// [`gcode_stack`] played (`played`).
+#[inline(never)]
+fn count_gcode<N: Kernel>(
+    names: [&str; 3],
+    played: GcodePlayed,
+    counter: &WideCounter,
+    cal: &Calibration,
+    lines: &mut Lines,
+) where
+    N::Out: OutBits,
+{
+    let job = gcode_job(names[0]);
+    let mut costs = GcodeCosts::new(counter, cal);
+    let mut hash = 0;
+    let mut sink = |_: u32, s: &Sample<N::Out, 3>| hash = fold_sample(hash, s);
+    let run = gcode::run::<N>(job, Some(&mut costs), &mut sink);
+    let counted = checked_gcode(names[0], run, hash);
+    if counted != played {
+        defmt::error!(
+            "{=str}: counted, the run played {=u32} samples of hash {=u64}, not {=u32} of {=u64}",
+            names[0],
+            counted.run.samples,
+            counted.hash,
+            played.run.samples,
+            played.hash
+        );
+        exit_failure()
+    }
+    log_costs(names, &mut costs, counted.run.motions, lines);
+}
+
+/// Logs what a streaming run counted (`names`: per call that handed the stream a move, per
+/// poll that compiled ticks, and the whole run per move of `moves`); fails the run when a
+/// list had no room for a count.
+fn log_costs<const M: usize, const P: usize>(
+    names: [&str; 3],
+    costs: &mut Costs<'_, M, P>,
+    moves: usize,
+    lines: &mut Lines,
+) {
+    if costs.unlisted > 0 {
+        defmt::error!(
+            "{=str}: {=usize} counts found their list full",
+            names[0],
+            costs.unlisted
+        );
+        exit_failure()
+    }
+    spread(names[0], &mut costs.moves);
     spread(names[1], &mut costs.polls);
-    let per_move = costs.total / streaming::CHORDS as u64;
+    let per_move = costs.total / moves.max(1) as u64;
     defmt::println!(
         "I {=str} {=u64} {=u64} {=u64} {=usize} 0",
         names[2],
         per_move,
         per_move,
         per_move,
-        streaming::CHORDS
+        moves
     );
     lines.cases += 3;
 }
