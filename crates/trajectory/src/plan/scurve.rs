@@ -107,11 +107,53 @@ pub(crate) fn slowing_loss(v_low: f64, v_cruise: f64, a: f64, j: f64) -> f64 {
 /// The largest `v ∈ [v_from, cap]` with `D(v_from, v) ≤ length` (`cap` itself when
 /// `cap ≤ v_from`). By the symmetry of `D` this is both the speed reachable by accelerating
 /// from `v_from` and the highest speed from which `v_from` can be reached by braking.
+///
+/// `D(v_from, ·) = length` is solved in closed form ([`reach_gain`]) and the edge of
+/// `D ≤ length` in `f64` is then found by bisection within [`EDGE_BRACKET`] of that root (on
+/// the whole of `[v_from, cap]` where the root's bracket does not hold the edge).
 pub(crate) fn reach(v_from: f64, length: f64, cap: f64, a: f64, j: f64) -> f64 {
     if cap <= v_from || change_distance(v_from, cap, a, j) <= length {
         return cap;
     }
-    last_fitting(v_from, cap, |v| change_distance(v_from, v, a, j) <= length)
+    let fits = |v| change_distance(v_from, v, a, j) <= length;
+    let root = v_from + reach_gain(v_from, length, a, j);
+    let width = EDGE_BRACKET * root.abs();
+    let (lo, hi) = ((root - width).max(v_from), (root + width).min(cap));
+    if (lo == v_from || fits(lo)) && (hi == cap || !fits(hi)) {
+        last_fitting(lo, hi, fits)
+    } else {
+        last_fitting(v_from, cap, fits)
+    }
+}
+
+/// The relative width of the bracket around the closed-form root of `D(v0, v) = L` in which
+/// [`reach`] looks for the edge in `f64`: the root's rounding is a few units of `f64`'s.
+const EDGE_BRACKET: f64 = 1e-13;
+
+/// The speed gain `Δ = v − w` with `D(w, v) = length`, in closed form (both branches of
+/// [`Change`]):
+/// - where `a` is reached (`Δ ≥ a²/j`, or `j = ∞`), `D = (w + Δ/2)·(Δ/a + a/j)`, a quadratic
+///   in `Δ`, whose positive root is taken in the form without cancellation;
+/// - otherwise `D = (2w + Δ)·√(Δ/j)`, so `x = √Δ` solves the depressed cubic
+///   `x³ + 2w·x − L·√j = 0`, whose one real root (its derivative is positive) Cardano's
+///   formula gives as `u − p/(3u)` with `u³ = q/2 + √(q²/4 + p³/27)`, `p = 2w`,
+///   `q = L·√j`, written as `q/(u² + p/3 + (p/(3u))²)` (from `u³ − (p/(3u))³ = q`), which
+///   has no cancellation (Press et al., *Numerical Recipes*, 3rd ed., §5.6).
+fn reach_gain(w: f64, length: f64, a: f64, j: f64) -> f64 {
+    let ta = a / j;
+    let dv_a = a * ta;
+    if length >= (w + 0.5 * dv_a) * 2.0 * ta {
+        let (b, c) = (w / a + 0.5 * ta, w * ta - length);
+        return -2.0 * c / (b + libm::sqrt(b * b - 2.0 * c / a));
+    }
+    let (p, q) = (2.0 * w, length * libm::sqrt(j));
+    let u = libm::cbrt(0.5 * q + libm::sqrt(0.25 * q * q + p * p * p / 27.0));
+    if u <= 0.0 {
+        return 0.0;
+    }
+    let v = p / (3.0 * u);
+    let x = q / (u * u + p / 3.0 + v * v);
+    x * x
 }
 
 /// The edge of `fits` on `[lo, hi]` by bisection, from below: a speed where `fits` holds
@@ -333,6 +375,41 @@ mod tests {
         let vp = peak_speed(0.5, 1.0, 10.0, l, a, j);
         assert!((vp - 3.0).abs() < 1e-12);
         assert_eq!(peak_speed(0.5, 1.0, 2.0, l, a, j), 2.0);
+    }
+
+    /// The closed form's edge against the bisection of all of `[v_from, cap]`, over speeds,
+    /// lengths and limits in both branches of [`Change`] and without a jerk limit: it fits,
+    /// the next `f64` above it does not, and it lies within `1e-14` of the bisection's edge.
+    #[test]
+    fn reach_finds_the_edge_the_bisection_finds() {
+        let mut cases = 0;
+        for (a, j) in [
+            (3_000.0, 100_000.0),
+            (2.0, 4.0),
+            (50.0, 1e7),
+            (3_000.0, f64::INFINITY),
+        ] {
+            for w in [0.0, 1e-6, 0.3, 7.0, 149.9, 2_000.0] {
+                for length in [1e-9, 1e-4, 0.02, 0.7, 3.0, 45.0, 1e4] {
+                    let cap = w + 1e4;
+                    let fits = |v| change_distance(w, v, a, j) <= length;
+                    let edge = reach(w, length, cap, a, j);
+                    let bisected = last_fitting(w, cap, fits);
+                    assert!(fits(edge), "{w} {length} {a} {j}: {edge} does not fit");
+                    assert!(
+                        !fits(edge.next_up()),
+                        "{w} {length} {a} {j}: {edge} not the edge"
+                    );
+                    let off = (edge - bisected).abs();
+                    assert!(
+                        off <= 1e-14 * bisected.max(1.0),
+                        "{w} {length}: {edge} {bisected}"
+                    );
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 168);
     }
 
     #[test]
