@@ -47,6 +47,22 @@ pub trait ParamCurveDeriv: ParamCurve {
     /// At a piece boundary the derivative of the piece that *starts* there is returned,
     /// except at the end of the domain, where the last piece is used.
     fn deriv(&self, u: ScalarOf<Self>, k: usize) -> Self::Point;
+
+    /// The first three derivatives `[c′(u), c″(u), c‴(u)]`, each as
+    /// [`deriv`](Self::deriv) gives it: what the curvature and the derivative of the
+    /// curvature along the curve need (the Frenet–Serret apparatus; do Carmo, *Differential
+    /// Geometry of Curves and Surfaces*, §1-5). A curve whose derivatives share work gives
+    /// them in one pass.
+    ///
+    /// ```
+    /// use strak_curves::{Bezier, ParamCurveDeriv};
+    /// let b = Bezier::new([[0.0_f64, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]])?;
+    /// assert_eq!(b.deriv_triple(0.3), [b.deriv(0.3, 1), b.deriv(0.3, 2), b.deriv(0.3, 3)]);
+    /// # Ok::<(), strak_curves::Error>(())
+    /// ```
+    fn deriv_triple(&self, u: ScalarOf<Self>) -> [Self::Point; 3] {
+        [self.deriv(u, 1), self.deriv(u, 2), self.deriv(u, 3)]
+    }
 }
 
 /// A piecewise curve that can differentiate each piece on its own closed interval, which is

@@ -159,7 +159,7 @@ where
     C: ParamCurveDeriv,
 {
     let us = to_param(curve, u);
-    let (d1, d2, d3) = (curve.deriv(us, 1), curve.deriv(us, 2), curve.deriv(us, 3));
+    let [d1, d2, d3] = curve.deriv_triple(us);
     let dim = <C::Point as Point>::DIM;
     let shaping = dim.min(path);
     let coords = |i: usize| {
@@ -257,7 +257,12 @@ fn turning_limit<const A: usize>(out: &Local<A>, limits: &Limits<A>, jerk: f64, 
         v = v.min(libm::sqrt(share * limits.acceleration() / out.kappa));
     }
     if out.turn > 0.0 {
-        v = v.min(libm::cbrt(share * jerk / out.turn));
+        let bound = share * jerk / out.turn;
+        // Where `v³ ≤ bound/2` the root lies above `1.26·v` and cannot lower `v`: it is not
+        // taken (a cube root costs more than the rest of a sample's limits).
+        if v * v * v > 0.5 * bound {
+            v = v.min(libm::cbrt(bound));
+        }
     }
     v
 }

@@ -461,12 +461,80 @@ impl<const D: usize, C: StreamCurve<D>, const R: usize> ParamCurveDeriv for Segm
         }
         d
     }
+
+    /// [`deriv`](Self::deriv) for `k = 1, 2, 3`, to the bit, with the trace's derivatives
+    /// and the rates `σ, σ′, σ″` of the riding axes evaluated once for all three.
+    fn deriv_triple(&self, u: f64) -> [[f64; D]; 3] {
+        let mut d = [1, 2, 3].map(|k| self.trace_deriv(u, k));
+        if R == 0 {
+            return d;
+        }
+        let [d1, d2, d3] = d;
+        let rates = || {
+            let sigma = d1.norm();
+            if sigma == 0.0 {
+                return [0.0; 3];
+            }
+            let s1 = d1.dot(d2) / sigma;
+            [sigma, s1, (d2.dot(d2) + d1.dot(d3) - s1 * s1) / sigma]
+        };
+        let mut once = None;
+        for (i, r) in self.ride.iter().enumerate() {
+            for (k, dk) in d.iter_mut().enumerate() {
+                dk[D - R + i] = match r {
+                    Ride::Linear { e0, e1 } if e0 == e1 => 0.0,
+                    Ride::Linear { .. } => r.slope(self.length) * once.get_or_insert_with(rates)[k],
+                    Ride::Quintic(_) => r.poly(u, k + 1),
+                    Ride::Alone => continue,
+                };
+            }
+        }
+        d
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::stream::{Junction, Move, junction};
+
+    /// `deriv_triple` equals `deriv` for k = 1, 2, 3 to the bit: on a blend with an axis
+    /// riding along as a quintic, on a span with one riding in proportion, one standing
+    /// still, and on a move of the riding axes alone.
+    #[test]
+    fn deriv_triple_is_deriv_to_the_bit() {
+        let a = MoveCurve::new([0.0; 4], &Move::<4>::line([10.0, 0.0, 0.0, 0.0]), 0.0).unwrap();
+        let b = MoveCurve::new(
+            [10.0, 0.0, 0.0, 0.0],
+            &Move::line([10.0, 10.0, 0.0, 0.0]),
+            0.0,
+        )
+        .unwrap();
+        let Junction::Blend(blend) = junction(&a, &b, 0.1).unwrap() else {
+            panic!("a right angle blends")
+        };
+        let ride = [((1.0, 0.02), (1.3, 0.05)), ((2.0, 0.0), (2.0, 0.0))];
+        let blended = Segment::<4, _, 2>::blend(&blend, 3.0, 50.0)
+            .unwrap()
+            .with_ride(ride);
+        let span = Segment::<4, _, 2>::span(&a, (0.0, 0.9), 0.0, 50.0, 0.0).unwrap();
+        let segments = [blended, span.with_ride(ride), span.riding_alone()];
+        for (i, seg) in segments.iter().enumerate() {
+            for k in 0..=20 {
+                let (lo, hi) = ParamCurve::domain(seg);
+                let u = lo + (hi - lo) * f64::from(k) / 20.0;
+                let each = [1, 2, 3].map(|k| seg.deriv(u, k));
+                let both = seg.deriv_triple(u);
+                for (x, y) in each.iter().flatten().zip(both.iter().flatten()) {
+                    assert_eq!(
+                        x.to_bits(),
+                        y.to_bits(),
+                        "segment {i} at {u}: {each:?} {both:?}"
+                    );
+                }
+            }
+        }
+    }
 
     fn close(a: [f64; 2], b: [f64; 2], tol: f64) -> bool {
         a.minus(b).norm() <= tol
