@@ -23,6 +23,7 @@
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
+use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use strak_curves::ParamCurve;
@@ -210,8 +211,16 @@ pub(crate) struct Driven {
     pub(crate) finished: bool,
 }
 
-/// The sink of the samples.
-pub type Sink<'a, T, const D: usize> = dyn FnMut(&Sample<T, D>) -> Result<(), RunError> + 'a;
+/// The sink of the samples: it runs on a thread of its own, beside the loop that plans and
+/// plays.
+pub type Sink<'a, T, const D: usize> = dyn FnMut(&Sample<T, D>) -> Result<(), RunError> + Send + 'a;
+
+/// Samples handed from the loop that plans and plays to the sink's thread at a time.
+const BATCH: usize = 4_096;
+
+/// Batches on their way to the sink's thread at most: the loop waits while they are all
+/// unread.
+const BATCHES: usize = 8;
 
 /// A piece queue that counts the pieces it is given.
 struct Counted<'a, P> {
@@ -373,7 +382,12 @@ impl<const D: usize> Feed<D> for Feeder<'_, D> {
 }
 
 /// Drives the stream `Stream<D, Q, Z, _, R>` from `start` through the program `feed` hands
-/// it (its moves arriving at the setup's rate), handing each sample to `sink`.
+/// it (its moves arriving at the setup's rate), handing each sample to `sink`. The sink
+/// runs on a second thread, fed batches of [`BATCH`] samples in order, so that measuring
+/// and recording overlap planning; `planning` times the loop that plans and plays.
+///
+/// # Errors
+/// The sink's first error; else the stream's and the feed's.
 pub(crate) fn drive<N, F, const D: usize, const Q: usize, const Z: usize, const R: usize>(
     setup: &StreamSetup,
     start: [f64; D],
@@ -385,6 +399,56 @@ where
     N: Kernel,
     F: Feed<D>,
 {
+    std::thread::scope(|scope| {
+        let (batches, received) = mpsc::sync_channel::<Vec<Sample<N::Out, D>>>(BATCHES);
+        let measured = scope.spawn(move || {
+            for batch in received {
+                batch.iter().try_for_each(&mut *sink)?;
+            }
+            Ok::<(), RunError>(())
+        });
+        let mut batch = Vec::with_capacity(BATCH);
+        let mut hand = |s: Sample<N::Out, D>| {
+            batch.push(s);
+            if batch.len() < BATCH {
+                return Ok(());
+            }
+            let full = std::mem::replace(&mut batch, Vec::with_capacity(BATCH));
+            batches.send(full).map_err(|_| sink_stopped())
+        };
+        let played = play::<N, F, D, Q, Z, R>(setup, start, feed, guard, &mut hand);
+        let last = batches.send(batch).map_err(|_| sink_stopped());
+        drop(batches);
+        match measured.join() {
+            Ok(measured) => measured?,
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+        last?;
+        played
+    })
+}
+
+/// The error of the loop when the sink's thread stopped taking samples (it returns its
+/// own error, which is reported in its place).
+fn sink_stopped() -> RunError {
+    RunError::Io("the samples' sink stopped".to_owned())
+}
+
+/// The loop of [`drive`]: per tick the moves arrived pushed, one poll and one sample handed
+/// to `hand`, until the program is finished, the stream idle and the sampler holding, or
+/// `guard` ticks have passed.
+fn play<N, F, const D: usize, const Q: usize, const Z: usize, const R: usize>(
+    setup: &StreamSetup,
+    start: [f64; D],
+    feed: &mut F,
+    guard: u64,
+    hand: &mut impl FnMut(Sample<N::Out, D>) -> Result<(), RunError>,
+) -> Result<Driven, RunError>
+where
+    N: Kernel,
+    F: Feed<D>,
+{
+    let clock = Instant::now();
     let mut stream = Box::new(
         Stream::<D, Q, Z, NoCurve<D>, R>::new(
             start,
@@ -400,16 +464,13 @@ where
         pieces: 0,
     };
     let mut sampler = StreamSampler::new(consumer, &*stream).map_err(|e| stream_error(setup, e))?;
-    let mut planning = Duration::ZERO;
     let mut done = false;
     for tick in 0..guard {
-        let clock = Instant::now();
         feed.push_arrived(&mut stream, arrived(setup, tick))?;
         stream
             .poll(&mut pieces)
             .map_err(|e| stream_error(setup, e))?;
-        planning += clock.elapsed();
-        sink(&sampler.next())?;
+        hand(sampler.next())?;
         done = feed.is_finished() && stream.is_idle() && sampler.is_holding();
         if done {
             break;
@@ -420,7 +481,7 @@ where
         underruns: sampler.underruns(),
         ticks: stream.ticks(),
         pieces: pieces.pieces,
-        planning,
+        planning: clock.elapsed(),
         corners: feed.corners(),
         finished: done,
     })

@@ -174,11 +174,13 @@ pub struct EndPoint {
 /// Wall-clock times of the run's steps in seconds.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct WallTime {
-    /// Building the curves and planning the time law.
+    /// Building the curves and planning the time law; of a stream, the loop that pushes,
+    /// polls and plays (its samples are measured beside it, on a second thread).
     pub plan_s: f64,
     /// Compiling the path.
     pub compile_s: f64,
-    /// Playing the path (sampler, CSV, statistics).
+    /// Playing the path (sampler, CSV, statistics); of a stream, the rest of the run before
+    /// the plots (reading ahead, and the measuring that outlasts the loop).
     pub play_s: f64,
     /// Writing the plots.
     pub plots_s: f64,
@@ -273,8 +275,8 @@ pub struct StreamReport {
     pub piece_queue: usize,
     /// The rate the moves arrived at (`None`: all at once).
     pub moves_per_second: Option<f64>,
-    /// Wall-clock time of pushing and polling per move, in seconds (a measurement of this
-    /// host).
+    /// Wall-clock time of pushing, polling and playing per move, in seconds (a measurement
+    /// of this host).
     pub planning_per_move_s: f64,
 }
 
@@ -638,7 +640,7 @@ impl Summary {
         )?;
         writeln!(
             f,
-            "  planning   {} µs per move (push + poll, wall clock on this host)",
+            "  planning   {} µs per move (push + poll + play, wall clock on this host)",
             num(s.planning_per_move_s * 1e6)
         )?;
         writeln!(
@@ -723,7 +725,7 @@ impl Summary {
             )?;
             writeln!(
                 f,
-                "  wall time  push + poll {} s, play and measure {} s, plots {} s, total {} s",
+                "  wall time  push + poll + play {} s (measured beside it), other {} s, plots {} s, total {} s",
                 num(w.plan_s),
                 num(w.play_s),
                 num(w.plots_s),
