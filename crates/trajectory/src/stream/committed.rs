@@ -27,6 +27,12 @@ pub(super) const PHASES: usize = 3 * PHASES_PER_ZONE;
 /// The ticks whose states and frames a committed motion keeps.
 pub(super) const RECENT: usize = 8;
 
+/// The ticks whose positions a committed motion keeps: a stretch of the default length
+/// ([`StreamOptions`](super::StreamOptions)), so that the spline fit, which checks its
+/// pieces against every tick and fits again tighter where they exceed a limit, evaluates
+/// each tick's position once.
+pub(super) const POINTS: usize = 64;
+
 /// Bisection steps locating a join of segments in a phase: to well below a nanosecond.
 const JOIN_BISECTION_STEPS: usize = 48;
 
@@ -51,9 +57,9 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usiz
     /// for the ticks near it again as it refines its pieces.
     pub(super) recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
     /// The ticks whose position alone was evaluated last, and their points, by tick modulo
-    /// [`RECENT`]: the spline fit checks its pieces against the positions of every tick,
+    /// [`POINTS`]: the spline fit checks its pieces against the positions of every tick,
     /// which need neither the tangent nor the curvature of the frame.
-    pub(super) points: [TickPoint<D>; RECENT],
+    pub(super) points: [TickPoint<D>; POINTS],
     /// The index of the segment found last.
     pub(super) cursor: Cell<usize>,
 }
@@ -109,7 +115,7 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
     /// The position at tick `k`: the point of its frame ([`Self::at_tick`]), evaluated
     /// alone where the frame is not at hand.
     fn point_at(&self, k: u32) -> Result<[f64; D], Error> {
-        let slot = &self.points[k as usize % RECENT];
+        let slot = &self.points[k as usize % POINTS];
         if let Some((tick, x)) = slot.get()
             && tick == k
         {

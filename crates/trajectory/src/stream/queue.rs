@@ -1269,9 +1269,10 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         }
         let mut ticks = last - first;
         let mut pieces = Vec::<Piece<N, D>, STRETCH_PIECES>::new();
+        // One motion for every try: the positions it keeps serve the shorter stretches.
+        let motion = self.motion();
         loop {
             pieces.clear();
-            let motion = self.motion();
             match self.fit.write(&motion, first, first + ticks, &mut pieces) {
                 Ok(()) => break,
                 Err(Error::CapacityExceeded { .. }) if ticks > 2 => ticks /= 2,
