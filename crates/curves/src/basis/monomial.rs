@@ -236,19 +236,47 @@ impl<P: Point, const N: usize> ParamCurveDeriv for MonomialCurve<P, N> {
     /// `a_i · i (i − 1) ⋯ (i − k + 1)`; zero for `k > g`.
     fn deriv(&self, u: P::Scalar, k: usize) -> P {
         let u = u.clamp_to(self.start, self.end);
-        let mut f: Option<P> = None;
-        for (i, &a) in self.coeffs.iter().enumerate().skip(k).rev() {
-            let mut coef = a;
-            for m in 0..k {
-                coef = coef.times(int_scalar(i - m));
+        // The orders a path asks for (the point, the tangent, the curvature) by a loop of a
+        // known length each; the same products in the same order for every order.
+        match k {
+            0 => horner_points(&self.coeffs, u),
+            1 => derivative_horner::<P, N, 1>(&self.coeffs, u),
+            2 => derivative_horner::<P, N, 2>(&self.coeffs, u),
+            3 => derivative_horner::<P, N, 3>(&self.coeffs, u),
+            _ => {
+                let mut f: Option<P> = None;
+                for (i, &a) in self.coeffs.iter().enumerate().skip(k).rev() {
+                    let coef = (0..k).fold(a, |c, m| c.times(int_scalar(i - m)));
+                    f = Some(match f {
+                        None => coef,
+                        Some(f) => coef.plus(f.times(u)),
+                    });
+                }
+                f.unwrap_or_else(P::zero)
             }
-            f = Some(match f {
-                None => coef,
-                Some(f) => coef.plus(f.times(u)),
-            });
         }
-        f.unwrap_or_else(P::zero)
     }
+}
+
+/// The Horner scheme on the `K`-times differentiated coefficients
+/// `a_i · i (i − 1) ⋯ (i − K + 1)` (each the products in that order); zero for `K ≥ N`.
+#[inline(always)]
+fn derivative_horner<P: Point, const N: usize, const K: usize>(coeffs: &[P; N], u: P::Scalar) -> P {
+    let coef = |i: usize| {
+        let mut c = coeffs.get(i).copied().unwrap_or_else(P::zero);
+        for m in 0..K {
+            c = c.times(int_scalar(i - m));
+        }
+        c
+    };
+    let Some(top) = N.checked_sub(1).filter(|&top| top >= K) else {
+        return P::zero();
+    };
+    let mut f = coef(top);
+    for i in (K..top).rev() {
+        f = coef(i).plus(f.times(u));
+    }
+    f
 }
 
 /// A single piece: [`PieceDeriv::piece_deriv`] is [`ParamCurveDeriv::deriv`].
