@@ -69,15 +69,29 @@ impl Ride {
         let Ride::Quintic(c) = self else {
             return 0.0;
         };
+        let Some(falling) = FALLING.get(k) else {
+            return 0.0;
+        };
         // the k-th derivative's coefficients: c_i · i!/(i − k)!
         let mut acc = 0.0;
-        for i in (k..6).rev() {
-            let falling = ((i + 1 - k)..=i).fold(1.0, |p, f| p * f as f64);
-            acc = acc * u + c[i] * falling;
+        for (&c, &f) in c.iter().zip(falling).skip(k).rev() {
+            acc = acc * u + c * f;
         }
         acc
     }
 }
+
+/// The falling factorials `i!/(i − k)!` for `k` (row) and `i` (column) up to 5, the factors
+/// of the quintic's coefficients in its `k`-th derivative (0 for `i < k`, where the
+/// derivative has no term).
+const FALLING: [[f64; 6]; 6] = [
+    [1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
+    [0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+    [0.0, 0.0, 2.0, 6.0, 12.0, 20.0],
+    [0.0, 0.0, 0.0, 6.0, 24.0, 60.0],
+    [0.0, 0.0, 0.0, 0.0, 24.0, 120.0],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 120.0],
+];
 
 #[cfg(test)]
 mod tests {
@@ -98,6 +112,22 @@ mod tests {
         assert!((fd - r.poly(0.3, 1)).abs() < 1e-8);
         let fd3 = (r.poly(0.3 + h, 2) - r.poly(0.3 - h, 2)) / (2.0 * h);
         assert!((fd3 - r.poly(0.3, 3)).abs() < 1e-6);
+    }
+
+    /// The table against the falling factorials multiplied out.
+    #[test]
+    fn falling_factorials() {
+        for (k, row) in FALLING.iter().enumerate() {
+            for (i, &f) in row.iter().enumerate() {
+                let want = if i < k {
+                    0.0
+                } else {
+                    ((i + 1 - k)..=i).fold(1.0, |p, f| p * f as f64)
+                };
+                assert_eq!(f, want, "{k} {i}");
+            }
+        }
+        assert_eq!(Ride::Quintic([1.0; 6]).poly(0.5, 6), 0.0);
     }
 
     #[test]
