@@ -39,10 +39,12 @@ pub(crate) trait Knots<const A: usize> {
 
 /// The knots of a fit kept in the piece storage of the path it is compiled into: knot
 /// `i + 1` in piece slot `i`, its tick in the piece's `start`, its split mark in `ticks`,
-/// and its `2A + 1` `f64` values (position and slope per axis, then the scratch value) bit
-/// for bit in the piece's `9·A` state values: one `f64` in one 8-byte value (`f64`, `Q40`)
-/// or in two 4-byte values (`f32`), through the values' little-endian bytes. `2·(2A + 1) ≤
-/// 9A` for every `A ≥ 1`, so a piece always has room for a knot. When the fit is done,
+/// and its `2A + 1` `f64` values bit for bit in the piece's state values: one `f64` in one
+/// 8-byte value (`f64`, `Q40`) or in two 4-byte values (`f32`), through the values'
+/// little-endian bytes. Axis `a`'s position at the knot lies in its `position` (and
+/// `delta1`), its slope in its `delta2` (and `delta3`), and the scratch value in the first
+/// axis's `velocity` (and `velocity_delta1`), so that a row of values is read field by
+/// field. When the fit is done,
 /// [`SplineFit::write_pieces`](super::spline_fit::SplineFit::write_pieces) overwrites each
 /// slot with its piece. The slots start at `offset` (a fit after pieces already written, as
 /// the stretches of [`Stretches`](crate::Stretches) write several fits into one storage).
@@ -64,65 +66,61 @@ impl<'p, N: Number, const A: usize, const P: usize> PieceKnots<'p, N, A, P> {
     }
 }
 
-/// Values of `N` per `f64`: 1 or 2.
-const fn words<N: Number>() -> usize {
-    8 / N::BYTES
+/// Which of a knot's values a pair of state fields holds.
+#[derive(Clone, Copy)]
+enum Row {
+    /// The position (per axis).
+    Value,
+    /// The slope (per axis).
+    Slope,
+    /// The elimination's scratch value (in the first axis).
+    Scratch,
 }
 
-/// Value `i` of the flat sequence of a piece's state values (axis `i / 9`, field `i % 9`
-/// in the order of [`AxisState`]).
+/// The pair of fields of an axis's state that holds `row`.
 #[inline(always)]
-fn slot<N, const A: usize>(axes: &mut [AxisState<N>; A], i: usize) -> Option<&mut N> {
-    let s = axes.get_mut(i / 9)?;
-    Some(match i % 9 {
-        0 => &mut s.position,
-        1 => &mut s.delta1,
-        2 => &mut s.delta2,
-        3 => &mut s.delta3,
-        4 => &mut s.velocity,
-        5 => &mut s.velocity_delta1,
-        6 => &mut s.velocity_delta2,
-        7 => &mut s.acceleration,
-        _ => &mut s.acceleration_delta,
-    })
-}
-
-/// Value `i` of the flat sequence, read.
-#[inline(always)]
-fn slot_value<N: Copy, const A: usize>(axes: &[AxisState<N>; A], i: usize) -> Option<N> {
-    let s = axes.get(i / 9)?;
-    Some(match i % 9 {
-        0 => s.position,
-        1 => s.delta1,
-        2 => s.delta2,
-        3 => s.delta3,
-        4 => s.velocity,
-        5 => s.velocity_delta1,
-        6 => s.velocity_delta2,
-        7 => s.acceleration,
-        _ => s.acceleration_delta,
-    })
-}
-
-/// Stores `x` as the `k`-th `f64` of the state values.
-#[inline(always)]
-fn put<N: Number, const A: usize>(axes: &mut [AxisState<N>; A], k: usize, x: f64) {
-    let bytes = x.to_le_bytes();
-    for (h, chunk) in bytes.chunks_exact(N::BYTES).enumerate() {
-        if let Some(v) = slot(axes, k * words::<N>() + h) {
-            *v = N::read_le(chunk);
-        }
+fn fields<N>(s: &AxisState<N>, row: Row) -> (&N, &N) {
+    match row {
+        Row::Value => (&s.position, &s.delta1),
+        Row::Slope => (&s.delta2, &s.delta3),
+        Row::Scratch => (&s.velocity, &s.velocity_delta1),
     }
 }
 
-/// The `k`-th `f64` of the state values (as [`put`] stored it).
+/// The pair of fields of an axis's state that holds `row`, to write.
 #[inline(always)]
-fn get<N: Number, const A: usize>(axes: &[AxisState<N>; A], k: usize) -> f64 {
+fn fields_mut<N>(s: &mut AxisState<N>, row: Row) -> (&mut N, &mut N) {
+    match row {
+        Row::Value => (&mut s.position, &mut s.delta1),
+        Row::Slope => (&mut s.delta2, &mut s.delta3),
+        Row::Scratch => (&mut s.velocity, &mut s.velocity_delta1),
+    }
+}
+
+/// Stores `x` in one value of `N` (8 bytes) or two (4 bytes each): its little-endian bytes
+/// in order.
+#[inline(always)]
+fn put<N: Number>((lo, hi): (&mut N, &mut N), x: f64) {
+    let bytes = x.to_le_bytes();
+    let mut chunks = bytes.chunks_exact(N::BYTES);
+    if let Some(c) = chunks.next() {
+        *lo = N::read_le(c);
+    }
+    if let Some(c) = chunks.next() {
+        *hi = N::read_le(c);
+    }
+}
+
+/// The `f64` that [`put`] stored.
+#[inline(always)]
+fn get<N: Number>((lo, hi): (&N, &N)) -> f64 {
     let mut bytes = [0_u8; 8];
-    for (h, chunk) in bytes.chunks_exact_mut(N::BYTES).enumerate() {
-        if let Some(v) = slot_value(axes, k * words::<N>() + h) {
-            v.write_le(chunk);
-        }
+    let mut chunks = bytes.chunks_exact_mut(N::BYTES);
+    if let Some(c) = chunks.next() {
+        lo.write_le(c);
+    }
+    if let Some(c) = chunks.next() {
+        hi.write_le(c);
     }
     f64::from_le_bytes(bytes)
 }
@@ -136,20 +134,22 @@ impl<N: Number, const A: usize, const P: usize> PieceKnots<'_, N, A, P> {
         self.pieces.get_mut(self.offset + i).map(|p| &mut p.axes)
     }
 
-    /// The `f64`s `first .. first + A` of slot `i`.
+    /// The values `row` of slot `i`, one per axis.
     #[inline(always)]
-    fn row(&self, i: usize, first: usize) -> [f64; A] {
+    fn row(&self, i: usize, row: Row) -> [f64; A] {
         match self.axes(i) {
-            Some(axes) => core::array::from_fn(|a| get(axes, first + a)),
+            Some(axes) => {
+                core::array::from_fn(|a| axes.get(a).map_or(0.0, |s| get(fields(s, row))))
+            }
             None => [0.0; A],
         }
     }
 
     #[inline(always)]
-    fn set_row(&mut self, i: usize, first: usize, x: [f64; A]) {
+    fn set_row(&mut self, i: usize, row: Row, x: [f64; A]) {
         if let Some(axes) = self.axes_mut(i) {
-            for (a, v) in x.into_iter().enumerate() {
-                put(axes, first + a, v);
+            for (s, v) in axes.iter_mut().zip(x) {
+                put(fields_mut(s, row), v);
             }
         }
     }
@@ -181,23 +181,25 @@ impl<N: Number, const A: usize, const P: usize> Knots<A> for PieceKnots<'_, N, A
         }
     }
     fn value(&self, i: usize) -> [f64; A] {
-        self.row(i, 0)
+        self.row(i, Row::Value)
     }
     fn set_value(&mut self, i: usize, v: [f64; A]) {
-        self.set_row(i, 0, v);
+        self.set_row(i, Row::Value, v);
     }
     fn slope(&self, i: usize) -> [f64; A] {
-        self.row(i, A)
+        self.row(i, Row::Slope)
     }
     fn set_slope(&mut self, i: usize, s: [f64; A]) {
-        self.set_row(i, A, s);
+        self.set_row(i, Row::Slope, s);
     }
     fn scratch(&self, i: usize) -> f64 {
-        self.axes(i).map_or(0.0, |axes| get(axes, 2 * A))
+        self.axes(i)
+            .and_then(|axes| axes.first())
+            .map_or(0.0, |s| get(fields(s, Row::Scratch)))
     }
     fn set_scratch(&mut self, i: usize, c: f64) {
-        if let Some(axes) = self.axes_mut(i) {
-            put(axes, 2 * A, c);
+        if let Some(s) = self.axes_mut(i).and_then(|axes| axes.first_mut()) {
+            put(fields_mut(s, Row::Scratch), c);
         }
     }
     fn split(&self, i: usize) -> bool {
