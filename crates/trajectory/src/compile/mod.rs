@@ -242,7 +242,7 @@ where
         let law = TickLaw::new(curve, timing, rate_hz, stretch, min_ticks)?;
         let tolerance = fit_law(&law, options, &mut fit)?;
         let tangential = limits.is_some_and(|l| l.tangential_acceleration.is_finite());
-        let peaks = fit_peaks(&fit, period, tangential, usize::MAX);
+        let peaks = fit_peaks(&fit, period, tangential, usize::MAX, f64::NEG_INFINITY);
         let (factor, quantity) = match &limits {
             Some(limits) => peaks.slowdown(limits)?,
             None => (1.0, None),
@@ -378,16 +378,19 @@ fn relative_tolerance<const A: usize, K: Knots<A>>(r: f64, fit: &SplineFit<A, K>
 }
 
 /// The peaks of the fitted spline's pieces (with the tangential acceleration when
-/// `tangential`: its bound at any feed, [`tangential_peak`]).
+/// `tangential`: its bound at any feed, [`tangential_peak`]); the speed peak exact where it
+/// may reach `speed_limit`, a bound of it below ([`Peaks::of_piece_below`]).
 fn fit_peaks<const A: usize, K: Knots<A>, E: EndClamps<A>>(
     fit: &SplineFit<A, K, E>,
     period: f64,
     tangential: bool,
     path: usize,
+    speed_limit: f64,
 ) -> Peaks {
     let mut peaks = Peaks::default();
     fit.each_piece(|coeffs, n| {
-        peaks = peaks.max(Peaks::of_shaped_piece(&coeffs, f64::from(n), period, path));
+        let piece = Peaks::of_shaped_piece_below(&coeffs, f64::from(n), period, path, speed_limit);
+        peaks = peaks.max(piece);
     });
     if tangential {
         peaks.tangential = tangential_peak(fit, period);

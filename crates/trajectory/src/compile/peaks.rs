@@ -14,6 +14,11 @@ const BISECTION_STEPS: usize = 64;
 /// coefficients and of the peaks themselves.
 pub(super) const LIMIT_SLACK: f64 = 1e-12;
 
+/// How far below a speed limit (relative) the speed bound of a piece must lie to stand in
+/// for its exact speed peak ([`Peaks::of_piece_below`]): far beyond the rounding of either,
+/// which both follow the same speed from above or to within rounding.
+const BOUND_MARGIN: f64 = 1e-9;
+
 /// The largest speed `|ẋ|`, acceleration `|ẍ|` and jerk `|x⃛|` (Euclidean norms over the
 /// axes) of a motion, in units/s, units/s², units/s³, and per axis the largest `|ẋᵢ|` and
 /// `|ẍᵢ|` (the first [`MAX_DIM`] axes: a point has no more).
@@ -66,43 +71,58 @@ impl Peaks {
     /// `|ẋ| ≤ max(|ẋ(s) + Δẍ(s)|, |ẋ(s) − Δẍ(s)|) + ½Δ²|x⃛|` (the norm of an affine function
     /// of `δ` is largest at an end of the interval).
     pub(super) fn of_piece<const A: usize>(coeffs: &[[f64; 4]; A], n: f64, period: f64) -> Peaks {
+        Self::of_piece_below(coeffs, n, period, f64::NEG_INFINITY)
+    }
+
+    /// [`of_piece`](Self::of_piece), but where the speed bound lies at or below
+    /// `speed_limit · (1 − BOUND_MARGIN)` the bound stands in for the exact speed peak: a
+    /// check against a speed limit (with [`LIMIT_SLACK`]) comes out the same with either,
+    /// and the bound costs no roots of the speed's derivative.
+    pub(super) fn of_piece_below<const A: usize>(
+        coeffs: &[[f64; 4]; A],
+        n: f64,
+        period: f64,
+        speed_limit: f64,
+    ) -> Peaks {
         let sq = |f: &dyn Fn(&[f64; 4]) -> f64| coeffs.iter().map(|c| f(c) * f(c)).sum::<f64>();
-        let speed2 = |i: f64| sq(&|&[_, b, c, d]| b + i * (2.0 * c + 3.0 * d * i));
         let tt = period * period;
         let acc = |i: f64| libm::sqrt(sq(&|&[_, _, c, d]| (2.0 * c + 6.0 * d * i) / tt));
-        let mut best = speed2(0.0).max(speed2(n));
-        let (turns, count) = speed_turns(coeffs, n);
-        for &i in turns.get(..count).unwrap_or(&[]) {
-            best = best.max(speed2(i));
-        }
+        let velocity_bound = speed_bound(coeffs, n, period);
+        let velocity =
+            if velocity_bound.is_finite() && velocity_bound <= speed_limit * (1.0 - BOUND_MARGIN) {
+                velocity_bound
+            } else {
+                speed_peak(coeffs, n, period)
+            };
         let (axis_velocity, axis_acceleration) = axis_peaks(coeffs, n, period);
         Peaks {
-            velocity: libm::sqrt(best) / period,
+            velocity,
             acceleration: acc(0.0).max(acc(n)),
             jerk: libm::sqrt(sq(&|c| 6.0 * c[3] / (tt * period))),
-            velocity_bound: speed_bound(coeffs, n, period),
+            velocity_bound,
             tangential: 0.0,
             axis_velocity,
             axis_acceleration,
         }
     }
 
-    /// [`of_piece`](Self::of_piece) of a motion whose first `path` axes shape the path: the
-    /// norms over those, the per-axis peaks of every axis.
-    pub(super) fn of_shaped_piece<const A: usize>(
+    /// [`of_piece_below`](Self::of_piece_below) of a motion whose first `path` axes shape
+    /// the path: the norms over those, the per-axis peaks of every axis.
+    pub(super) fn of_shaped_piece_below<const A: usize>(
         coeffs: &[[f64; 4]; A],
         n: f64,
         period: f64,
         path: usize,
+        speed_limit: f64,
     ) -> Peaks {
         if path >= A {
-            return Self::of_piece(coeffs, n, period);
+            return Self::of_piece_below(coeffs, n, period, speed_limit);
         }
         let mut shaped = *coeffs;
         for c in shaped.iter_mut().skip(path) {
             *c = [0.0; 4];
         }
-        let mut peaks = Self::of_piece(&shaped, n, period);
+        let mut peaks = Self::of_piece_below(&shaped, n, period, speed_limit);
         (peaks.axis_velocity, peaks.axis_acceleration) = axis_peaks(coeffs, n, period);
         peaks
     }
@@ -178,6 +198,26 @@ pub(super) fn speed_turns<const A: usize>(coeffs: &[[f64; 4]; A], n: f64) -> ([f
         }
     });
     (turns, count)
+}
+
+/// The speed peak `|ẋ|` of [`Peaks::of_piece`]: the largest at the ends and at the speed's
+/// turning points inside.
+fn speed_peak<const A: usize>(coeffs: &[[f64; 4]; A], n: f64, period: f64) -> f64 {
+    let speed2 = |i: f64| {
+        coeffs
+            .iter()
+            .map(|&[_, b, c, d]| {
+                let v = b + i * (2.0 * c + 3.0 * d * i);
+                v * v
+            })
+            .sum::<f64>()
+    };
+    let mut best = speed2(0.0).max(speed2(n));
+    let (turns, count) = speed_turns(coeffs, n);
+    for &i in turns.get(..count).unwrap_or(&[]) {
+        best = best.max(speed2(i));
+    }
+    libm::sqrt(best) / period
 }
 
 /// The per-axis velocity and acceleration peaks of [`Peaks::of_piece`].
@@ -351,6 +391,29 @@ mod tests {
         // |ẍ| at the ends: 2c = 0.02 and 2c + 6d·60 = −0.016 (per tick²)
         let a_end = 0.02 / (period * period);
         assert!((p.acceleration - a_end).abs() < 1e-9 * a_end);
+    }
+
+    /// Far below a speed limit the bound stands in for the speed peak, and the check against
+    /// the limits comes out the same; at the bound the peak is exact.
+    #[test]
+    fn the_bound_stands_in_below_the_speed_limit() {
+        let period = 1e-3;
+        let coeffs = [[0.0, 0.1, 0.01, -1e-4], [0.0, -0.05, 0.002, 1e-6]];
+        let exact = Peaks::of_piece(&coeffs, 60.0, period);
+        assert!(exact.velocity_bound > exact.velocity);
+        let far = Peaks::of_piece_below(&coeffs, 60.0, period, 2.0 * exact.velocity_bound);
+        assert_eq!(far.velocity, exact.velocity_bound);
+        assert_eq!(
+            Peaks {
+                velocity: exact.velocity,
+                ..far
+            },
+            exact
+        );
+        let limits = MotionLimits::new(2.0 * exact.velocity_bound, 1e12, 1e18);
+        assert_eq!(far.slowdown(&limits), exact.slowdown(&limits));
+        let near = Peaks::of_piece_below(&coeffs, 60.0, period, exact.velocity_bound);
+        assert_eq!(near, exact);
     }
 
     #[test]

@@ -257,9 +257,11 @@ impl StretchFit {
         let mut tolerance = self.tolerance;
         for _ in 0..=TIGHTER_FITS {
             self.fit_span(motion, from, to, tolerance, &mut fit)?;
-            let peaks = fit_peaks(&fit, period, false, self.path_axes);
             let quantity = match motion.limits() {
-                Some(limits) => peaks.slowdown(&limits)?.1,
+                Some(limits) => {
+                    let peaks = fit_peaks(&fit, period, false, self.path_axes, limits.velocity);
+                    peaks.slowdown(&limits)?.1
+                }
                 None => None,
             };
             if quantity.is_none() {
