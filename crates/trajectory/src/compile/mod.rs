@@ -19,7 +19,7 @@ pub use stretch::Stretches;
 
 pub(crate) use law::TickMotion;
 pub(crate) use streamed::{StreamedPlan, seal_streamed};
-pub(crate) use stretch::StretchFit;
+pub(crate) use stretch::{Progress, StretchFit};
 
 use strak_curves::{ParamCurveDeriv, Point, Scalar, ScalarOf};
 

@@ -187,6 +187,20 @@ impl<'a, M: Trajectory + ?Sized, const A: usize> Stretches<'a, M, A> {
     }
 }
 
+/// Where a write of a stretch stands after one of the motion's breaks
+/// ([`StretchFit::write_from`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Progress {
+    /// How many breaks it has passed.
+    breaks: usize,
+    /// The last of them, as a fractional tick.
+    pub(crate) at: f64,
+    /// How many pieces it has written.
+    pieces: usize,
+    /// The tick the next span starts at.
+    from: u32,
+}
+
 /// How a stretch is fitted: the position tolerance and the longest piece.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StretchFit {
@@ -212,9 +226,38 @@ impl StretchFit {
         M: TickMotion<A> + ?Sized,
         N: Number,
     {
-        let (mut from, mut result) = (first, Ok(()));
+        self.write_from(motion, (first, last), pieces, None, &mut |_| {})
+    }
+
+    /// [`write`](Self::write) of the ticks `first ..= last`, resumed after the break of
+    /// `resume` where given: a progress that `passed` reported to an earlier write of the
+    /// same motion from the same first tick, whose break lies before `last`. Up to that
+    /// break both writes pass the same breaks (the breaks before `last` in order) and write
+    /// the same pieces, which `pieces` keeps (it is cut to them; without `resume` the pieces
+    /// are written after `pieces`). Calls `passed` with the progress after each break.
+    pub(crate) fn write_from<M, N, const A: usize, const P: usize>(
+        &self,
+        motion: &M,
+        (first, last): (u32, u32),
+        pieces: &mut Vec<Piece<N, A>, P>,
+        resume: Option<Progress>,
+        passed: &mut dyn FnMut(Progress),
+    ) -> Result<(), Error>
+    where
+        M: TickMotion<A> + ?Sized,
+        N: Number,
+    {
+        let (mut from, skip) = match resume {
+            Some(p) => {
+                pieces.truncate(p.pieces);
+                (p.from, p.breaks)
+            }
+            None => (first, 0),
+        };
+        let (mut breaks, mut result) = (0, Ok(()));
         motion.breaks_between(first, last, &mut |k| {
-            if result.is_err() {
+            breaks += 1;
+            if result.is_err() || breaks <= skip {
                 return;
             }
             let near = libm::round(k);
@@ -229,6 +272,14 @@ impl StretchFit {
                 .span(motion, from, lo.max(from), pieces)
                 .and_then(|()| chords(motion, lo.max(from), hi.max(from), pieces));
             from = hi.max(from);
+            if result.is_ok() {
+                passed(Progress {
+                    breaks,
+                    at: k,
+                    pieces: pieces.len(),
+                    from,
+                });
+            }
         });
         result?;
         self.span(motion, from, last, pieces)
@@ -380,4 +431,71 @@ where
     }
     let extent = lo.iter().zip(hi).fold(0.0_f64, |m, (l, h)| m.max(h - l));
     Ok((extent, big))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::MotionLimits;
+
+    /// `x = 10·sin(k/50)` in ticks of a millisecond, with a break every 5.5 ticks.
+    struct Wave;
+
+    impl TickMotion<1> for Wave {
+        fn period(&self) -> f64 {
+            1e-3
+        }
+        fn position(&self, k: u32) -> Result<[f64; 1], Error> {
+            Ok([10.0 * libm::sin(f64::from(k) / 50.0)])
+        }
+        fn slope(&self, k: u32) -> Result<[f64; 1], Error> {
+            Ok([0.2 * libm::cos(f64::from(k) / 50.0)])
+        }
+        fn second(&self, k: u32) -> Result<[f64; 1], Error> {
+            Ok([-0.004 * libm::sin(f64::from(k) / 50.0)])
+        }
+        fn breaks_between(&self, first: u32, last: u32, f: &mut dyn FnMut(f64)) {
+            let mut k = 5.5;
+            while k < f64::from(last) {
+                if k > f64::from(first) {
+                    f(k);
+                }
+                k += 5.5;
+            }
+        }
+        fn limits(&self) -> Option<MotionLimits> {
+            None
+        }
+    }
+
+    /// A write resumed from the progress of a longer write after its last break before the
+    /// shorter one's end writes the pieces of a write of its own.
+    #[test]
+    fn a_resumed_write_equals_a_fresh_one() {
+        let fit = StretchFit {
+            tolerance: 1e-6,
+            max_piece_ticks: 16,
+            path_axes: 1,
+        };
+        let (first, last) = (3, 40);
+        let mut fresh: Vec<Piece<f64, 1>, 64> = Vec::new();
+        fit.write(&Wave, first, last, &mut fresh).unwrap();
+        let mut pieces: Vec<Piece<f64, 1>, 64> = Vec::new();
+        let mut before = None;
+        let mut passed = |p: Progress| {
+            if p.at < f64::from(last) {
+                before = Some(p);
+            }
+        };
+        // the longer write runs out of pieces, as a stretch that is halved does
+        let long = fit.write_from(&Wave, (first, 300), &mut pieces, None, &mut passed);
+        assert!(
+            matches!(long, Err(Error::CapacityExceeded { .. })),
+            "{long:?}"
+        );
+        assert!(before.is_some_and(|p| p.breaks == 7 && p.pieces > 0));
+        fit.write_from(&Wave, (first, last), &mut pieces, before, &mut |_| {})
+            .unwrap();
+        assert_eq!(pieces, fresh);
+    }
 }

@@ -38,7 +38,7 @@ use super::committed::{Committed, PHASES};
 use super::moves::{Move, MoveCurve, NoCurve, Shape, StreamCurve};
 use super::segment::Segment;
 use crate::compile::TickMotion;
-use crate::compile::{StreamedPlan, StretchFit};
+use crate::compile::{Progress, StreamedPlan, StretchFit};
 use crate::error::Error;
 use crate::num::Number;
 use crate::path::{AxisState, MIN_ALPHA, Piece, RampBasis, feed_ramp_f64};
@@ -73,6 +73,10 @@ const FIT_MARGIN: f64 = 1.0 - 1e-6;
 /// 10⁷ at the fit tolerance (more than tightening the fit removes), which stays below the
 /// margin's `1e-5`.
 const VELOCITY_FIT_MARGIN: f64 = 1.0 - 1e-5;
+
+/// How many halvings of a stretch ahead [`Stream::poll`] keeps the progress of its write
+/// for (a stretch of up to 256 ticks halved down to 2).
+const HALVINGS: usize = 7;
 
 /// The most pieces one [`Stream::poll`] writes (a stretch that needs more is halved): it
 /// compiles only into a queue with more room than this.
@@ -1271,11 +1275,33 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
         let mut pieces = Vec::<Piece<N, D>, STRETCH_PIECES>::new();
         // One motion for every try: the positions it keeps serve the shorter stretches.
         let motion = self.motion();
+        // For the tries after this one (the stretch halved once, twice, …), the progress
+        // after the last break before their last tick: they resume from it.
+        let mut ahead: [Option<Progress>; HALVINGS] = [None; HALVINGS];
+        let mut resume = None;
         loop {
-            pieces.clear();
-            match self.fit.write(&motion, first, first + ticks, &mut pieces) {
+            let mut passed = |p: Progress| {
+                for (h, slot) in (1..).zip(ahead.iter_mut()) {
+                    if p.at < f64::from(first + (ticks >> h)) {
+                        *slot = Some(p);
+                    }
+                }
+            };
+            if resume.is_none() {
+                pieces.clear();
+            }
+            let span = (first, first + ticks);
+            match self
+                .fit
+                .write_from(&motion, span, &mut pieces, resume, &mut passed)
+            {
                 Ok(()) => break,
-                Err(Error::CapacityExceeded { .. }) if ticks > 2 => ticks /= 2,
+                Err(Error::CapacityExceeded { .. }) if ticks > 2 => {
+                    ticks /= 2;
+                    resume = ahead[0];
+                    ahead.rotate_left(1);
+                    ahead[HALVINGS - 1] = None;
+                }
                 Err(e) => return Err(e),
             }
         }
