@@ -24,8 +24,9 @@ use crate::plan::{MotionLimits, MotionState, PHASES_PER_ZONE, Phase};
 /// more.
 pub(super) const PHASES: usize = 3 * PHASES_PER_ZONE;
 
-/// The ticks whose states and frames a committed motion keeps.
-pub(super) const RECENT: usize = 8;
+/// The ticks whose states and frames a committed motion keeps: a span's two ends, or the
+/// ticks of a run of one-tick pieces in turn.
+pub(super) const RECENT: usize = 4;
 
 /// The ticks whose positions a committed motion keeps: a stretch of the default length
 /// ([`StreamOptions`](super::StreamOptions)), so that the spline fit, which checks its
@@ -40,8 +41,44 @@ const JOIN_BISECTION_STEPS: usize = 48;
 /// still taken to be on the segment it arrives on: the rounding of the arc lengths.
 const JOIN_ROUNDING: f64 = 1e-12;
 
-/// A tick and its position, once evaluated.
-pub(super) type TickPoint<const D: usize> = Cell<Option<(u32, [f64; D])>>;
+/// What a committed motion keeps of the ticks it evaluated last. The stream holds it, so
+/// that the stack holds one (a stretch's positions are a few kilobytes), and clears it for
+/// every committed motion it makes.
+#[derive(Clone, Debug)]
+pub(super) struct TickCache<const D: usize> {
+    /// The ticks evaluated last, their states and frames, by tick modulo [`RECENT`]: a
+    /// stretch asks for the position, slope and second derivative of a tick in turn, and
+    /// for the ticks near it again as it refines its pieces.
+    recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
+    /// The ticks whose position alone was evaluated last, by tick modulo [`POINTS`], each
+    /// plus one (0: none; the last tick of all is never kept): the spline fit checks its
+    /// pieces against the positions of every tick, which need neither the tangent nor the
+    /// curvature of the frame.
+    point_ticks: [Cell<u32>; POINTS],
+    /// Their points.
+    points: [Cell<[f64; D]>; POINTS],
+}
+
+impl<const D: usize> TickCache<D> {
+    /// Nothing kept.
+    pub(super) const fn new() -> Self {
+        TickCache {
+            recent: [const { Cell::new(None) }; RECENT],
+            point_ticks: [const { Cell::new(0) }; POINTS],
+            points: [const { Cell::new([0.0; D]) }; POINTS],
+        }
+    }
+
+    /// Forgets every tick.
+    pub(super) fn clear(&self) {
+        for slot in &self.recent {
+            slot.set(None);
+        }
+        for tick in &self.point_ticks {
+            tick.set(0);
+        }
+    }
+}
 
 /// The committed motion of a stream: its phases in time order and the segments they run
 /// along, on the grid of `period` seconds, within the limits `limits`, up to `end`.
@@ -52,14 +89,8 @@ pub(super) struct Committed<'a, const D: usize, const Q: usize, C, const R: usiz
     pub(super) limits: MotionLimits,
     /// The end of the committed motion: time, arc length and speed.
     pub(super) end: (f64, f64, f64),
-    /// The ticks evaluated last, their states and frames, by tick modulo [`RECENT`]: a
-    /// stretch asks for the position, slope and second derivative of a tick in turn, and
-    /// for the ticks near it again as it refines its pieces.
-    pub(super) recent: [Cell<Option<(u32, MotionState, Frame<D>)>>; RECENT],
-    /// The ticks whose position alone was evaluated last, and their points, by tick modulo
-    /// [`POINTS`]: the spline fit checks its pieces against the positions of every tick,
-    /// which need neither the tangent nor the curvature of the frame.
-    pub(super) points: [TickPoint<D>; POINTS],
+    /// The states, frames and positions of the ticks evaluated last.
+    pub(super) ticks: &'a TickCache<D>,
     /// The index of the segment found last.
     pub(super) cursor: Cell<usize>,
 }
@@ -100,7 +131,7 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
 
     /// The state and the frame at tick `k`.
     fn at_tick(&self, k: u32) -> Result<(MotionState, Frame<D>), Error> {
-        let slot = &self.recent[k as usize % RECENT];
+        let slot = &self.ticks.recent[k as usize % RECENT];
         if let Some((tick, st, f)) = slot.get()
             && tick == k
         {
@@ -115,20 +146,21 @@ impl<const D: usize, const Q: usize, C: StreamCurve<D>, const R: usize> Committe
     /// The position at tick `k`: the point of its frame ([`Self::at_tick`]), evaluated
     /// alone where the frame is not at hand.
     fn point_at(&self, k: u32) -> Result<[f64; D], Error> {
-        let slot = &self.points[k as usize % POINTS];
-        if let Some((tick, x)) = slot.get()
-            && tick == k
-        {
-            return Ok(x);
+        let slot = k as usize % POINTS;
+        let (tick, point) = (&self.ticks.point_ticks[slot], &self.ticks.points[slot]);
+        let key = k.wrapping_add(1);
+        if key != 0 && tick.get() == key {
+            return Ok(point.get());
         }
-        if let Some((tick, _, f)) = self.recent[k as usize % RECENT].get()
+        if let Some((tick, _, f)) = self.ticks.recent[k as usize % RECENT].get()
             && tick == k
         {
             return Ok(f.point);
         }
         let st = self.state(f64::from(k) * self.period);
         let x = self.segment_at(st.s, st.a < 0.0)?.point(st.s)?;
-        slot.set(Some((k, x)));
+        tick.set(key);
+        point.set(x);
         Ok(x)
     }
 

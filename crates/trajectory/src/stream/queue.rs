@@ -34,7 +34,7 @@ use heapless::{Deque, Vec};
 use strak_curves::ParamCurve;
 
 use super::blend::{Blend, Junction, chain, has_span, junction};
-use super::committed::{Committed, PHASES};
+use super::committed::{Committed, PHASES, TickCache};
 use super::moves::{Move, MoveCurve, NoCurve, Shape, StreamCurve};
 use super::segment::Segment;
 use crate::compile::TickMotion;
@@ -75,8 +75,9 @@ const FIT_MARGIN: f64 = 1.0 - 1e-6;
 const VELOCITY_FIT_MARGIN: f64 = 1.0 - 1e-5;
 
 /// How many halvings of a stretch ahead [`Stream::poll`] keeps the progress of its write
-/// for (a stretch of up to 256 ticks halved down to 2).
-const HALVINGS: usize = 7;
+/// for (a stretch of up to 64 ticks halved down to 2; the tries of a longer one shorter
+/// than that fit from its first tick again).
+const HALVINGS: usize = 5;
 
 /// The most pieces one [`Stream::poll`] writes (a stretch that needs more is halved): it
 /// compiles only into a queue with more room than this.
@@ -426,6 +427,9 @@ pub struct Stream<
     feed_override: f64,
     /// Seconds the motion rests before the next move ([`Stream::dwell`]).
     dwell: f32,
+    /// What the committed motion keeps of the ticks it evaluated while a stretch is
+    /// compiled.
+    ticks: TickCache<D>,
 }
 
 impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R: usize>
@@ -471,6 +475,7 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
             ramp: (0.0, 0.0),
             feed_override: 1.0,
             dwell: 0.0,
+            ticks: TickCache::new(),
             planned: Limits::NONE,
             promised: MotionLimits::new(0.0, 0.0, 0.0),
             options: StreamOptions::new(PlanOptions::DEFAULT_RATE),
@@ -1343,14 +1348,14 @@ impl<const D: usize, const Q: usize, const Z: usize, C: StreamCurve<D>, const R:
 
     /// The committed motion.
     fn motion(&self) -> Committed<'_, D, Q, C, R> {
+        self.ticks.clear();
         Committed {
             segments: &self.segments,
             phases: &self.committed,
             period: self.period(),
             limits: self.promised,
             end: self.window.entry(),
-            recent: core::array::from_fn(|_| Cell::new(None)),
-            points: core::array::from_fn(|_| Cell::new(None)),
+            ticks: &self.ticks,
             cursor: Cell::new(0),
         }
     }
