@@ -109,26 +109,49 @@ pub(crate) fn slowing_loss(v_low: f64, v_cruise: f64, a: f64, j: f64) -> f64 {
 /// from `v_from` and the highest speed from which `v_from` can be reached by braking.
 ///
 /// `D(v_from, ·) = length` is solved in closed form ([`reach_gain`]) and the edge of
-/// `D ≤ length` in `f64` is then found by bisection within [`EDGE_BRACKET`] of that root (on
-/// the whole of `[v_from, cap]` where the root's bracket does not hold the edge).
+/// `D ≤ length` in `f64` is then found from that root one unit of `f64` at a time
+/// ([`edge_near`]), or by bisection of the whole of `[v_from, cap]` where it lies further.
 pub(crate) fn reach(v_from: f64, length: f64, cap: f64, a: f64, j: f64) -> f64 {
     if cap <= v_from || change_distance(v_from, cap, a, j) <= length {
         return cap;
     }
     let fits = |v| change_distance(v_from, v, a, j) <= length;
     let root = v_from + reach_gain(v_from, length, a, j);
-    let width = EDGE_BRACKET * root.abs();
-    let (lo, hi) = ((root - width).max(v_from), (root + width).min(cap));
-    if (lo == v_from || fits(lo)) && (hi == cap || !fits(hi)) {
-        last_fitting(lo, hi, fits)
-    } else {
-        last_fitting(v_from, cap, fits)
-    }
+    edge_near(root, (v_from, cap), fits).unwrap_or_else(|| last_fitting(v_from, cap, fits))
 }
 
-/// The relative width of the bracket around the closed-form root of `D(v0, v) = L` in which
-/// [`reach`] looks for the edge in `f64`: the root's rounding is a few units of `f64`'s.
-const EDGE_BRACKET: f64 = 1e-13;
+/// The most units of `f64` [`edge_near`] steps from the closed-form root: its rounding is a
+/// few.
+const EDGE_STEPS: usize = 16;
+
+/// The edge of `fits` on `[lo, hi]` near `guess`: the speed where it holds and fails one
+/// unit of `f64` above (at `hi` it fails, at `lo` it holds), found by stepping from `guess`
+/// (clamped to `[lo, hi]`) one unit at a time; `None` when it lies more than
+/// [`EDGE_STEPS`] units away or `guess` is NaN. Where `fits` changes once, this is the edge
+/// the bisection finds.
+fn edge_near(guess: f64, (lo, hi): (f64, f64), fits: impl Fn(f64) -> bool) -> Option<f64> {
+    if guess.is_nan() {
+        return None;
+    }
+    let mut v = guess.clamp(lo, hi);
+    let up = v == lo || (v < hi && fits(v));
+    for _ in 0..EDGE_STEPS {
+        if up {
+            let next = v.next_up();
+            if next >= hi || !fits(next) {
+                return Some(v);
+            }
+            v = next;
+        } else {
+            let next = v.next_down();
+            if next <= lo || fits(next) {
+                return Some(next.max(lo));
+            }
+            v = next;
+        }
+    }
+    None
+}
 
 /// The speed gain `Δ = v − w` with `D(w, v) = length`, in closed form (both branches of
 /// [`Change`]):
@@ -379,7 +402,8 @@ mod tests {
 
     /// The closed form's edge against the bisection of all of `[v_from, cap]`, over speeds,
     /// lengths and limits in both branches of [`Change`] and without a jerk limit: it fits,
-    /// the next `f64` above it does not, and it lies within `1e-14` of the bisection's edge.
+    /// the next `f64` above it does not, it is the bisection's edge to the bit, and the steps
+    /// from the root reach it.
     #[test]
     fn reach_finds_the_edge_the_bisection_finds() {
         let mut cases = 0;
@@ -400,11 +424,10 @@ mod tests {
                         !fits(edge.next_up()),
                         "{w} {length} {a} {j}: {edge} not the edge"
                     );
-                    let off = (edge - bisected).abs();
-                    assert!(
-                        off <= 1e-14 * bisected.max(1.0),
-                        "{w} {length}: {edge} {bisected}"
-                    );
+                    assert_eq!(edge.to_bits(), bisected.to_bits(), "{w} {length} {a} {j}");
+                    let root = w + reach_gain(w, length, a, j);
+                    let stepped = edge_near(root, (w, cap), fits);
+                    assert!(stepped.is_some(), "{w} {length} {a} {j}: the root is far");
                     cases += 1;
                 }
             }
